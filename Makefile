@@ -1,0 +1,138 @@
+SHELL := /bin/bash
+# fieldloc - fixed-point field localization for legged soccer robots.
+#
+#   make            library build/libfieldloc.a and the host CLI build/fieldloc
+#   make test       host unit and fixture tests; ends with "N passed, N failed"
+#   make check      firmware rules: strict C99 warnings as errors, no FP
+#                   (-mgeneral-regs-only), no allocator symbols, fl_ prefix,
+#                   no mutable file-scope state, allowed libc headers only
+#   make cross-test test suite under qemu-user for i686, mipsel and mips,
+#                   output compared line by line with the host's
+#   make test-exhaustive  the sweeps too long for every run (all uint32 isqrt)
+#   make sanitize   test suite under ASan + UBSan (clang, integer checks too)
+#   make bench      benchmarks, writes build/bench.tsv
+#   make install    PREFIX=/usr/local: headers, library, pkg-config file
+#   make echo       print the effective flags
+#
+# Variables: CC, BUILD (output folder), ARCHFLAGS (extra flags for every
+# object, e.g. -static for cross builds), FW_NOFP (no-FP flag for src/).
+
+CC       ?= cc
+AR       ?= ar
+BUILD    ?= build
+PREFIX   ?= /usr/local
+ARCHFLAGS ?=
+OPT      ?= -O2
+
+WARN     = -std=c99 -pedantic -Wall -Wextra -Wconversion -Wshadow
+MACHINE := $(shell $(CC) -dumpmachine 2>/dev/null)
+ifneq ($(filter x86_64% i686% i386%,$(MACHINE)),)
+FW_NOFP ?= -mgeneral-regs-only
+endif
+ifneq ($(filter i686% i386%,$(MACHINE)),)
+# host-side doubles in SSE registers: no x87 excess precision in references
+HOST_FP = -msse2 -mfpmath=sse
+endif
+
+FW_CFLAGS   = $(WARN) -Werror $(OPT) -g -fno-common -Iinclude $(FW_NOFP) $(ARCHFLAGS)
+HOST_CFLAGS = $(WARN) $(OPT) -g -Iinclude -Ihost_tests -Itools $(HOST_FP) $(ARCHFLAGS) -D_DEFAULT_SOURCE
+HOST_LIBS   = -lm
+
+FW_SRC   := $(sort $(wildcard src/*.c))
+FW_OBJ   := $(FW_SRC:%.c=$(BUILD)/%.o)
+LIB      := $(BUILD)/libfieldloc.a
+
+TEST_SRC := $(sort $(wildcard host_tests/*.c))
+TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
+TOOL_LIB_SRC := $(filter-out tools/fieldloc.c,$(sort $(wildcard tools/*.c)))
+TOOL_LIB_OBJ := $(TOOL_LIB_SRC:%.c=$(BUILD)/%.o)
+CLI      := $(BUILD)/fieldloc
+RUNNER   := $(BUILD)/run_tests
+
+.PHONY: all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
+
+all: $(LIB) $(CLI)
+
+$(BUILD)/src/%.o: src/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/host_tests/%.o: host_tests/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/tools/%.o: tools/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
+
+$(LIB): $(FW_OBJ)
+	@mkdir -p $(dir $@)
+	rm -f $@
+	$(AR) rcs $@ $^
+
+$(RUNNER): $(TEST_OBJ) $(TOOL_LIB_OBJ) $(LIB)
+	$(CC) $(HOST_CFLAGS) -o $@ $(TEST_OBJ) $(TOOL_LIB_OBJ) $(LIB) $(HOST_LIBS)
+
+$(CLI): $(BUILD)/tools/fieldloc.o $(TOOL_LIB_OBJ) $(LIB)
+	$(CC) $(HOST_CFLAGS) -o $@ $^ $(HOST_LIBS)
+
+test: $(RUNNER) check
+	@$(RUNNER) | tee $(BUILD)/test.log; exit $${PIPESTATUS[0]}
+
+test-quick: $(RUNNER)
+	@$(RUNNER) --quick
+
+test-exhaustive: $(RUNNER)
+	@$(RUNNER) --exhaustive
+
+check: $(LIB)
+	@CC="$(CC)" BUILD="$(BUILD)" sh tools/check_firmware.sh
+
+# Cross targets: the same sources with each cross compiler, statically
+# linked, run under qemu-user with --quick, compared with the host's --quick
+# output (lines starting with '#' carry host doubles and are not compared).
+CROSS_ARCHS ?= i686 mipsel mips
+cross-test: $(RUNNER)
+	@$(RUNNER) --quick | grep -v '^#' > $(BUILD)/quick-host.txt; \
+	 status=0; \
+	 for a in $(CROSS_ARCHS); do \
+	   case $$a in i686) q=qemu-i386;; *) q=qemu-$$a;; esac; \
+	   $(MAKE) --no-print-directory -s BUILD=$(BUILD)/cross/$$a CC=$$a-linux-gnu-gcc \
+	     AR=$$a-linux-gnu-ar ARCHFLAGS=-static $(BUILD)/cross/$$a/run_tests check || exit 1; \
+	   $$q $(BUILD)/cross/$$a/run_tests --quick | grep -v '^#' > $(BUILD)/quick-$$a.txt; \
+	   if cmp -s $(BUILD)/quick-host.txt $(BUILD)/quick-$$a.txt; then \
+	     echo "cross-test $$a: identical to host ($$(tail -1 $(BUILD)/quick-$$a.txt))"; \
+	   else \
+	     echo "cross-test $$a: DIFFERS from host"; diff $(BUILD)/quick-host.txt $(BUILD)/quick-$$a.txt | head -20; status=1; \
+	   fi; \
+	 done; exit $$status
+
+SAN_CC ?= clang
+SAN_FLAGS = -fsanitize=address,undefined,integer -fno-sanitize=unsigned-integer-overflow,unsigned-shift-base -fno-sanitize-recover=all -fno-omit-frame-pointer
+sanitize:
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/san CC=$(SAN_CC) OPT="-O1" \
+	  ARCHFLAGS="$(SAN_FLAGS)" FW_NOFP= $(BUILD)/san/run_tests
+	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 $(BUILD)/san/run_tests
+
+bench: $(CLI)
+	@$(CLI) bench --out $(BUILD)/bench.tsv
+
+install: $(LIB)
+	install -d $(DESTDIR)$(PREFIX)/include/fieldloc $(DESTDIR)$(PREFIX)/lib/pkgconfig
+	install -m 644 include/fieldloc/*.h $(DESTDIR)$(PREFIX)/include/fieldloc/
+	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/
+	sed -e 's|@PREFIX@|$(PREFIX)|' tools/fieldloc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/fieldloc.pc
+
+uninstall:
+	rm -rf $(DESTDIR)$(PREFIX)/include/fieldloc
+	rm -f $(DESTDIR)$(PREFIX)/lib/libfieldloc.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/fieldloc.pc
+
+clean:
+	rm -rf $(BUILD)
+
+echo:
+	@echo "CC          = $(CC) ($(MACHINE))"
+	@echo "FW_CFLAGS   = $(FW_CFLAGS)"
+	@echo "HOST_CFLAGS = $(HOST_CFLAGS)"
+
+-include $(FW_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(TOOL_LIB_OBJ:.o=.d) $(BUILD)/tools/fieldloc.d

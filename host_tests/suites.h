@@ -1,0 +1,6 @@
+/* Every suite, in run order.  Add one line per host_tests/test_<stage>.c. */
+T_SUITE(fixed);
+T_SUITE(image);
+T_SUITE(camera);
+T_SUITE(field);
+T_SUITE(rules);

@@ -1,0 +1,796 @@
+/*
+ * host_tests/test_camera.c - the fixed-point camera model (src/camera.c)
+ * against an independent double-precision pinhole model written here from
+ * the geometry of camera.h (camera axes and centre built from the head
+ * angles, not from the firmware's matrix products).
+ *
+ * The reference uses the model's integer parameters exactly (focal and
+ * principal point in Q4, mount in mm, angles as binary angles converted to
+ * radians), so the comparison measures the fixed-point arithmetic only.
+ *
+ * Sweep (normal run): every catalogue camera x 24 corner poses (extremes of
+ * neck height, head pitch, yaw and pitch offset) + 376 random poses; NAO neck
+ * 300..600 mm, AIBO 100..200 mm, head pitch -0.6..+0.5 rad, yaw -2..+2 rad,
+ * pitch offset +-5 deg.  Per pose: a 21 x 16 pixel grid over the image with
+ * random sub-pixel (Q4) jitter, 13 rows just below the fixed-point horizon
+ * (1/16 px .. 16 px below it, i.e. ranges up to and beyond 20 m) at 5
+ * columns, and 60 random ground points (range 100..8000 mm, bearings
+ * across the view) sent ground -> pixel -> ground.
+ * Quick run (--quick, qemu): 4 corner poses + 4 random poses per camera,
+ * a 6 x 5 grid, the same horizon rows at 2 columns, 12 ground points;
+ * polar: 2000 instead of 100000 random points.  Catalogue, invalid-input and
+ * extreme-input cases are the same in both modes.
+ *
+ * Every input of the firmware is generated with integers (t_rng, firmware
+ * outputs), never from the double reference, so the digests are
+ * bit-identical on every target.
+ *
+ * Tolerances:
+ *  - ground point (pixel_to_ground): |fixed - ref| <= 1 mm + 0.1% of the
+ *    range whenever the reference range is <= 6 m (the requirement) and
+ *    also out to 20 m.
+ *  - "no ground point": the fixed point must say false whenever the
+ *    reference ray is at/above the horizon, or its ground point is beyond
+ *    FL_CAMERA_MAX_RANGE_MM + BAND_MM; it must give a point whenever the
+ *    reference is within FL_CAMERA_MAX_RANGE_MM - BAND_MM.  BAND_MM = 21 mm
+ *    (1 mm + 0.1% of 20 m): in that band around the max range either answer
+ *    is accepted.  No band is needed at the horizon itself: rays that graze
+ *    it are far beyond the max range in both models.
+ *  - ground_to_pixel: |fixed - 16 ref| <= 1 + f_q4 * (sqrt(3)/32 mm) / D
+ *    Q4 (pix_tol_q4), D the camera-to-point distance, for points whose
+ *    reference pixel lies within the image grown by half its size: 0.5 LSB
+ *    of final rounding (+0.5 margin) plus the camera centre kept in Q4 mm
+ *    (each coordinate within 1/32 mm: seen from 300 mm with f = 722 px that
+ *    moves the pixel by up to 2.1 LSB; from 1 m by 0.6 LSB).
+ *  - round trip ground -> pixel -> ground: |g' - g| <= |ref(pixel) - g| + 1 mm
+ *    + 0.1% of range, i.e. the pixel quantization (seen through the
+ *    reference) plus the ground tolerance.
+ *  - horizon: the firmware row h must be floor(16 * v_ref) exactly, where
+ *    v_ref = cy - f tan(total tilt) (pixels with v_q4 > h look down), or
+ *    one LSB off when 16 * v_ref is within 1e-3 LSB of an integer; the
+ *    same for every column.
+ *  - polar: range exact (rounded) for |x|,|y| < 2^26, <= 1 beyond; bearing
+ *    within 0.02 deg of atan2; point_from_polar within 1 mm.
+ */
+#include "test.h"
+
+#include "fieldloc/camera.h"
+#include "fieldloc/config.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI_D 3.14159265358979323846
+#define BAND_MM 21.0
+
+/* ground_to_pixel tolerance, Q4 px: 1 LSB (0.5 of final rounding, 0.5 of
+ * margin) plus the camera centre's Q4 storage (each coordinate within 1/32
+ * mm, |dp| <= sqrt(3)/32 mm) seen from the point's distance. */
+static double pix_tol_q4(const fl_camera_model_t *m, double dist_mm)
+{
+    return 1.0 + m->focal_q4 * (1.7320508 / 32.0) / dist_mm;
+}
+
+/* ---- double reference ---------------------------------------------------- */
+
+typedef struct {
+    double axis[3][3]; /* axis[0] optical, axis[1] left, axis[2] up: robot frame */
+    double p[3];       /* camera centre, mm */
+    double f, cx, cy;  /* px */
+    double tilt;       /* total downward tilt, rad */
+} ref_cam_t;
+
+static double rad_of(int a) { return (double)a * (2.0 * PI_D / 65536.0); }
+
+static void ref_init(ref_cam_t *rc, const fl_camera_model_t *m, const fl_camera_pose_t *ps)
+{
+    double psi = rad_of(ps->head_yaw);
+    double theta = rad_of(ps->head_pitch) + rad_of(ps->pitch_offset);
+    double alpha = theta + rad_of(m->mount_tilt);
+    /* head axes: forward (pitched down by theta, then yawed) and up */
+    double hf[3], hu[3];
+    int i;
+    hf[0] = cos(theta) * cos(psi);
+    hf[1] = cos(theta) * sin(psi);
+    hf[2] = -sin(theta);
+    hu[0] = sin(theta) * cos(psi);
+    hu[1] = sin(theta) * sin(psi);
+    hu[2] = cos(theta);
+    /* camera axes: optical axis alpha below horizontal in the yawed plane */
+    rc->axis[0][0] = cos(alpha) * cos(psi);
+    rc->axis[0][1] = cos(alpha) * sin(psi);
+    rc->axis[0][2] = -sin(alpha);
+    rc->axis[1][0] = -sin(psi);
+    rc->axis[1][1] = cos(psi);
+    rc->axis[1][2] = 0.0;
+    rc->axis[2][0] = sin(alpha) * cos(psi);
+    rc->axis[2][1] = sin(alpha) * sin(psi);
+    rc->axis[2][2] = cos(alpha);
+    for (i = 0; i < 3; i++)
+        rc->p[i] = m->mount_x_mm * hf[i] + m->mount_z_mm * hu[i];
+    rc->p[2] += ps->neck_height_mm;
+    rc->f = m->focal_q4 / 16.0;
+    rc->cx = m->cx_q4 / 16.0;
+    rc->cy = m->cy_q4 / 16.0;
+    rc->tilt = alpha;
+}
+
+enum { REF_HIT, REF_ABOVE, REF_FAR };
+
+/* pixel (px) -> ground (mm); returns REF_* and the range. */
+static int ref_pixel_to_ground(const ref_cam_t *rc, double u, double v, double *gx,
+                               double *gy, double *range)
+{
+    double d[3], t;
+    int i;
+    for (i = 0; i < 3; i++)
+        d[i] = rc->f * rc->axis[0][i] - (u - rc->cx) * rc->axis[1][i] - (v - rc->cy) * rc->axis[2][i];
+    if (d[2] >= 0.0)
+        return REF_ABOVE;
+    t = -rc->p[2] / d[2];
+    *gx = rc->p[0] + t * d[0];
+    *gy = rc->p[1] + t * d[1];
+    *range = hypot(*gx, *gy);
+    return *range > FL_CAMERA_MAX_RANGE_MM ? REF_FAR : REF_HIT;
+}
+
+/* ground (mm) -> pixel (px); 0 when behind the camera.  *side = c_x / |c|,
+ * *dist = |c| (camera to point, mm). */
+static int ref_ground_to_pixel(const ref_cam_t *rc, double gx, double gy, double *u, double *v,
+                               double *side, double *dist)
+{
+    double w[3], c[3];
+    int i;
+    w[0] = gx - rc->p[0];
+    w[1] = gy - rc->p[1];
+    w[2] = -rc->p[2];
+    for (i = 0; i < 3; i++)
+        c[i] = rc->axis[i][0] * w[0] + rc->axis[i][1] * w[1] + rc->axis[i][2] * w[2];
+    *dist = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    *side = c[0] / *dist;
+    if (c[0] <= 0.0)
+        return 0;
+    *u = rc->cx - rc->f * c[1] / c[0];
+    *v = rc->cy - rc->f * c[2] / c[0];
+    return 1;
+}
+
+/* ---- poses ----------------------------------------------------------------- */
+
+#define PITCH_MIN (-6259) /* -0.6 rad */
+#define PITCH_MAX 5216    /* +0.5 rad */
+#define YAW_MAX 20861     /* 2 rad */
+#define OFFSET_MAX 910    /* 5 deg */
+
+static int is_aibo(const fl_camera_model_t *m) { return strncmp(m->name, "aibo", 4) == 0; }
+
+/* Pose k of a sweep: k < 24 corners, then random. */
+static fl_camera_pose_t make_pose(const fl_camera_model_t *m, int k, t_rng_t *rng)
+{
+    fl_camera_pose_t ps;
+    int32_t nlo = is_aibo(m) ? 100 : 300, nhi = is_aibo(m) ? 200 : 600;
+    if (k < 24) {
+        ps.neck_height_mm = (k & 1) ? nhi : nlo;
+        ps.head_pitch = (fl_angle_t)((k & 2) ? PITCH_MAX : PITCH_MIN);
+        ps.pitch_offset = (fl_angle_t)((k & 4) ? OFFSET_MAX : -OFFSET_MAX);
+        ps.head_yaw = (fl_angle_t)((k / 8 - 1) * YAW_MAX);
+    } else {
+        ps.neck_height_mm = t_rng_range(rng, nlo, nhi);
+        ps.head_pitch = (fl_angle_t)t_rng_range(rng, PITCH_MIN, PITCH_MAX);
+        ps.pitch_offset = (fl_angle_t)t_rng_range(rng, -OFFSET_MAX, OFFSET_MAX);
+        ps.head_yaw = (fl_angle_t)t_rng_range(rng, -YAW_MAX, YAW_MAX);
+    }
+    return ps;
+}
+
+static int n_poses(void) { return t_quick ? 8 : 400; }
+static int pose_index(int i) { return t_quick ? (i < 4 ? i * 7 : 20 + i) : i; }
+
+/* ---- statistics -------------------------------------------------------------- */
+
+typedef struct {
+    long n_near, n_far, n_above, n_beyond, n_band;
+    double max_err_near, max_rel_near; /* <= 6 m: mm, % of range */
+    double max_err_far, max_rel_far;   /* 6..20 m */
+    double max_frac;                   /* error / (1 mm + 0.1% range), any range */
+} gstat_t;
+
+/* Compare one firmware pixel_to_ground against the reference. */
+static void check_p2g(const fl_camera_t *cam, const ref_cam_t *rc, int32_t u_q4, int32_t v_q4,
+                      gstat_t *st, uint32_t *h)
+{
+    fl_point_t g = {12345, -12345};
+    double rx = 0, ry = 0, rr = 0, err;
+    int ok = fl_camera_pixel_to_ground(cam, u_q4, v_q4, &g);
+    int ref = ref_pixel_to_ground(rc, u_q4 / 16.0, v_q4 / 16.0, &rx, &ry, &rr);
+    *h = t_hash_i32(*h, ok);
+    if (ok) {
+        *h = t_hash_i32(*h, g.x_mm);
+        *h = t_hash_i32(*h, g.y_mm);
+    }
+    if (ref == REF_ABOVE) {
+        st->n_above++;
+        if (ok)
+            t_fail_msg(__FILE__, __LINE__, "%s u=%ld v=%ld: ground point above the horizon",
+                       cam->model.name, (long)u_q4, (long)v_q4);
+        return;
+    }
+    if (fabs(rr - FL_CAMERA_MAX_RANGE_MM) <= BAND_MM) {
+        st->n_band++;
+        if (!ok)
+            return;
+    } else if (ref == REF_FAR) {
+        st->n_beyond++;
+        if (ok)
+            t_fail_msg(__FILE__, __LINE__, "%s u=%ld v=%ld: point at %.0f mm beyond max range",
+                       cam->model.name, (long)u_q4, (long)v_q4, rr);
+        return;
+    } else if (!ok) {
+        t_fail_msg(__FILE__, __LINE__, "%s u=%ld v=%ld: no ground point, reference %.1f mm",
+                   cam->model.name, (long)u_q4, (long)v_q4, rr);
+        return;
+    }
+    err = hypot(g.x_mm - rx, g.y_mm - ry);
+    if (err / (1.0 + 0.001 * rr) > st->max_frac)
+        st->max_frac = err / (1.0 + 0.001 * rr);
+    if (rr <= 6000.0) {
+        st->n_near++;
+        if (err > st->max_err_near)
+            st->max_err_near = err;
+        if (rr >= 1000.0 && 100.0 * err / rr > st->max_rel_near)
+            st->max_rel_near = 100.0 * err / rr;
+    } else {
+        st->n_far++;
+        if (err > st->max_err_far)
+            st->max_err_far = err;
+        if (100.0 * err / rr > st->max_rel_far)
+            st->max_rel_far = 100.0 * err / rr;
+    }
+    if (!(err <= 1.0 + 0.001 * rr))
+        t_fail_msg(__FILE__, __LINE__, "%s u=%ld v=%ld: ground error %.2f mm at range %.0f mm",
+                   cam->model.name, (long)u_q4, (long)v_q4, err, rr);
+}
+
+/* ---- cases ------------------------------------------------------------------- */
+
+static void test_catalogue(void)
+{
+    static const struct {
+        const char *prefix;
+        double hfov_deg;
+    } hfov[] = {{"nao3-", 47.8}, {"nao4-", 60.9}, {"nao6-", 56.3}, {"aibo-ers7", 56.9}};
+    static const char *const required[] = {
+        "nao3-top-320", "nao3-top-640", "nao3-bottom-320", "nao3-bottom-640",
+        "nao4-top-320", "nao4-top-640", "nao4-bottom-320", "nao4-bottom-640",
+        "nao6-top-320", "nao6-top-640", "nao6-bottom-320", "nao6-bottom-640", "aibo-ers7"};
+    size_t i, j, n = fl_camera_model_count();
+    const fl_camera_model_t *m;
+    fl_camera_pose_t ps = {450, 0, 0, 0};
+    fl_camera_t cam;
+
+    CHECK(n >= sizeof required / sizeof required[0]);
+    CHECK(fl_camera_model_at(n) == NULL);
+    CHECK(fl_camera_model_at((size_t)-1) == NULL);
+    CHECK(fl_camera_model_find(NULL) == NULL);
+    CHECK(fl_camera_model_find("") == NULL);
+    CHECK(fl_camera_model_find("nao4-bottom-32") == NULL);
+    CHECK(fl_camera_model_find("nao4-bottom-3200") == NULL);
+    CHECK(fl_camera_model_find("nao5-top-320") == NULL);
+    for (i = 0; i < sizeof required / sizeof required[0]; i++) {
+        m = fl_camera_model_find(required[i]);
+        CHECK(m != NULL);
+        if (m)
+            CHECK(strcmp(m->name, required[i]) == 0);
+    }
+    for (i = 0; i < n; i++) {
+        m = fl_camera_model_at(i);
+        CHECK(m != NULL);
+        if (!m || !m->name) {
+            CHECK(0);
+            continue;
+        }
+        CHECK(fl_camera_model_find(m->name) == m);
+        for (j = 0; j < i; j++)
+            CHECK(strcmp(fl_camera_model_at(j)->name, m->name) != 0);
+        ps.neck_height_mm = is_aibo(m) ? 150 : 450;
+        CHECK_EQ(fl_camera_init(&cam, m, &ps), FL_OK);
+        CHECK_EQ(m->cx_q4, 8 * (m->width_px - 1));
+        CHECK_EQ(m->cy_q4, 8 * (m->height_px - 1));
+        for (j = 0; j < sizeof hfov / sizeof hfov[0]; j++) {
+            if (strncmp(m->name, hfov[j].prefix, strlen(hfov[j].prefix)) == 0) {
+                double f = 16.0 * (m->width_px / 2.0) / tan(hfov[j].hfov_deg * PI_D / 360.0);
+                CHECK_LE(fabs(m->focal_q4 - f), 0.5);
+                break;
+            }
+        }
+        CHECK(j < sizeof hfov / sizeof hfov[0]); /* every model has a known HFOV */
+        if (strstr(m->name, "-320")) {
+            CHECK_EQ(m->width_px, 320);
+            CHECK_EQ(m->height_px, 240);
+        } else if (strstr(m->name, "-640")) {
+            CHECK_EQ(m->width_px, 640);
+            CHECK_EQ(m->height_px, 480);
+        }
+        if (strstr(m->name, "-bottom-"))
+            CHECK(m->mount_tilt > 7000 && m->mount_tilt < 7400); /* about 39-40.5 deg */
+        if (strstr(m->name, "-top-"))
+            CHECK(m->mount_tilt >= 0 && m->mount_tilt < 400); /* 0 .. 2.2 deg */
+    }
+    m = fl_camera_model_find("nao4-bottom-320");
+    if (m) { /* DESIGN.md: 50.71 mm forward, 17.74 up, 39.7 deg, about 272 px */
+        CHECK_EQ(m->mount_x_mm, 51);
+        CHECK_EQ(m->mount_z_mm, 18);
+        CHECK_EQ(m->mount_tilt, 7227);
+        CHECK(m->focal_q4 > 271 * 16 && m->focal_q4 < 273 * 16);
+    }
+    m = fl_camera_model_find("aibo-ers7");
+    if (m) {
+        CHECK_EQ(m->width_px, 208);
+        CHECK_EQ(m->height_px, 160);
+    }
+}
+
+/* Asserts that cam projects nothing. */
+static void check_projects_nothing(const fl_camera_t *cam)
+{
+    int32_t u, v, uu = 7, vv = 7;
+    fl_point_t g;
+    int any = 0;
+    for (v = -16 * 100; v <= 16 * 1400; v += 16 * 25 + 3)
+        for (u = -16 * 100; u <= 16 * 1400; u += 16 * 25 + 5)
+            any |= fl_camera_pixel_to_ground(cam, u, v, &g);
+    CHECK(!any);
+    for (v = -3000; v <= 3000; v += 250)
+        for (u = -3000; u <= 3000; u += 250) {
+            g.x_mm = u;
+            g.y_mm = v;
+            any |= fl_camera_ground_to_pixel(cam, g, &uu, &vv);
+        }
+    CHECK(!any);
+    CHECK_EQ(uu, 7);
+    CHECK_EQ(vv, 7);
+    CHECK_EQ(fl_camera_horizon_v_q4(cam, 0), INT32_MAX);
+    CHECK_EQ(fl_camera_horizon_v_q4(cam, 16 * 100), INT32_MAX);
+}
+
+/* Init cam validly, then with (m, ps): expect status st and, on error, a camera
+ * that projects nothing. */
+static void expect_init(const fl_camera_model_t *m, const fl_camera_pose_t *ps, fl_status_t st)
+{
+    fl_camera_t cam;
+    fl_camera_pose_t good = {450, 0, 0, 0};
+    CHECK_EQ(fl_camera_init(&cam, fl_camera_model_find("nao4-bottom-320"), &good), FL_OK);
+    CHECK_EQ(fl_camera_init(&cam, m, ps), st);
+    if (st != FL_OK)
+        check_projects_nothing(&cam);
+}
+
+static void test_invalid(void)
+{
+    const fl_camera_model_t *base = fl_camera_model_find("nao4-bottom-320");
+    fl_camera_model_t m;
+    fl_camera_pose_t ps = {450, 0, 0, 0}, p2;
+    fl_camera_t cam;
+    fl_point_t g = {1000, 0};
+    int32_t u, v;
+
+    CHECK(base != NULL);
+    if (!base)
+        return;
+    CHECK_EQ(fl_camera_init(NULL, base, &ps), FL_ERR_NULL);
+    expect_init(NULL, &ps, FL_ERR_NULL);
+    expect_init(base, NULL, FL_ERR_NULL);
+    expect_init(base, &ps, FL_OK);
+
+    m = *base; m.width_px = 0; expect_init(&m, &ps, FL_ERR_SIZE);
+    m = *base; m.width_px = -320; expect_init(&m, &ps, FL_ERR_SIZE);
+    m = *base; m.height_px = 0; expect_init(&m, &ps, FL_ERR_SIZE);
+    m = *base; m.height_px = -1; expect_init(&m, &ps, FL_ERR_SIZE);
+    m = *base; m.width_px = FL_IMAGE_MAX_DIM + 1; expect_init(&m, &ps, FL_ERR_SIZE);
+    m = *base; m.height_px = FL_IMAGE_MAX_DIM + 1; expect_init(&m, &ps, FL_ERR_SIZE);
+    m = *base; m.width_px = FL_IMAGE_MAX_DIM; m.height_px = FL_IMAGE_MAX_DIM;
+    expect_init(&m, &ps, FL_OK);
+    m = *base; m.focal_q4 = 0; expect_init(&m, &ps, FL_ERR_RANGE);
+    m = *base; m.focal_q4 = -4355; expect_init(&m, &ps, FL_ERR_RANGE);
+    m = *base; m.focal_q4 = INT32_MIN; expect_init(&m, &ps, FL_ERR_RANGE);
+    m = *base; m.focal_q4 = FL_CAMERA_MAX_FOCAL_Q4 + 1; expect_init(&m, &ps, FL_ERR_RANGE);
+    m = *base; m.focal_q4 = FL_CAMERA_MAX_FOCAL_Q4; expect_init(&m, &ps, FL_OK);
+    m = *base; m.focal_q4 = 1; expect_init(&m, &ps, FL_OK);
+    m = *base; m.cx_q4 = -1; expect_init(&m, &ps, FL_ERR_RANGE);
+    m = *base; m.cy_q4 = 16 * 240 + 1; expect_init(&m, &ps, FL_ERR_RANGE);
+    m = *base; m.mount_x_mm = FL_CAMERA_MAX_MOUNT_MM + 1; expect_init(&m, &ps, FL_ERR_RANGE);
+    m = *base; m.mount_z_mm = -FL_CAMERA_MAX_MOUNT_MM - 1; expect_init(&m, &ps, FL_ERR_RANGE);
+    m = *base; m.mount_z_mm = INT32_MIN; expect_init(&m, &ps, FL_ERR_RANGE);
+
+    p2 = ps; p2.neck_height_mm = 49; expect_init(base, &p2, FL_ERR_RANGE);
+    p2 = ps; p2.neck_height_mm = 2001; expect_init(base, &p2, FL_ERR_RANGE);
+    p2 = ps; p2.neck_height_mm = 0; expect_init(base, &p2, FL_ERR_RANGE);
+    p2 = ps; p2.neck_height_mm = INT32_MIN; expect_init(base, &p2, FL_ERR_RANGE);
+    p2 = ps; p2.neck_height_mm = 50; expect_init(base, &p2, FL_OK);
+    p2 = ps; p2.neck_height_mm = 2000; expect_init(base, &p2, FL_OK);
+    /* total tilt (39.7 deg mount + pitch + offset) must stay within +-90 deg */
+    p2 = ps; p2.head_pitch = (fl_angle_t)(FL_ANGLE_90 - base->mount_tilt);
+    expect_init(base, &p2, FL_OK);
+    p2.head_pitch++; expect_init(base, &p2, FL_ERR_RANGE);
+    p2 = ps; p2.head_pitch = (fl_angle_t)(-FL_ANGLE_90 - base->mount_tilt);
+    expect_init(base, &p2, FL_OK);
+    p2.pitch_offset = -1; expect_init(base, &p2, FL_ERR_RANGE);
+    p2 = ps; p2.head_pitch = 30000; p2.pitch_offset = 30000; /* wraps to -70 deg total */
+    expect_init(base, &p2, FL_OK);
+
+    /* NULL outputs and NULL camera never crash */
+    CHECK_EQ(fl_camera_init(&cam, base, &ps), FL_OK);
+    CHECK(!fl_camera_pixel_to_ground(&cam, 2552, 1912, NULL));
+    CHECK(!fl_camera_pixel_to_ground(NULL, 2552, 1912, &g));
+    CHECK(!fl_camera_ground_to_pixel(&cam, g, NULL, &v));
+    CHECK(!fl_camera_ground_to_pixel(&cam, g, &u, NULL));
+    CHECK(!fl_camera_ground_to_pixel(NULL, g, &u, &v));
+    CHECK_EQ(fl_camera_horizon_v_q4(NULL, 0), INT32_MAX);
+    fl_polar_from_point(g, NULL, NULL);
+}
+
+static void test_pixel_to_ground(void)
+{
+    size_t mi;
+    int k, i, j, nu = t_quick ? 6 : 21, nv = t_quick ? 5 : 16, ncol = t_quick ? 2 : 5;
+    static const int rows[] = {1, 2, 4, 8, 16, 24, 32, 48, 64, 96, 128, 192, 256};
+    gstat_t st;
+    uint32_t h = t_hash_init();
+    t_rng_t rng;
+
+    memset(&st, 0, sizeof st);
+    t_rng_seed(&rng, 0xca3e7a01u);
+    for (mi = 0; mi < fl_camera_model_count(); mi++) {
+        const fl_camera_model_t *m = fl_camera_model_at(mi);
+        for (k = 0; k < n_poses(); k++) {
+            fl_camera_pose_t ps = make_pose(m, pose_index(k), &rng);
+            fl_camera_t cam;
+            ref_cam_t rc;
+            int32_t hz;
+            CHECK_EQ(fl_camera_init(&cam, m, &ps), FL_OK);
+            ref_init(&rc, m, &ps);
+            for (j = 0; j < nv; j++)
+                for (i = 0; i < nu; i++) {
+                    int32_t u = (int32_t)(16 * (m->width_px - 1) * i / (nu - 1));
+                    int32_t v = (int32_t)(16 * (m->height_px - 1) * j / (nv - 1));
+                    if (i > 0 && i < nu - 1)
+                        u += t_rng_range(&rng, -8, 7);
+                    if (j > 0 && j < nv - 1)
+                        v += t_rng_range(&rng, -8, 7);
+                    check_p2g(&cam, &rc, u, v, &st, &h);
+                }
+            /* rows just below the horizon: far ground points, max range */
+            hz = fl_camera_horizon_v_q4(&cam, 0);
+            h = t_hash_i32(h, hz);
+            if (hz > INT32_MIN && hz < 16 * m->height_px)
+                for (i = 0; i < ncol; i++) {
+                    int32_t u = t_rng_range(&rng, 0, 16 * (m->width_px - 1));
+                    for (j = 0; j < (int)(sizeof rows / sizeof rows[0]); j++)
+                        check_p2g(&cam, &rc, u, hz + rows[j], &st, &h);
+                }
+        }
+    }
+    t_info("ground <= 6 m: %ld points, max error %.3f mm, max %.4f%% of range (ranges >= 1 m)",
+           st.n_near, st.max_err_near, st.max_rel_near);
+    t_info("ground 6..20 m: %ld points, max error %.3f mm, max %.4f%% of range", st.n_far,
+           st.max_err_far, st.max_rel_far);
+    t_info("max error / (1 mm + 0.1%% of range) = %.3f (<= 1 required)", st.max_frac);
+    t_info("no ground point (fixed agrees with reference): %ld above the horizon, %ld beyond "
+           "max range; %ld in the +-%.0f mm band at max range",
+           st.n_above, st.n_beyond, st.n_band, BAND_MM);
+    CHECK(st.n_near > 0 && st.n_far > 0 && st.n_above > 0 && st.n_beyond > 0);
+    t_digest("camera.pixel_to_ground", h);
+}
+
+static void test_ground_to_pixel(void)
+{
+    size_t mi;
+    int k, i, npts = t_quick ? 12 : 60;
+    uint32_t h = t_hash_init();
+    t_rng_t rng;
+    double max_pix = 0, max_pix_far = 0, max_pix_frac = 0, max_rt = 0, max_rt_excess = 0;
+    long n_pix = 0, n_rt = 0, n_behind = 0;
+
+    t_rng_seed(&rng, 0x6a0d2b1bu);
+    for (mi = 0; mi < fl_camera_model_count(); mi++) {
+        const fl_camera_model_t *m = fl_camera_model_at(mi);
+        for (k = 0; k < n_poses(); k++) {
+            fl_camera_pose_t ps = make_pose(m, pose_index(k), &rng);
+            fl_camera_t cam;
+            ref_cam_t rc;
+            CHECK_EQ(fl_camera_init(&cam, m, &ps), FL_OK);
+            ref_init(&rc, m, &ps);
+            for (i = 0; i < npts; i++) {
+                /* bearing around the head yaw (+-40 deg, a few behind), range 100..8000 */
+                int32_t r = t_rng_range(&rng, 100, 8000);
+                int32_t b = ps.head_yaw + t_rng_range(&rng, -7300, 7300);
+                fl_point_t g, g2;
+                int32_t u = 0, v = 0;
+                double ru, rv, side, dist, rx, ry, rr, e, tol;
+                int ok, rok, ok2;
+                if (i % 10 == 9)
+                    b += 32768; /* behind */
+                g = fl_point_from_polar(r, fl_angle_wrap(b));
+                ok = fl_camera_ground_to_pixel(&cam, g, &u, &v);
+                h = t_hash_i32(h, ok);
+                if (ok) {
+                    h = t_hash_i32(h, u);
+                    h = t_hash_i32(h, v);
+                }
+                rok = ref_ground_to_pixel(&rc, g.x_mm, g.y_mm, &ru, &rv, &side, &dist);
+                if (!rok) {
+                    n_behind++;
+                    if (side < -1e-6)
+                        CHECK(!ok);
+                    continue;
+                }
+                if (fabs(ru - rc.cx) > 1.0 * m->width_px || fabs(rv - rc.cy) > 1.0 * m->height_px)
+                    continue; /* far outside the image: only no-crash is required */
+                CHECK(ok);
+                if (!ok)
+                    continue;
+                n_pix++;
+                e = fabs(u - 16.0 * ru);
+                if (fabs(v - 16.0 * rv) > e)
+                    e = fabs(v - 16.0 * rv);
+                if (e > max_pix)
+                    max_pix = e;
+                if (dist >= 1000.0 && e > max_pix_far)
+                    max_pix_far = e;
+                tol = pix_tol_q4(m, dist);
+                if (e / tol > max_pix_frac)
+                    max_pix_frac = e / tol;
+                if (!(e <= tol))
+                    t_fail_msg(__FILE__, __LINE__, "%s (%ld, %ld): pixel error %.2f Q4 > %.2f",
+                               m->name, (long)g.x_mm, (long)g.y_mm, e, tol);
+                /* round trip: pixel back to the ground */
+                ok2 = fl_camera_pixel_to_ground(&cam, u, v, &g2);
+                h = t_hash_i32(h, ok2);
+                if (ok2) {
+                    h = t_hash_i32(h, g2.x_mm);
+                    h = t_hash_i32(h, g2.y_mm);
+                }
+                if (ref_pixel_to_ground(&rc, u / 16.0, v / 16.0, &rx, &ry, &rr) != REF_HIT ||
+                    rr > 6000.0)
+                    continue;
+                CHECK(ok2);
+                if (!ok2)
+                    continue;
+                n_rt++;
+                {
+                    double qerr = hypot(rx - g.x_mm, ry - g.y_mm); /* pixel quantization */
+                    double rt = hypot(g2.x_mm - g.x_mm, g2.y_mm - g.y_mm);
+                    double excess = rt - qerr;
+                    if (rt > max_rt)
+                        max_rt = rt;
+                    if (excess > max_rt_excess)
+                        max_rt_excess = excess;
+                    if (!(rt <= qerr + 1.0 + 0.001 * r))
+                        t_fail_msg(__FILE__, __LINE__, "%s round trip (%ld, %ld): %.2f mm (quant %.2f)",
+                                   m->name, (long)g.x_mm, (long)g.y_mm, rt, qerr);
+                }
+            }
+        }
+    }
+    t_info("ground_to_pixel: %ld points in view, max pixel error %.3f Q4 (%.4f px), %.3f Q4 for "
+           "points >= 1 m from the camera, max error / tolerance %.3f; %ld behind",
+           n_pix, max_pix, max_pix / 16.0, max_pix_far, max_pix_frac, n_behind);
+    t_info("round trip ground->pixel->ground <= 6 m: %ld points, max %.2f mm, max %.3f mm beyond "
+           "the Q4 pixel quantization", n_rt, max_rt, max_rt_excess);
+    CHECK(n_pix > 0 && n_rt > 0 && n_behind > 0);
+    t_digest("camera.ground_to_pixel", h);
+}
+
+static void test_horizon(void)
+{
+    size_t mi;
+    int k, c;
+    uint32_t h = t_hash_init();
+    t_rng_t rng;
+    double max_err = 0;
+    long n = 0;
+
+    t_rng_seed(&rng, 0x401120u);
+    for (mi = 0; mi < fl_camera_model_count(); mi++) {
+        const fl_camera_model_t *m = fl_camera_model_at(mi);
+        for (k = 0; k < n_poses(); k++) {
+            fl_camera_pose_t ps = make_pose(m, pose_index(k), &rng);
+            fl_camera_t cam;
+            ref_cam_t rc;
+            int32_t hz, hz0;
+            double vref;
+            fl_point_t g;
+            CHECK_EQ(fl_camera_init(&cam, m, &ps), FL_OK);
+            ref_init(&rc, m, &ps);
+            hz0 = fl_camera_horizon_v_q4(&cam, 0);
+            h = t_hash_i32(h, hz0);
+            for (c = 0; c < 4; c++) {
+                hz = fl_camera_horizon_v_q4(&cam, t_rng_range(&rng, -16 * 1000, 16 * 2000));
+                CHECK_EQ(hz, hz0);
+            }
+            vref = 16.0 * (rc.cy - rc.f * tan(rc.tilt));
+            n++;
+            if (fabs(hz0 - floor(vref)) > max_err)
+                max_err = fabs(hz0 - floor(vref));
+            if (fabs(vref - floor(vref + 0.5)) > 1e-3)
+                CHECK_EQ(hz0, (long long)floor(vref)); /* exact */
+            else
+                CHECK_LE(fabs(hz0 - floor(vref)), 1.0); /* within 1e-3 LSB of an integer */
+            /* nothing at or above the horizon row has a ground point */
+            for (c = 0; c < 8; c++) {
+                int32_t u = t_rng_range(&rng, 0, 16 * (m->width_px - 1));
+                CHECK(!fl_camera_pixel_to_ground(&cam, u, hz0 - c * 37, &g));
+            }
+        }
+    }
+    /* looking straight down / up: the whole column or none of it */
+    {
+        const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-640");
+        fl_camera_pose_t ps = {450, 0, 0, 0};
+        fl_camera_t cam;
+        fl_point_t g;
+        int32_t u = 0, v = 0;
+        if (m) {
+            ps.head_pitch = (fl_angle_t)(FL_ANGLE_90 - m->mount_tilt);
+            CHECK_EQ(fl_camera_init(&cam, m, &ps), FL_OK);
+            CHECK_EQ(fl_camera_horizon_v_q4(&cam, m->cx_q4), INT32_MIN);
+            /* the image centre sees the ground right below the camera */
+            CHECK(fl_camera_pixel_to_ground(&cam, m->cx_q4, m->cy_q4, &g));
+            CHECK_LE(fabs(16.0 * g.x_mm - cam.pos_q4[0]), 16.0);
+            CHECK_LE(fabs(16.0 * g.y_mm - cam.pos_q4[1]), 16.0);
+            CHECK(fl_camera_pixel_to_ground(&cam, 0, 0, &g));
+            CHECK(fl_camera_ground_to_pixel(&cam, g, &u, &v));
+            CHECK_LE(abs(u) + abs(v), 16 * 4);
+            ps.head_pitch = (fl_angle_t)(-FL_ANGLE_90 - m->mount_tilt);
+            CHECK_EQ(fl_camera_init(&cam, m, &ps), FL_OK);
+            CHECK_EQ(fl_camera_horizon_v_q4(&cam, m->cx_q4), INT32_MAX);
+            CHECK(!fl_camera_pixel_to_ground(&cam, m->cx_q4, 16 * 479, &g));
+        }
+    }
+    t_info("horizon: %ld poses, max |h - floor(16 v_ref)| = %.0f Q4", n, max_err);
+    t_digest("camera.horizon", h);
+}
+
+/* Odd and far inputs: no crash, documented false results, no overflow. */
+static void test_extremes(void)
+{
+    static const int32_t big[] = {INT32_MIN, INT32_MIN + 1, -FL_CAMERA_MAX_GROUND_MM - 1,
+                                  -FL_CAMERA_MAX_GROUND_MM, -20001, -1, 0, 1, 20001,
+                                  FL_CAMERA_MAX_GROUND_MM, FL_CAMERA_MAX_GROUND_MM + 1,
+                                  INT32_MAX - 1, INT32_MAX};
+    size_t mi, i, j;
+    uint32_t h = t_hash_init();
+    for (mi = 0; mi < fl_camera_model_count(); mi++) {
+        const fl_camera_model_t *m = fl_camera_model_at(mi);
+        fl_camera_pose_t ps = {450, 0, 0, 0};
+        fl_camera_t cam;
+        ref_cam_t rc;
+        int32_t u, v;
+        fl_point_t g;
+        if (is_aibo(m))
+            ps.neck_height_mm = 150;
+        CHECK_EQ(fl_camera_init(&cam, m, &ps), FL_OK);
+        ref_init(&rc, m, &ps);
+        for (i = 0; i < sizeof big / sizeof big[0]; i++)
+            for (j = 0; j < sizeof big / sizeof big[0]; j++) {
+                int ok = fl_camera_pixel_to_ground(&cam, big[i], big[j], &g);
+                h = t_hash_i32(h, ok);
+                if (ok) {
+                    h = t_hash_i32(h, g.x_mm);
+                    h = t_hash_i32(h, g.y_mm);
+                    CHECK(fl_hypot(g.x_mm, g.y_mm) <= FL_CAMERA_MAX_RANGE_MM);
+                }
+                g.x_mm = big[i];
+                g.y_mm = big[j];
+                ok = fl_camera_ground_to_pixel(&cam, g, &u, &v);
+                h = t_hash_i32(h, ok);
+                if (ok) {
+                    double ru, rv, side, dist;
+                    h = t_hash_i32(h, u);
+                    h = t_hash_i32(h, v);
+                    CHECK(labs((long)u - m->cx_q4) <= FL_CAMERA_MAX_OFFSET_Q4);
+                    CHECK(labs((long)v - m->cy_q4) <= FL_CAMERA_MAX_OFFSET_Q4);
+                    CHECK(ref_ground_to_pixel(&rc, g.x_mm, g.y_mm, &ru, &rv, &side, &dist));
+                    CHECK_LE(fabs(u - 16.0 * ru), pix_tol_q4(m, dist) + 1e-7 * fabs(16.0 * ru));
+                    CHECK_LE(fabs(v - 16.0 * rv), pix_tol_q4(m, dist) + 1e-7 * fabs(16.0 * rv));
+                }
+                if (llabs((long long)big[i]) > FL_CAMERA_MAX_GROUND_MM ||
+                    llabs((long long)big[j]) > FL_CAMERA_MAX_GROUND_MM)
+                    CHECK(!ok);
+            }
+        /* 10 km straight ahead projects onto the horizon row (within 2 LSB) */
+        g.x_mm = FL_CAMERA_MAX_GROUND_MM;
+        g.y_mm = 0;
+        CHECK(fl_camera_ground_to_pixel(&cam, g, &u, &v));
+        CHECK_LE(labs((long)v - fl_camera_horizon_v_q4(&cam, u)), 2);
+        CHECK(!fl_camera_pixel_to_ground(&cam, u, v, &g)); /* beyond max range */
+        /* the pixel offset limit */
+        CHECK(!fl_camera_pixel_to_ground(&cam, m->cx_q4, m->cy_q4 + FL_CAMERA_MAX_OFFSET_Q4 + 1, &g));
+        CHECK(fl_camera_pixel_to_ground(&cam, m->cx_q4, m->cy_q4 + FL_CAMERA_MAX_OFFSET_Q4, &g));
+        CHECK_EQ(fl_camera_horizon_v_q4(&cam, m->cx_q4 + FL_CAMERA_MAX_OFFSET_Q4 + 1), INT32_MAX);
+    }
+    t_digest("camera.extremes", h);
+}
+
+static void test_polar(void)
+{
+    t_rng_t rng;
+    int i, n = t_quick ? 2000 : 100000;
+    uint32_t h = t_hash_init();
+    double max_b = 0, max_p = 0;
+    fl_point_t p;
+    int32_t r;
+    fl_angle_t b;
+
+    t_rng_seed(&rng, 0x901a4u);
+    for (i = 0; i < n; i++) {
+        int32_t lim = (i & 3) == 0 ? INT32_MAX : (i & 3) == 1 ? (1 << 25) : 20000;
+        double e, rb;
+        p.x_mm = t_rng_range(&rng, (i & 3) == 0 ? INT32_MIN : -lim, lim);
+        p.y_mm = t_rng_range(&rng, (i & 3) == 0 ? INT32_MIN : -lim, lim);
+        fl_polar_from_point(p, &r, &b);
+        h = t_hash_i32(h, r);
+        h = t_hash_i32(h, b);
+        {
+            long double exact = sqrtl((long double)p.x_mm * p.x_mm + (long double)p.y_mm * p.y_mm);
+            long double want = exact > (long double)INT32_MAX ? (long double)INT32_MAX : floorl(exact + 0.5L);
+            if (lim <= (1 << 25))
+                CHECK_EQ(r, (long long)want);
+            else
+                CHECK_LE(fabs((double)(r - want)), 1.0);
+        }
+        rb = atan2((double)p.y_mm, (double)p.x_mm) * 180.0 / PI_D;
+        e = fabs(fl_angle_to_mdeg(b) / 1000.0 - rb);
+        if (e > 180.0)
+            e = 360.0 - e;
+        if (p.x_mm == 0 && p.y_mm == 0)
+            e = fabs((double)b);
+        if (e > max_b)
+            max_b = e;
+        CHECK_LE(e, 0.02);
+        /* back to a point */
+        r = t_rng_range(&rng, -1000000, 1000000);
+        b = (fl_angle_t)t_rng_range(&rng, -32768, 32767);
+        p = fl_point_from_polar(r, b);
+        h = t_hash_i32(h, p.x_mm);
+        h = t_hash_i32(h, p.y_mm);
+        e = fabs(p.x_mm - r * cos(rad_of(b)));
+        if (fabs(p.y_mm - r * sin(rad_of(b))) > e)
+            e = fabs(p.y_mm - r * sin(rad_of(b)));
+        if (e > max_p)
+            max_p = e;
+        CHECK_LE(e, 1.0);
+    }
+    p.x_mm = 0;
+    p.y_mm = 0;
+    fl_polar_from_point(p, &r, &b);
+    CHECK_EQ(r, 0);
+    CHECK_EQ(b, 0);
+    p.x_mm = 0;
+    p.y_mm = 1000;
+    fl_polar_from_point(p, &r, &b);
+    CHECK_EQ(r, 1000);
+    CHECK_EQ(b, FL_ANGLE_90);
+    p.x_mm = INT32_MIN;
+    p.y_mm = INT32_MIN;
+    fl_polar_from_point(p, &r, &b);
+    CHECK_EQ(r, INT32_MAX);
+    p = fl_point_from_polar(3000, FL_ANGLE_180);
+    CHECK_EQ(p.x_mm, -3000);
+    CHECK_EQ(p.y_mm, 0);
+    t_info("polar: max bearing error %.4f deg, point_from_polar max error %.3f mm", max_b, max_p);
+    t_digest("camera.polar", h);
+}
+
+void suite_camera(void)
+{
+    t_run("camera.catalogue", test_catalogue);
+    t_run("camera.invalid", test_invalid);
+    t_run("camera.pixel_to_ground", test_pixel_to_ground);
+    t_run("camera.ground_to_pixel", test_ground_to_pixel);
+    t_run("camera.horizon", test_horizon);
+    t_run("camera.extremes", test_extremes);
+    t_run("camera.polar", test_polar);
+}

@@ -1,0 +1,155 @@
+/* host_tests/test_main.c - runner and harness implementation. */
+#include "test.h"
+
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+int t_quick = 0;
+int t_exhaustive = 0;
+
+static const char *t_filter = NULL;
+static int t_passed, t_failed, t_cur_failed;
+static const char *t_cur_name;
+
+void t_check(int ok, const char *expr, const char *file, int line)
+{
+    if (ok)
+        return;
+    if (t_cur_failed < 5)
+        printf("  at %s:%d: %s\n", file, line, expr);
+    t_cur_failed++;
+}
+
+void t_fail_msg(const char *file, int line, const char *fmt, ...)
+{
+    va_list ap;
+    if (t_cur_failed < 5) {
+        printf("  at %s:%d: ", file, line);
+        va_start(ap, fmt);
+        vprintf(fmt, ap);
+        va_end(ap);
+        printf("\n");
+    }
+    t_cur_failed++;
+}
+
+void t_info(const char *fmt, ...)
+{
+    va_list ap;
+    printf("# %s: ", t_cur_name ? t_cur_name : "-");
+    va_start(ap, fmt);
+    vprintf(fmt, ap);
+    va_end(ap);
+    printf("\n");
+}
+
+void t_digest(const char *label, uint32_t h)
+{
+    printf("digest %s 0x%08lx\n", label, (unsigned long)h);
+}
+
+uint32_t t_hash_init(void) { return 2166136261u; }
+
+uint32_t t_hash_bytes(uint32_t h, const void *p, size_t n)
+{
+    const unsigned char *b = p;
+    while (n--) {
+        h ^= *b++;
+        h *= 16777619u;
+    }
+    return h;
+}
+
+uint32_t t_hash_i32(uint32_t h, int32_t v)
+{
+    unsigned char b[4];
+    uint32_t u = (uint32_t)v;
+    b[0] = (unsigned char)(u & 0xff);
+    b[1] = (unsigned char)((u >> 8) & 0xff);
+    b[2] = (unsigned char)((u >> 16) & 0xff);
+    b[3] = (unsigned char)(u >> 24);
+    return t_hash_bytes(h, b, 4);
+}
+
+void t_rng_seed(t_rng_t *r, uint64_t seed) { r->s = seed ? seed : 0x9e3779b97f4a7c15ull; }
+
+uint32_t t_rng_u32(t_rng_t *r)
+{
+    r->s ^= r->s >> 12;
+    r->s ^= r->s << 25;
+    r->s ^= r->s >> 27;
+    return (uint32_t)((r->s * 2685821657736338717ull) >> 32);
+}
+
+int32_t t_rng_range(t_rng_t *r, int32_t lo, int32_t hi)
+{
+    uint64_t span = (uint64_t)((int64_t)hi - (int64_t)lo) + 1u;
+    uint64_t x = ((uint64_t)t_rng_u32(r) << 32) | t_rng_u32(r);
+    return (int32_t)((int64_t)lo + (int64_t)(x % span));
+}
+
+const char *t_realdata_dir(void)
+{
+    static const char *cands[] = {"../shared/realdata", "../../shared/realdata"};
+    struct stat st;
+    const char *env = getenv("FIELDLOC_REALDATA");
+    size_t i;
+    if (env && *env)
+        return stat(env, &st) == 0 ? env : NULL;
+    for (i = 0; i < sizeof cands / sizeof cands[0]; i++)
+        if (stat(cands[i], &st) == 0 && S_ISDIR(st.st_mode))
+            return cands[i];
+    return NULL;
+}
+
+void t_run(const char *name, t_fn fn)
+{
+    if (t_filter && !strstr(name, t_filter))
+        return;
+    t_cur_name = name;
+    t_cur_failed = 0;
+    fflush(stdout);
+    fn();
+    if (t_cur_failed) {
+        printf("FAIL %s (%d failed checks)\n", name, t_cur_failed);
+        t_failed++;
+    } else {
+        printf("ok   %s\n", name);
+        t_passed++;
+    }
+    fflush(stdout);
+    t_cur_name = NULL;
+}
+
+int main(int argc, char **argv)
+{
+    int i;
+    for (i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--quick"))
+            t_quick = 1;
+        else if (!strcmp(argv[i], "--exhaustive"))
+            t_exhaustive = 1;
+        else if (!strcmp(argv[i], "-k") && i + 1 < argc)
+            t_filter = argv[++i];
+        else {
+            fprintf(stderr, "usage: %s [--quick | --exhaustive] [-k SUBSTRING]\n", argv[0]);
+            return 2;
+        }
+    }
+#undef T_SUITE
+#define T_SUITE(name)                                                     \
+    do {                                                                  \
+        if (suite_##name)                                                 \
+            suite_##name();                                               \
+        else if (!t_filter) {                                             \
+            printf("FAIL suite %s missing (no host_tests/test_%s.c)\n",   \
+                   #name, #name);                                         \
+            t_failed++;                                                   \
+        }                                                                 \
+    } while (0)
+#include "suites.h"
+    printf("%d passed, %d failed\n", t_passed, t_failed);
+    return t_failed ? 1 : 0;
+}

@@ -1,0 +1,126 @@
+/*
+ * fieldloc/camera.h - pinhole camera model in fixed point: pixel -> ground
+ * point (robot frame, mm) -> range and bearing, and back.
+ *
+ * Frames.  Image: u right, v down, pixel centres at integer coordinates, the
+ * top-left pixel centre at (0, 0); sub-pixel positions are Q4 (1/16 px).
+ * Robot: origin on the ground directly below the head pitch axis, x forward,
+ * y left, z up, millimetres.  The head yaws about the vertical through the
+ * origin, then pitches about its y axis; the camera sits mount_x_mm forward
+ * of and mount_z_mm above the pitch axis and looks mount_tilt below the
+ * head's horizontal.  Total downward tilt of the optical axis =
+ * mount_tilt + head_pitch + pitch_offset (NAOqi: HeadPitch > 0 looks down).
+ *
+ * Lens distortion is not modelled (NAO and AIBO cameras are near pinhole at
+ * these resolutions).
+ */
+#ifndef FIELDLOC_CAMERA_H
+#define FIELDLOC_CAMERA_H
+
+#include "fieldloc/common.h"
+#include "fieldloc/fixed.h"
+
+/* Intrinsics and mounting of one camera at one resolution (catalogue data). */
+typedef struct {
+    const char *name;      /* e.g. "nao4-bottom-320" */
+    int32_t width_px;
+    int32_t height_px;
+    int32_t focal_q4;      /* focal length, 1/16 px (square pixels) */
+    int32_t cx_q4;         /* principal point u, 1/16 px */
+    int32_t cy_q4;         /* principal point v, 1/16 px */
+    int32_t mount_x_mm;    /* camera forward of the head pitch axis */
+    int32_t mount_z_mm;    /* camera above the head pitch axis */
+    fl_angle_t mount_tilt; /* optical axis below the head horizontal */
+} fl_camera_model_t;
+
+/* Where the head is (per frame, from joint sensors). */
+typedef struct {
+    int32_t neck_height_mm;  /* head pitch axis above the ground, 50..2000 */
+    fl_angle_t head_pitch;   /* NAOqi HeadPitch, positive = look down */
+    fl_angle_t head_yaw;     /* NAOqi HeadYaw, positive = look left */
+    fl_angle_t pitch_offset; /* extra downward tilt: torso lean, calibration */
+} fl_camera_pose_t;
+
+/* Largest range reported by pixel_to_ground, mm; farther points (rays that
+ * graze the horizon) count as "no ground point". */
+#define FL_CAMERA_MAX_RANGE_MM 20000
+
+/* A camera ready to project: model, pose and derived quantities.  Fields
+ * after `pose` are private. */
+typedef struct {
+    fl_camera_model_t model;
+    fl_camera_pose_t pose;
+    int32_t rot_q30[3][3];   /* camera (x optical, y left, z up) -> robot */
+    int32_t pos_q4[3];       /* camera centre in the robot frame, 1/16 mm */
+} fl_camera_t;
+
+/* Catalogue: NAO v3/v4/v6 top and bottom at 320x240 and 640x480, the AIBO
+ * ERS-7 camera at 208x160, plus models added by later calibration.
+ * Names: "nao3-top-320", "nao4-bottom-640", "aibo-ers7", ... */
+const fl_camera_model_t *fl_camera_model_find(const char *name);
+size_t fl_camera_model_count(void);
+const fl_camera_model_t *fl_camera_model_at(size_t i);  /* NULL if out of range */
+
+/* Validate model and pose and precompute the projection.  On error the
+ * camera is left in a valid state that projects nothing. */
+fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
+                           const fl_camera_pose_t *pose);
+
+/* Pixel (Q4) -> ground point in the robot frame (mm).  False when the ray
+ * does not hit the ground in front of the camera within
+ * FL_CAMERA_MAX_RANGE_MM (at or above the horizon). */
+bool fl_camera_pixel_to_ground(const fl_camera_t *cam, int32_t u_q4,
+                               int32_t v_q4, fl_point_t *ground);
+
+/* Ground point (robot frame, mm) -> pixel (Q4).  False when the point is
+ * behind the camera; a true result may still lie outside the image. */
+bool fl_camera_ground_to_pixel(const fl_camera_t *cam, fl_point_t ground,
+                               int32_t *u_q4, int32_t *v_q4);
+
+/* Row (v, Q4) of the horizon at column u_q4: pixels with v below (greater
+ * than) this can see the ground.  Returns INT32_MIN when the whole column
+ * is below the horizon and INT32_MAX when none of it can be. */
+int32_t fl_camera_horizon_v_q4(const fl_camera_t *cam, int32_t u_q4);
+
+/* Robot-frame point -> range (mm, rounded) and bearing (binary angle,
+ * 0 = straight ahead, positive = left), and back. */
+void fl_polar_from_point(fl_point_t p, int32_t *range_mm, fl_angle_t *bearing);
+fl_point_t fl_point_from_polar(int32_t range_mm, fl_angle_t bearing);
+
+/* ---- limits (added with src/camera.c) ----------------------------------
+ * Validated by fl_camera_init (FL_ERR_RANGE beyond them) or enforced by the
+ * projection calls (false beyond them), so that every 64-bit intermediate
+ * stays in range; see "Scaling and overflow" in src/camera.c. */
+
+/* Neck height range accepted by fl_camera_init, mm. */
+#define FL_CAMERA_NECK_MIN_MM 50
+#define FL_CAMERA_NECK_MAX_MM 2000
+/* Largest focal length accepted by fl_camera_init, 1/16 px (65536 px). */
+#define FL_CAMERA_MAX_FOCAL_Q4 (1L << 20)
+/* Largest |mount_x_mm| and |mount_z_mm| accepted by fl_camera_init. */
+#define FL_CAMERA_MAX_MOUNT_MM 1000
+/* fl_camera_init also requires the total downward tilt of the optical axis,
+ * mount_tilt + head_pitch + pitch_offset (wrapped to a turn), to lie in
+ * [-90, +90] deg (the image is never upside down, so the sky is always at
+ * the top and the horizon convention below holds), and the principal point
+ * to lie in [0, 16*width_px] x [0, 16*height_px] (Q4). */
+
+/* Pixels farther than this from the principal point (|u_q4 - cx_q4| or
+ * |v_q4 - cy_q4|, 1/16 px; i.e. 2^24 px) have no ground point, and
+ * fl_camera_ground_to_pixel returns false for points that would project
+ * farther out (nearly 90 degrees off the optical axis). */
+#define FL_CAMERA_MAX_OFFSET_Q4 (1L << 28)
+/* fl_camera_ground_to_pixel returns false for ground points with
+ * |x_mm| or |y_mm| above this (10 km). */
+#define FL_CAMERA_MAX_GROUND_MM 10000000L
+
+/* fl_camera_horizon_v_q4 gives the exact row (the same integer test as
+ * pixel_to_ground's ray test) even when it lies outside the image, e.g. a
+ * negative row when the whole image is below the horizon: callers compare
+ * v_q4 > row.  INT32_MIN / INT32_MAX are returned when no accepted pixel
+ * row (|v_q4 - cy_q4| <= FL_CAMERA_MAX_OFFSET_Q4) is above / below the
+ * horizon (optical axis vertical, or the horizon more than 2^24 px away),
+ * for columns beyond FL_CAMERA_MAX_OFFSET_Q4, and for a camera that failed
+ * init (INT32_MAX).  The row is the same for every column (no roll). */
+
+#endif /* FIELDLOC_CAMERA_H */

@@ -1,0 +1,118 @@
+/*
+ * fieldloc/field.h - field geometries as data.  Every landmark a detector
+ * can report, every line a renderer draws, and the carpet the localizer
+ * covers live in one const struct per field; no stage scatters field
+ * constants.
+ *
+ * Field frame: origin at the centre, x toward the opponent goal, y left,
+ * millimetres, line centres.  Headings and arm directions are binary angles
+ * counter-clockwise from +x.
+ */
+#ifndef FIELDLOC_FIELD_H
+#define FIELDLOC_FIELD_H
+
+#include "fieldloc/common.h"
+#include "fieldloc/fixed.h"
+
+typedef enum {
+    FL_LM_L = 0,            /* L crossing (2 arms) */
+    FL_LM_T = 1,            /* T crossing (3 arms) */
+    FL_LM_X = 2,            /* X crossing (4 arms), e.g. halfway line x circle */
+    FL_LM_PENALTY_MARK = 3, /* penalty mark (a small cross: 4 arms) */
+    FL_LM_CENTRE_MARK = 4,  /* centre mark (4 arms) */
+    FL_LM_POST = 5,         /* goal post foot (centre of the post base) */
+    FL_LM_CENTRE_CIRCLE = 6,/* centre of the centre circle */
+    FL_LM_BEACON = 7,       /* coloured corner beacon (AIBO fields) */
+    FL_LM_KIND_COUNT = 8
+} fl_landmark_kind_t;
+
+/* Goal post side, as seen by a robot on the field facing that goal. */
+typedef enum {
+    FL_SIDE_UNKNOWN = 0,
+    FL_SIDE_LEFT = 1,
+    FL_SIDE_RIGHT = 2
+} fl_side_t;
+
+typedef enum {
+    FL_COLOUR_NONE = 0,
+    FL_COLOUR_WHITE = 1,
+    FL_COLOUR_YELLOW = 2,
+    FL_COLOUR_SKYBLUE = 3,
+    FL_COLOUR_PINK = 4
+} fl_colour_t;
+
+#define FL_FIELD_MAX_ARMS 4
+
+/*
+ * One landmark.  Arms (L/T/X crossings and marks): the directions, binary
+ * angles CCW from +x, of the painted lines leaving the point (for the X on
+ * the halfway line x centre circle: the halfway line both ways and the
+ * circle's tangent both ways; marks: their small axis-aligned cross).
+ * Unused arm slots are 0; posts, circle and beacons have n_arms 0.
+ */
+typedef struct {
+    fl_landmark_kind_t kind;
+    int32_t x_mm;
+    int32_t y_mm;
+    uint8_t n_arms;                     /* lines leaving the point: L 2, T 3, X 4 */
+    fl_angle_t arm[FL_FIELD_MAX_ARMS];  /* direction of each arm (unused: 0) */
+    fl_side_t side;                     /* posts: left/right facing the goal */
+    fl_colour_t colour;                 /* posts and beacons */
+    int8_t goal;                        /* posts: +1 goal at +x, -1 at -x; else 0 */
+    fl_colour_t colour2;                /* added: beacons: lower colour band
+                                           (colour is the upper band);
+                                           FL_COLOUR_NONE for every other kind */
+} fl_landmark_t;
+
+/* A straight painted line, centre line of the paint, field frame.  Every
+ * boundary, halfway and box line is listed; the centre circle is given by
+ * circle_radius_mm and the marks' small crosses by mark_size_mm instead. */
+typedef struct {
+    int32_t x0_mm, y0_mm, x1_mm, y1_mm;
+} fl_field_line_t;
+
+typedef struct {
+    const char *name;            /* "spl2013", "uva2013", "spl2020", "aibo2004"
+                                    (aibo2004: partly unverified numbers,
+                                    sources and uncertainty in src/field.c) */
+    int32_t length_mm;           /* between goal line centres (x extent) */
+    int32_t width_mm;            /* between touchline centres (y extent) */
+    int32_t line_width_mm;
+    int32_t border_mm;           /* carpet beyond the lines, each side */
+    int32_t circle_radius_mm;    /* centre circle, to the line centre */
+    int32_t penalty_area_depth_mm, penalty_area_width_mm;   /* 0 if none */
+    int32_t goal_area_depth_mm, goal_area_width_mm;         /* 0 if none */
+    int32_t penalty_mark_x_mm;   /* |x| of the penalty marks, 0 if none */
+    int32_t mark_size_mm;        /* penalty/centre mark cross size, 0 if none */
+    int32_t goal_width_mm;       /* post centre to post centre */
+    int32_t post_diameter_mm, post_height_mm;
+    fl_colour_t goal_colour[2];  /* [0] goal at -x, [1] goal at +x */
+    bool symmetric;              /* true when the field looks the same turned
+                                    by 180 degrees (identical goals) */
+    const fl_landmark_t *landmarks;
+    uint16_t n_landmarks;
+    const fl_field_line_t *lines;
+    uint16_t n_lines;
+    /* added: coloured beacons (AIBO fields), 0 when the field has none */
+    int32_t beacon_diameter_mm, beacon_height_mm;
+} fl_field_t;
+
+/* Carpet extent, derived: |x| <= length/2 + border, |y| <= width/2 + border
+ * (length/2 truncated toward zero; saturated to int32; NULL gives 0). */
+int32_t fl_field_carpet_half_x_mm(const fl_field_t *f);
+int32_t fl_field_carpet_half_y_mm(const fl_field_t *f);
+
+/* The catalogue: "spl2013", "uva2013", "spl2020", "aibo2004" (in that
+ * order; see src/field.c for every number and its source).  Names are
+ * compared exactly (case-sensitive); NULL name gives NULL. */
+const fl_field_t *fl_field_find(const char *name);  /* NULL if unknown */
+size_t fl_field_count(void);
+const fl_field_t *fl_field_at(size_t i);            /* NULL if out of range */
+
+/* Number of landmarks of a kind, and the i-th of them (NULL if none), in
+ * table order.  NULL field or an unknown kind gives 0 / NULL. */
+uint16_t fl_field_count_kind(const fl_field_t *f, fl_landmark_kind_t kind);
+const fl_landmark_t *fl_field_nth_kind(const fl_field_t *f,
+                                       fl_landmark_kind_t kind, uint16_t i);
+
+#endif /* FIELDLOC_FIELD_H */

@@ -1,0 +1,15 @@
+/*
+ * fieldloc/fieldloc.h - umbrella header: every public stage of fieldloc.
+ * See README.md for the data flow and the lifecycle of each stage.
+ */
+#ifndef FIELDLOC_FIELDLOC_H
+#define FIELDLOC_FIELDLOC_H
+
+#include "fieldloc/config.h"
+#include "fieldloc/common.h"
+#include "fieldloc/fixed.h"
+#include "fieldloc/image.h"
+#include "fieldloc/camera.h"
+#include "fieldloc/field.h"
+
+#endif /* FIELDLOC_FIELDLOC_H */
