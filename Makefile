@@ -35,8 +35,27 @@ HOST_FP = -msse2 -mfpmath=sse
 endif
 
 FW_CFLAGS   = $(WARN) -Werror $(OPT) -g -fno-common -Iinclude $(FW_NOFP) $(ARCHFLAGS)
-HOST_CFLAGS = $(WARN) $(OPT) -g -Iinclude -Ihost_tests -Itools $(HOST_FP) $(ARCHFLAGS) -D_DEFAULT_SOURCE
+HOST_CFLAGS = $(WARN) -Wno-address $(OPT) -g -Iinclude -Ihost_tests -Itools $(HOST_FP) $(ARCHFLAGS) -D_DEFAULT_SOURCE $(CV_DEFS)
 HOST_LIBS   = -lm
+
+# OpenCV is optional and host-only: the tools' C++ files (tools/*.cpp: the
+# OpenCV peers of the benchmarks, PNG output) are built only when
+# pkg-config finds opencv4 and the build is native (not cross, not
+# sanitize).  WITH_OPENCV=0 turns it off.
+WITH_OPENCV ?= $(if $(ARCHFLAGS),0,1)
+ifeq ($(WITH_OPENCV),1)
+HAVE_OPENCV := $(shell pkg-config --exists opencv4 2>/dev/null && echo 1)
+endif
+ifeq ($(HAVE_OPENCV),1)
+CXX      ?= g++
+CV_DEFS   = -DFL_HAVE_OPENCV
+CV_CFLAGS := $(shell pkg-config --cflags opencv4)
+CV_LIBS   := $(shell pkg-config --libs opencv4)
+TOOL_CXX_SRC := $(sort $(wildcard tools/*.cpp))
+endif
+TOOL_CXX_OBJ := $(TOOL_CXX_SRC:%.cpp=$(BUILD)/%.o)
+
+LINK      = $(if $(TOOL_CXX_OBJ),$(CXX),$(CC))
 
 FW_SRC   := $(sort $(wildcard src/*.c))
 FW_OBJ   := $(FW_SRC:%.c=$(BUILD)/%.o)
@@ -45,11 +64,11 @@ LIB      := $(BUILD)/libfieldloc.a
 TEST_SRC := $(sort $(wildcard host_tests/*.c))
 TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
 TOOL_LIB_SRC := $(filter-out tools/fieldloc.c,$(sort $(wildcard tools/*.c)))
-TOOL_LIB_OBJ := $(TOOL_LIB_SRC:%.c=$(BUILD)/%.o)
+TOOL_LIB_OBJ := $(TOOL_LIB_SRC:%.c=$(BUILD)/%.o) $(TOOL_CXX_OBJ)
 CLI      := $(BUILD)/fieldloc
 RUNNER   := $(BUILD)/run_tests
 
-.PHONY: all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
+.PHONY: fixtures all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
 
 all: $(LIB) $(CLI)
 
@@ -65,16 +84,20 @@ $(BUILD)/tools/%.o: tools/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
 
+$(BUILD)/tools/%.o: tools/%.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) -O2 -g -Wall -Iinclude -Itools $(CV_DEFS) $(CV_CFLAGS) -MMD -MP -c $< -o $@
+
 $(LIB): $(FW_OBJ)
 	@mkdir -p $(dir $@)
 	rm -f $@
 	$(AR) rcs $@ $^
 
 $(RUNNER): $(TEST_OBJ) $(TOOL_LIB_OBJ) $(LIB)
-	$(CC) $(HOST_CFLAGS) -o $@ $(TEST_OBJ) $(TOOL_LIB_OBJ) $(LIB) $(HOST_LIBS)
+	$(LINK) $(HOST_CFLAGS) -o $@ $(TEST_OBJ) $(TOOL_LIB_OBJ) $(LIB) $(HOST_LIBS) $(CV_LIBS)
 
 $(CLI): $(BUILD)/tools/fieldloc.o $(TOOL_LIB_OBJ) $(LIB)
-	$(CC) $(HOST_CFLAGS) -o $@ $^ $(HOST_LIBS)
+	$(LINK) $(HOST_CFLAGS) -o $@ $^ $(HOST_LIBS) $(CV_LIBS)
 
 test: $(RUNNER) check
 	@$(RUNNER) | tee $(BUILD)/test.log; exit $${PIPESTATUS[0]}
@@ -116,6 +139,11 @@ sanitize:
 
 bench: $(CLI)
 	@$(CLI) bench --out $(BUILD)/bench.tsv
+
+# Regenerate the committed fixture set (deterministic: identical bytes on
+# every run and machine).
+fixtures: $(CLI)
+	@$(CLI) fixtures --out fixtures
 
 install: $(LIB)
 	install -d $(DESTDIR)$(PREFIX)/include/fieldloc $(DESTDIR)$(PREFIX)/lib/pkgconfig

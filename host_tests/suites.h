@@ -3,4 +3,5 @@ T_SUITE(fixed);
 T_SUITE(image);
 T_SUITE(camera);
 T_SUITE(field);
+T_SUITE(obs);
 T_SUITE(rules);

@@ -11,5 +11,6 @@
 #include "fieldloc/image.h"
 #include "fieldloc/camera.h"
 #include "fieldloc/field.h"
+#include "fieldloc/obs.h"
 
 #endif /* FIELDLOC_FIELDLOC_H */

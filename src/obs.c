@@ -1,0 +1,78 @@
+/*
+ * src/obs.c - observation lists (fixed capacity, overflow counted) and the
+ * orientation convention shared by detectors and localizers.
+ */
+#include "fieldloc/obs.h"
+
+#include <string.h>
+
+void fl_obs_list_clear(fl_obs_list_t *list)
+{
+    if (list == NULL)
+        return;
+    list->n = 0;
+    list->dropped = 0;
+}
+
+bool fl_obs_list_push(fl_obs_list_t *list, const fl_obs_t *obs)
+{
+    if (list == NULL || obs == NULL)
+        return false;
+    if (list->n >= FL_OBS_MAX) {
+        if (list->dropped < UINT16_MAX)
+            list->dropped++;
+        return false;
+    }
+    list->obs[list->n++] = *obs;
+    return true;
+}
+
+/* Mean direction of two arms a, b (the bisector of the smaller angle). */
+static fl_angle_t bisector(fl_angle_t a, fl_angle_t b)
+{
+    int32_t d = fl_angle_sub(b, a);      /* (-32768, 32767] after wrap */
+    return fl_angle_add(a, fl_angle_wrap(d / 2));
+}
+
+bool fl_landmark_orientation(const fl_landmark_t *lm, fl_angle_t *orientation)
+{
+    int i, j;
+    if (lm == NULL || orientation == NULL)
+        return false;
+    switch (lm->kind) {
+    case FL_LM_L:
+        if (lm->n_arms != 2)
+            return false;
+        *orientation = bisector(lm->arm[0], lm->arm[1]);
+        return true;
+    case FL_LM_T:
+        if (lm->n_arms != 3)
+            return false;
+        /* the stem is the arm with no arm about 180 degrees from it */
+        for (i = 0; i < 3; i++) {
+            bool opposite = false;
+            for (j = 0; j < 3; j++) {
+                int32_t d = fl_angle_sub(lm->arm[j], lm->arm[i]);
+                if (j != i && (d > 32768 - 2048 || d < -32768 + 2048))
+                    opposite = true;
+            }
+            if (!opposite) {
+                *orientation = lm->arm[i];
+                return true;
+            }
+        }
+        return false;
+    case FL_LM_X:
+    case FL_LM_PENALTY_MARK:
+    case FL_LM_CENTRE_MARK:
+        if (lm->n_arms < 1)
+            return false;
+        *orientation = lm->arm[0];
+        return true;
+    case FL_LM_CENTRE_CIRCLE:
+        *orientation = FL_ANGLE_90;   /* the halfway line runs along y */
+        return true;
+    default:
+        return false;
+    }
+}
