@@ -11,6 +11,8 @@ SHELL := /bin/bash
 #   make test-exhaustive  the sweeps too long for every run (all uint32 isqrt)
 #   make sanitize   test suite under ASan + UBSan (clang, integer checks too)
 #   make bench      benchmarks, writes build/bench.tsv
+#   make stack      worst-case stack depth of every public entry point
+#   make valgrind   test suite (quick mode) under valgrind memcheck
 #   make install    PREFIX=/usr/local: headers, library, pkg-config file
 #   make echo       print the effective flags
 #
@@ -68,7 +70,7 @@ TOOL_LIB_OBJ := $(TOOL_LIB_SRC:%.c=$(BUILD)/%.o) $(TOOL_CXX_OBJ)
 CLI      := $(BUILD)/fieldloc
 RUNNER   := $(BUILD)/run_tests
 
-.PHONY: fixtures all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
+.PHONY: stack valgrind fixtures all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
 
 all: $(LIB) $(CLI)
 
@@ -144,6 +146,20 @@ bench: $(CLI)
 # every run and machine).
 fixtures: $(CLI)
 	@$(CLI) fixtures --out fixtures
+
+# Worst-case stack of every public entry point, from gcc's call-graph and
+# stack-usage output (-fcallgraph-info=su) of the firmware as built.
+stack:
+	@rm -rf $(BUILD)/stack && mkdir -p $(BUILD)/stack
+	@for f in $(FW_SRC); do \
+	  $(CC) $(FW_CFLAGS) -fcallgraph-info=su -c $$f -o $(BUILD)/stack/$$(basename $$f .c).o \
+	    -dumpbase $$(basename $$f .c) -dumpdir $(BUILD)/stack/ || exit 1; \
+	done
+	@python3 tools/stack_report.py --limit 4096 $(BUILD)/stack/*.ci
+
+# The test suite under valgrind memcheck (quick mode: the sweeps are long).
+valgrind: $(RUNNER)
+	valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite -q $(RUNNER) --quick
 
 install: $(LIB)
 	install -d $(DESTDIR)$(PREFIX)/include/fieldloc $(DESTDIR)$(PREFIX)/lib/pkgconfig

@@ -4,4 +4,5 @@ T_SUITE(image);
 T_SUITE(camera);
 T_SUITE(field);
 T_SUITE(obs);
+T_SUITE(realdata);
 T_SUITE(rules);

@@ -305,7 +305,25 @@ static void test_catalogue(void)
                 break;
             }
         }
-        CHECK(j < sizeof hfov / sizeof hfov[0]); /* every model has a known HFOV */
+        /* every model has a known HFOV, except calibrated ones (below) */
+        CHECK(j < sizeof hfov / sizeof hfov[0] || strcmp(m->name, "uva2013") == 0);
+        /* default pose (added with uva2013): a valid neck height, a small
+         * pitch offset, and it initialises with a level head */
+        CHECK(m->default_neck_height_mm >= FL_CAMERA_NECK_MIN_MM &&
+              m->default_neck_height_mm <= FL_CAMERA_NECK_MAX_MM);
+        CHECK(m->default_pitch_offset > -2731 && m->default_pitch_offset < 2731); /* 15 deg */
+        {
+            fl_camera_pose_t dp;
+            dp.neck_height_mm = m->default_neck_height_mm;
+            dp.head_pitch = 0;
+            dp.head_yaw = 0;
+            dp.pitch_offset = m->default_pitch_offset;
+            CHECK_EQ(fl_camera_init(&cam, m, &dp), FL_OK);
+        }
+        if (strncmp(m->name, "nao", 3) == 0)
+            CHECK(m->default_neck_height_mm > 400 && m->default_neck_height_mm < 480);
+        if (is_aibo(m))
+            CHECK(m->default_neck_height_mm >= 100 && m->default_neck_height_mm <= 200);
         if (strstr(m->name, "-320")) {
             CHECK_EQ(m->width_px, 320);
             CHECK_EQ(m->height_px, 240);
@@ -329,6 +347,24 @@ static void test_catalogue(void)
     if (m) {
         CHECK_EQ(m->width_px, 208);
         CHECK_EQ(m->height_px, 160);
+    }
+    /* uva2013: the NAO v4 bottom camera of the UvA 2013 set, calibrated
+     * from its hand labels (test_realdata checks it against them): the
+     * nao4-bottom-320 geometry with a fitted focal length within 3% of the
+     * data sheet's, and a StandInit-like default pose (neck 430..470 mm,
+     * pitch offset 0..10 deg) */
+    m = fl_camera_model_find("uva2013");
+    CHECK(m != NULL);
+    {
+        const fl_camera_model_t *b = fl_camera_model_find("nao4-bottom-320");
+        if (m && b) {
+            CHECK(m->width_px == 320 && m->height_px == 240);
+            CHECK(m->mount_x_mm == b->mount_x_mm && m->mount_z_mm == b->mount_z_mm &&
+                  m->mount_tilt == b->mount_tilt);
+            CHECK_LE(fabs(m->focal_q4 - (double)b->focal_q4), 0.03 * b->focal_q4);
+            CHECK(m->default_neck_height_mm >= 430 && m->default_neck_height_mm <= 470);
+            CHECK(m->default_pitch_offset > 0 && m->default_pitch_offset < 1820);
+        }
     }
 }
 

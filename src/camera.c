@@ -47,7 +47,7 @@
  * 39.7 deg = 7227, 40 deg = 7282, 1.2 deg = 218.
  *
  * Sources and uncertainty (all from memory of the Aldebaran documentation
- * and RoboCup team code, none re-measured here; a later issue calibrates
+ * and RoboCup team code, none re-measured here; "uva2013" below calibrates
  * the UvA NAO v4 bottom camera from real labels):
  *  - NAO v4 (and v5): MT9M114, HFOV 60.9 x VFOV 47.6 deg (the docs give
  *    60.97 x 47.64; both give 272.0 px at 320 wide, DESIGN.md's "about 272
@@ -74,21 +74,51 @@
  * cy_q4 = 8 (H - 1).
  */
 static const fl_camera_model_t fl_camera_catalogue[] = {
-    /* name               W    H    f_q4   cx_q4 cy_q4 mx     mz   tilt */
-    {"nao3-top-320",     320, 240,  5777, 2552, 1912, 54,   68,    0},
-    {"nao3-bottom-320",  320, 240,  5777, 2552, 1912, 49,   24, 7282},
-    {"nao3-top-640",     640, 480, 11554, 5112, 3832, 54,   68,    0},
-    {"nao3-bottom-640",  640, 480, 11554, 5112, 3832, 49,   24, 7282},
-    {"nao4-top-320",     320, 240,  4355, 2552, 1912, 59,   64,  218},
-    {"nao4-bottom-320",  320, 240,  4355, 2552, 1912, 51,   18, 7227},
-    {"nao4-top-640",     640, 480,  8709, 5112, 3832, 59,   64,  218},
-    {"nao4-bottom-640",  640, 480,  8709, 5112, 3832, 51,   18, 7227},
-    {"nao6-top-320",     320, 240,  4784, 2552, 1912, 59,   64,  218},
-    {"nao6-bottom-320",  320, 240,  4784, 2552, 1912, 51,   18, 7227},
-    {"nao6-top-640",     640, 480,  9569, 5112, 3832, 59,   64,  218},
-    {"nao6-bottom-640",  640, 480,  9569, 5112, 3832, 51,   18, 7227},
-    {"aibo-ers7",        208, 160,  3071, 1656, 1272, 81,  -15,    0},
+    /* name               W    H    f_q4   cx_q4 cy_q4 mx     mz   tilt neck poff */
+    {"nao3-top-320",     320, 240,  5777, 2552, 1912, 54,   68,    0, 445, 0},
+    {"nao3-bottom-320",  320, 240,  5777, 2552, 1912, 49,   24, 7282, 445, 0},
+    {"nao3-top-640",     640, 480, 11554, 5112, 3832, 54,   68,    0, 445, 0},
+    {"nao3-bottom-640",  640, 480, 11554, 5112, 3832, 49,   24, 7282, 445, 0},
+    {"nao4-top-320",     320, 240,  4355, 2552, 1912, 59,   64,  218, 445, 0},
+    {"nao4-bottom-320",  320, 240,  4355, 2552, 1912, 51,   18, 7227, 445, 0},
+    {"nao4-top-640",     640, 480,  8709, 5112, 3832, 59,   64,  218, 445, 0},
+    {"nao4-bottom-640",  640, 480,  8709, 5112, 3832, 51,   18, 7227, 445, 0},
+    {"nao6-top-320",     320, 240,  4784, 2552, 1912, 59,   64,  218, 445, 0},
+    {"nao6-bottom-320",  320, 240,  4784, 2552, 1912, 51,   18, 7227, 445, 0},
+    {"nao6-top-640",     640, 480,  9569, 5112, 3832, 59,   64,  218, 445, 0},
+    {"nao6-bottom-640",  640, 480,  9569, 5112, 3832, 51,   18, 7227, 445, 0},
+    {"aibo-ers7",        208, 160,  3071, 1656, 1272, 81,  -15,    0, 160, 0},
+    {"uva2013",          320, 240,  4405, 2552, 1912, 51,   18, 7227, 450, 1140},
 };
+/* Default poses (default_neck_height_mm, default_pitch_offset), nominal:
+ *  - NAO (all versions, same leg and neck geometry): StandInit, hip pitch
+ *    about -0.45 rad, knee 0.7, ankle -0.35: the legs (thigh 100, tibia
+ *    102.9 mm, foot height 45.19) put the hip joints 231 mm above the
+ *    ground; plus hip-to-torso 85 and torso-to-neck 126.5 mm = 443 -> 445
+ *    mm (a straight-legged stand is 460).  From memory of the Aldebaran
+ *    kinematics pages, not measured; the uva2013 fit gives 450 +- 5.
+ *    Pitch offset 0 (the torso lean of StandInit, about 6 deg by the
+ *    uva2013 fit, is left to the caller).
+ *  - AIBO ERS-7: 160 mm, a rough standing value (test_camera sweeps
+ *    100..200), uncertain by 30 mm; pitch offset 0.
+ * uva2013: the UvA 2013 dataset's NAO v4 bottom camera at 320x240, fitted by
+ * `fieldloc calibrate` (tools/calibrate.c) to the 151 hand labels of
+ * ../shared/realdata/uva2013_annotations.csv with the nao4-bottom mount
+ * (51 / 18 mm, 39.7 deg) and per-image pose corrections as nuisance
+ * parameters (the file-name poses are several degrees off):
+ *     neck height   449.6 +- 5.4 mm   -> 450 mm (camera ~487 mm high at
+ *                                         HeadPitch -0.545)
+ *     pitch offset  6.26 +- 0.12 deg  -> 1140 (6.262 deg); the StandInit
+ *                                         torso lean plausibly explains it
+ *     focal length  275.3 +- 1.9 px   -> 4405 (275.31 px; the data sheet's
+ *                                         272.2 is within 1.6 sigma)
+ *     principal point: image centre (a fit gives 159.0 +- 2.7, 116.8 +- 7.9
+ *                                         px: not significant)
+ * Residuals and outliers: see `fieldloc calibrate`; the top-camera mount
+ * fits the labels as well only with an impossible 45 deg pitch offset.
+ * With the file-name poses (which this model must live with) the median
+ * residual is ~8 px, dominated by those pose errors; with each image's pose
+ * refitted it is 3.3 px (X 2.3, L 3.8, T 3.4, G 3.2). */
 /* Mount offsets are whole mm (the model stores int32 mm): 58.71 -> 59,
  * 63.64 -> 64, 50.71 -> 51, 17.74 -> 18, 53.9 -> 54, 67.9 -> 68,
  * 48.8 -> 49, 23.81 -> 24; the rounding (< 0.5 mm) is far below the

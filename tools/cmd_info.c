@@ -71,7 +71,8 @@ static int list_cameras(void)
 int cmd_project(int argc, char **argv)
 {
     const char *cam_name = "nao4-bottom-320";
-    fl_camera_pose_t pose = {450, 0, 0, 0};
+    fl_camera_pose_t pose = {0, 0, 0, 0};
+    int32_t neck_mm = -1;
     fl_camera_t cam;
     const fl_camera_model_t *m;
     double u = -1, v = -1;
@@ -82,7 +83,7 @@ int cmd_project(int argc, char **argv)
         if (!strcmp(argv[i], "--camera") && i + 1 < argc)
             cam_name = argv[++i];
         else if (!strcmp(argv[i], "--neck") && i + 1 < argc)
-            pose.neck_height_mm = atoi(argv[++i]);
+            neck_mm = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--head") && i + 2 < argc) {
             pose.head_pitch = angle_from_rad(atof(argv[++i]));
             pose.head_yaw = angle_from_rad(atof(argv[++i]));
@@ -98,7 +99,8 @@ int cmd_project(int argc, char **argv)
         }
     }
     if (npos != 2) {
-        fprintf(stderr, "usage: fieldloc project [--camera NAME] [--neck MM] [--head PITCH_RAD YAW_RAD] U V\n");
+        fprintf(stderr, "usage: fieldloc project [--camera NAME] [--neck MM] [--head PITCH_RAD YAW_RAD] U V\n"
+                        "  (neck height and pitch offset default to the camera model's calibrated pose)\n");
         return 2;
     }
     m = fl_camera_model_find(cam_name);
@@ -106,6 +108,9 @@ int cmd_project(int argc, char **argv)
         fprintf(stderr, "project: unknown camera %s (see: fieldloc cameras)\n", cam_name);
         return 2;
     }
+    /* the model's default pose (calibrated for uva2013) unless overridden */
+    pose.neck_height_mm = neck_mm >= 0 ? neck_mm : m->default_neck_height_mm;
+    pose.pitch_offset = m->default_pitch_offset;
     s = fl_camera_init(&cam, m, &pose);
     if (s != FL_OK) {
         fprintf(stderr, "project: %s\n", fl_status_str(s));

@@ -31,6 +31,14 @@ typedef struct {
     int32_t mount_x_mm;    /* camera forward of the head pitch axis */
     int32_t mount_z_mm;    /* camera above the head pitch axis */
     fl_angle_t mount_tilt; /* optical axis below the head horizontal */
+    /* added: the default pose of this camera for callers that have no
+     * better value (the CLI's --camera NAME alone, rd_uva_camera_pose):
+     * the head pitch axis above the ground in the robot's usual stance
+     * (NAO StandInit, AIBO standing) and the extra downward tilt.  For a
+     * calibrated model ("uva2013") they are the fitted values; for the
+     * others nominal values (src/camera.c).  Not read by fl_camera_init. */
+    int32_t default_neck_height_mm; /* FL_CAMERA_NECK_MIN_MM..MAX_MM */
+    fl_angle_t default_pitch_offset; /* positive = tilted further down */
 } fl_camera_model_t;
 
 /* Where the head is (per frame, from joint sensors). */
@@ -56,7 +64,10 @@ typedef struct {
 
 /* Catalogue: NAO v3/v4/v6 top and bottom at 320x240 and 640x480, the AIBO
  * ERS-7 camera at 208x160, plus models added by later calibration.
- * Names: "nao3-top-320", "nao4-bottom-640", "aibo-ers7", ... */
+ * Names: "nao3-top-320", "nao4-bottom-640", "aibo-ers7", ...,
+ * "uva2013" (the UvA 2013 dataset's NAO v4 bottom camera at 320x240,
+ * calibrated from the hand labels by `fieldloc calibrate`; use it with its
+ * default pose and each frame's head angles). */
 const fl_camera_model_t *fl_camera_model_find(const char *name);
 size_t fl_camera_model_count(void);
 const fl_camera_model_t *fl_camera_model_at(size_t i);  /* NULL if out of range */
