@@ -52,7 +52,7 @@ ifeq ($(HAVE_OPENCV),1)
 CXX      ?= g++
 CV_DEFS   = -DFL_HAVE_OPENCV
 CV_CFLAGS := $(shell pkg-config --cflags opencv4)
-CV_LIBS   := $(shell pkg-config --libs opencv4)
+CV_LIBS   := $(filter-out -lopencv_%,$(shell pkg-config --libs opencv4)) -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
 TOOL_CXX_SRC := $(sort $(wildcard tools/*.cpp))
 endif
 TOOL_CXX_OBJ := $(TOOL_CXX_SRC:%.cpp=$(BUILD)/%.o)

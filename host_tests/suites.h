@@ -4,5 +4,7 @@ T_SUITE(image);
 T_SUITE(camera);
 T_SUITE(field);
 T_SUITE(obs);
+T_SUITE(render);
+T_SUITE(sim);
 T_SUITE(realdata);
 T_SUITE(rules);

@@ -1,0 +1,863 @@
+/*
+ * host_tests/test_sim.c - suite `sim`: the walk simulator (tools/sim.h).
+ *
+ * Checks: integrating the true motion reproduces the true path; odometry
+ * error statistics match the configured noise over a long walk; noiseless
+ * observations re-project onto map landmarks (1 mm, 0.01 deg) and are
+ * complete; nothing outside the field of view (checked with an independent
+ * double pinhole model written here from camera.h's description) is seen;
+ * observation noise, misses, false positives and confusion match their
+ * parameters; kidnap and penalty move the pose as specified; the head sweep;
+ * the scenario text round-trips; determinism (digests); the committed walk
+ * fixtures equal the generator's output; the sequence writer (mode b).
+ */
+#include "test.h"
+#include "sim.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define PI 3.14159265358979323846
+
+/* The renderer may not be linked in every build (mode b is skipped then). */
+#pragma weak render_frame
+#pragma weak render_read_frame
+#pragma weak render_frame_free
+
+static double ang_rad(fl_angle_t a) { return (double)a * (2 * PI / 65536.0); }
+
+static double wrap_pi(double a)
+{
+    while (a >= PI)
+        a -= 2 * PI;
+    while (a < -PI)
+        a += 2 * PI;
+    return a;
+}
+
+static int load_builtin(sim_scenario_t *sc, int i)
+{
+    int r = sim_scenario_builtin(sc, sim_builtin_names[i]);
+    CHECK_EQ(r, 0);
+    return r;
+}
+
+/* ---- independent camera model (double), after camera.h ------------------ */
+
+typedef struct {
+    double R[3][3];   /* camera (x optical, y left, z up) -> robot */
+    double p[3];      /* camera centre, robot frame */
+    double f, cx, cy;
+    int w, h;
+} dcam_t;
+
+static void dcam_init(dcam_t *c, const fl_camera_model_t *m, const fl_camera_pose_t *ps)
+{
+    double yaw = ang_rad(ps->head_yaw);
+    double theta = ang_rad(ps->head_pitch) + ang_rad(ps->pitch_offset);
+    double alpha = ang_rad(m->mount_tilt) + theta;
+    double cyw = cos(yaw), syw = sin(yaw), ca = cos(alpha), sa = sin(alpha);
+    /* mount offset turned down by the head pitch, then yawed */
+    double hx = m->mount_x_mm * cos(theta) + m->mount_z_mm * sin(theta);
+    double hz = -m->mount_x_mm * sin(theta) + m->mount_z_mm * cos(theta);
+    c->R[0][0] = cyw * ca; c->R[0][1] = -syw; c->R[0][2] = cyw * sa;
+    c->R[1][0] = syw * ca; c->R[1][1] = cyw;  c->R[1][2] = syw * sa;
+    c->R[2][0] = -sa;      c->R[2][1] = 0;    c->R[2][2] = ca;
+    c->p[0] = cyw * hx;
+    c->p[1] = syw * hx;
+    c->p[2] = ps->neck_height_mm + hz;
+    c->f = m->focal_q4 / 16.0;
+    c->cx = m->cx_q4 / 16.0;
+    c->cy = m->cy_q4 / 16.0;
+    c->w = m->width_px;
+    c->h = m->height_px;
+}
+
+/* Robot-frame ground point -> pixel; 0 when behind the camera. */
+static int dcam_project(const dcam_t *c, double gx, double gy, double *u, double *v)
+{
+    double d[3] = {gx - c->p[0], gy - c->p[1], -c->p[2]}, q[3];
+    int i;
+    for (i = 0; i < 3; i++)
+        q[i] = c->R[0][i] * d[0] + c->R[1][i] * d[1] + c->R[2][i] * d[2];
+    if (q[0] <= 1e-9)
+        return 0;
+    *u = c->cx - c->f * q[1] / q[0];
+    *v = c->cy - c->f * q[2] / q[0];
+    return 1;
+}
+
+static void field_to_robot(const sim_step_t *st, double fx, double fy, double *rx, double *ry)
+{
+    double h = ang_rad(st->heading), dx = fx - st->x_mm, dy = fy - st->y_mm;
+    *rx = dx * cos(h) + dy * sin(h);
+    *ry = -dx * sin(h) + dy * cos(h);
+}
+
+/* ---- consistency: integrating the true motion gives the true path ------- */
+
+static void test_consistency(void)
+{
+    int i;
+    for (i = 0; i < 3; i++) {
+        sim_scenario_t sc;
+        sim_t sim;
+        sim_step_t st;
+        double xd = 0, yd = 0, hd = 0;   /* integrated doubles */
+        double xi = 0, yi = 0;           /* integrated integer deltas */
+        int32_t hi = 0;                  /* integer heading, binary units */
+        double err_d = 0, err_i = 0, err_h = 0;
+        if (load_builtin(&sc, i) != 0)
+            continue;
+        CHECK_EQ(sim_init(&sim, &sc), 0);
+        while (sim_step(&sim, &st)) {
+            double c, s;
+            if (st.index == 0 || (st.events & (SIM_EV_KIDNAP | SIM_EV_PENALIZED))) {
+                /* start, or a teleport: the motion of this step happened
+                 * before it; restart the integration at the new pose */
+                xd = st.true_x_mm;
+                yd = st.true_y_mm;
+                hd = st.true_heading_rad;
+                xi = st.x_mm;
+                yi = st.y_mm;
+                hi = st.heading;
+                continue;
+            }
+            c = cos(hd);
+            s = sin(hd);
+            xd += st.true_dx * c - st.true_dy * s;
+            yd += st.true_dx * s + st.true_dy * c;
+            hd += st.true_dtheta_rad;
+            c = cos(ang_rad(fl_angle_wrap(hi)));
+            s = sin(ang_rad(fl_angle_wrap(hi)));
+            xi += st.true_dx_mm * c - st.true_dy_mm * s;
+            yi += st.true_dx_mm * s + st.true_dy_mm * c;
+            hi = fl_angle_add(fl_angle_wrap(hi), st.true_dtheta);
+            err_d = fmax(err_d, hypot(xd - st.true_x_mm, yd - st.true_y_mm));
+            err_d = fmax(err_d, fabs(wrap_pi(hd - st.true_heading_rad)) * 1000);
+            err_i = fmax(err_i, hypot(xi - st.x_mm, yi - st.y_mm));
+            err_h = fmax(err_h, abs(fl_angle_sub(fl_angle_wrap(hi), st.heading)));
+        }
+        t_info("sim.consistency %s: double path error %.2g mm (heading %.2g mrad), "
+               "integer path error %.2f mm, heading %g units",
+               sim_builtin_names[i], err_d, err_d, err_i, err_h);
+        CHECK_LE(err_d, 1e-6);
+        /* integer deltas: rounding to 1 mm per step with error diffusion;
+         * the remainders are carried in turning frames, and the rounded
+         * true pose itself is off by up to 0.7 mm */
+        CHECK_LE(err_i, 3.0);
+        CHECK_LE(err_h, 1);
+    }
+}
+
+/* ---- odometry statistics -------------------------------------------------- */
+
+static void odometry_stats(sim_robot_t robot, const char *field, const char *camera)
+{
+    sim_scenario_t sc;
+    sim_t sim;
+    sim_step_t st;
+    char text[512];
+    double sxx = 0, sxo = 0, syy = 0, syo = 0, sth = 0, sto = 0;
+    double n = 0, ex2 = 0, ey2 = 0, sum_l = 0, sum_rth = 0, eth2 = 0;
+    double sum_odx = 0, sum_odx_i = 0, sum_oth = 0, sum_oth_i = 0;
+    double est_sx, est_sy, est_st, est_drift, sd_x, sd_y, sd_th;
+    snprintf(text, sizeof text,
+             "robot %s\nfield %s\ncamera %s\nseed 99\nduration_s %d\n"
+             "slip_rate_hz 0\nmax_range_mm 1\n"
+             "waypoint -2000 -1000\nwaypoint 1500 1200\nwaypoint 2000 -1200\n"
+             "waypoint -500 800\n",
+             robot == SIM_ROBOT_AIBO ? "aibo" : "nao", field, camera,
+             t_quick ? 300 : 600);   /* quick (qemu): half the walk */
+    CHECK_EQ(sim_scenario_parse(&sc, text, NULL, 0), 0);
+    CHECK_EQ(sim_init(&sim, &sc), 0);
+    while (sim_step(&sim, &st)) {
+        double L = hypot(st.true_dx, st.true_dy), rx, ry, rth, sig;
+        sum_odx += st.odo_dx;
+        sum_odx_i += st.odo_dx_mm;
+        sum_oth += st.odo_dtheta_rad;
+        sum_oth_i += ang_rad(st.odo_dtheta);
+        if (L < 1e-9 && st.true_dtheta_rad == 0)
+            continue;
+        /* regressions through the origin: odo = (1 + s) * true */
+        sxx += st.true_dx * st.true_dx;
+        sxo += st.true_dx * st.odo_dx;
+        syy += st.true_dy * st.true_dy;
+        syo += st.true_dy * st.odo_dy;
+        sth += st.true_dtheta_rad * st.true_dtheta_rad;
+        sto += st.true_dtheta_rad * st.odo_dtheta_rad;
+        /* residuals with the configured systematic part removed */
+        rx = st.odo_dx - (1 + sc.odo_scale_x) * st.true_dx;
+        ry = st.odo_dy - (1 + sc.odo_scale_y) * st.true_dy;
+        rth = st.odo_dtheta_rad - (1 + sc.odo_scale_theta) * st.true_dtheta_rad;
+        sum_l += L;
+        sum_rth += rth;
+        if (L > 1e-9) {
+            ex2 += (rx / L) * (rx / L);
+            ey2 += (ry / L) * (ry / L);
+        }
+        sig = sc.odo_sigma_rot * fabs(st.true_dtheta_rad) +
+              sc.odo_sigma_rot_deg_per_m * (PI / 180) * L / 1000;
+        rth -= sc.odo_drift_deg_per_m * (PI / 180) * L / 1000;
+        if (sig > 0)
+            eth2 += (rth / sig) * (rth / sig);
+        n++;
+    }
+    est_sx = sxo / sxx - 1;
+    est_sy = syo / syy - 1;
+    est_st = sto / sth - 1;
+    est_drift = sum_rth / (sum_l / 1000) * 180 / PI;
+    sd_x = sqrt(ex2 / n);
+    sd_y = sqrt(ey2 / n);
+    sd_th = sqrt(eth2 / n);
+    t_info("sim.odometry %s (%.0f moving steps, %.0f m): scale x %.4f (set %.2f) "
+           "y %.4f (%.2f) theta %.4f (%.2f); drift %.3f deg/m (%.1f); "
+           "random: x %.4f y %.4f of the step (%.2f), rotation %.3f sigma",
+           field, n, sum_l / 1000, est_sx, sc.odo_scale_x, est_sy, sc.odo_scale_y,
+           est_st, sc.odo_scale_theta, est_drift, sc.odo_drift_deg_per_m, sd_x,
+           sd_y, sc.odo_sigma_trans, sd_th);
+    CHECK(n > 5000);
+    CHECK_LE(fabs(est_sx - sc.odo_scale_x), 0.01);
+    CHECK_LE(fabs(est_sy - sc.odo_scale_y), 0.03);   /* little sideways walking */
+    CHECK_LE(fabs(est_st - sc.odo_scale_theta), 0.02);
+    CHECK_LE(fabs(est_drift - sc.odo_drift_deg_per_m), 0.1 * sc.odo_drift_deg_per_m);
+    CHECK_LE(fabs(sd_x / sc.odo_sigma_trans - 1), 0.05);
+    CHECK_LE(fabs(sd_y / sc.odo_sigma_trans - 1), 0.05);
+    CHECK_LE(fabs(sd_th - 1), 0.05);
+    /* integer odometry with error diffusion sums to the exact odometry */
+    CHECK_LE(fabs(sum_odx_i - sum_odx), 0.5 + 1e-6);
+    CHECK_LE(fabs(sum_oth_i - sum_oth), 0.5 * 2 * PI / 65536 + 1e-9);
+}
+
+static void test_odometry(void)
+{
+    odometry_stats(SIM_ROBOT_NAO, "spl2013", "nao4-top-320");
+    odometry_stats(SIM_ROBOT_AIBO, "aibo2004", "aibo-ers7");
+}
+
+/* ---- observations: geometry, completeness, field of view ------------------ */
+
+static void test_geometry_noiseless(void)
+{
+    int i;
+    for (i = 0; i < 3; i++) {
+        sim_scenario_t sc;
+        sim_t sim;
+        sim_step_t st;
+        double max_pos = 0, max_brg = 0, max_ori = 0;
+        long n_obs = 0, n_expect = 0, n_bad_kind = 0, n_fp = 0;
+        if (load_builtin(&sc, i) != 0)
+            continue;
+        sim_scenario_noise_off(&sc);
+        CHECK_EQ(sim_init(&sim, &sc), 0);
+        while (sim_step(&sim, &st)) {
+            dcam_t dc;
+            int j, k;
+            dcam_init(&dc, sc.camera, &st.head);
+            for (j = 0; j < st.obs.n; j++) {
+                const fl_obs_t *o = &st.obs.obs[j];
+                const fl_landmark_t *lm;
+                double h = ang_rad(st.heading), b = ang_rad(o->bearing);
+                double fx, fy, want_b;
+                if (st.obs_landmark[j] < 0) {
+                    n_fp++;
+                    continue;
+                }
+                lm = &sc.field->landmarks[st.obs_landmark[j]];
+                n_bad_kind += o->kind != lm->kind || st.obs_confused[j];
+                fx = st.x_mm + o->range_mm * cos(h + b);
+                fy = st.y_mm + o->range_mm * sin(h + b);
+                max_pos = fmax(max_pos, hypot(fx - lm->x_mm, fy - lm->y_mm));
+                want_b = atan2(lm->y_mm - st.y_mm, lm->x_mm - st.x_mm) - h;
+                max_brg = fmax(max_brg, fabs(wrap_pi(b - want_b)) * 180 / PI);
+                if (o->has_orientation) {
+                    fl_angle_t mo;
+                    CHECK(fl_landmark_orientation(lm, &mo));
+                    max_ori = fmax(max_ori, fabs(wrap_pi(ang_rad(o->orientation) -
+                                                         (ang_rad(mo) - h))) * 180 / PI);
+                }
+            }
+            n_obs += st.obs.n;
+            /* completeness: every landmark well inside the image and within
+             * range (independent model) is observed */
+            for (k = 0; k < sc.field->n_landmarks; k++) {
+                const fl_landmark_t *lm = &sc.field->landmarks[k];
+                double rx, ry, u, v, m = sc.fov_margin_px + 0.5;
+                int seen = 0;
+                field_to_robot(&st, lm->x_mm, lm->y_mm, &rx, &ry);
+                if (!dcam_project(&dc, rx, ry, &u, &v) || u < m || v < m ||
+                    u > dc.w - 1 - m || v > dc.h - 1 - m ||
+                    hypot(lm->x_mm - st.x_mm, lm->y_mm - st.y_mm) > sc.max_range_mm - 1)
+                    continue;
+                n_expect++;
+                for (j = 0; j < st.obs.n; j++)
+                    seen |= st.obs_landmark[j] == k;
+                CHECK(seen);
+                if (!seen)
+                    t_fail_msg(__FILE__, __LINE__, "%s step %u: landmark %d at (%.1f, %.1f) px not observed",
+                               sim_builtin_names[i], (unsigned)st.index, k, u, v);
+            }
+        }
+        t_info("sim.geometry %s noise off: %ld observations (%ld expected well inside), "
+               "max re-projection error %.3f mm, bearing %.4f deg, orientation %.4f deg",
+               sim_builtin_names[i], n_obs, n_expect, max_pos, max_brg, max_ori);
+        CHECK(n_obs > 1000);
+        CHECK_EQ(n_fp, 0);
+        CHECK_EQ(n_bad_kind, 0);
+        CHECK_LE(max_pos, 1.0);
+        CHECK_LE(max_brg, 0.01);
+        CHECK_LE(max_ori, 0.01);
+    }
+}
+
+static void test_field_of_view(void)
+{
+    int i;
+    for (i = 0; i < 3; i++) {
+        sim_scenario_t sc;
+        sim_t sim;
+        sim_step_t st;
+        double worst_out = -1e9, max_range_seen = 0, max_uv_err = 0, max_uv_fp = 0;
+        long n = 0;
+        if (load_builtin(&sc, i) != 0)
+            continue;
+        CHECK_EQ(sim_init(&sim, &sc), 0);
+        while (sim_step(&sim, &st)) {
+            dcam_t dc;
+            int j;
+            dcam_init(&dc, sc.camera, &st.head);
+            for (j = 0; j < st.obs.n; j++) {
+                const fl_obs_t *o = &st.obs.obs[j];
+                double rx, ry, u, v, out;
+                if (st.obs_landmark[j] >= 0) {
+                    const fl_landmark_t *lm = &sc.field->landmarks[st.obs_landmark[j]];
+                    field_to_robot(&st, lm->x_mm, lm->y_mm, &rx, &ry);
+                } else {
+                    double b = ang_rad(o->bearing);
+                    rx = o->range_mm * cos(b);
+                    ry = o->range_mm * sin(b);
+                }
+                max_range_seen = fmax(max_range_seen, hypot(rx, ry) / sc.max_range_mm);
+                if (!dcam_project(&dc, rx, ry, &u, &v)) {
+                    CHECK(0);   /* behind the camera */
+                    continue;
+                }
+                /* how far outside the image (negative: inside) */
+                out = fmax(fmax(-u, u - (dc.w - 1)), fmax(-v, v - (dc.h - 1)));
+                worst_out = fmax(worst_out, out);
+                if (st.obs_landmark[j] >= 0)
+                    max_uv_err = fmax(max_uv_err, fmax(fabs(u - o->u_q4 / 16.0),
+                                                       fabs(v - o->v_q4 / 16.0)));
+                else
+                    max_uv_fp = fmax(max_uv_fp, fmax(fabs(u - o->u_q4 / 16.0),
+                                                     fabs(v - o->v_q4 / 16.0)));
+                n++;
+            }
+        }
+        t_info("sim.fov %s: %ld observations (incl. false positives), farthest inside "
+               "the image edge %.2f px (negative = inside), max range / limit %.4f, "
+               "image position vs independent model %.3f px (false positives: "
+               "%.3f px from their rounded range and bearing)",
+               sim_builtin_names[i], n, worst_out, max_range_seen, max_uv_err, max_uv_fp);
+        CHECK(n > 1000);
+        /* the simulator's margin is fov_margin_px; rounding of the robot-
+         * frame point (0.5 mm) and of false-positive ranges moves less than
+         * 1 px at these distances */
+        CHECK_LE(worst_out, 1.0 - sc.fov_margin_px);
+        CHECK_LE(max_range_seen, 1.0 + 1e-3);
+        CHECK_LE(max_uv_err, 1.0);
+    }
+}
+
+/* ---- observation noise statistics ---------------------------------------- */
+
+static void test_observation_noise(void)
+{
+    sim_scenario_t sc;
+    sim_t sim;
+    sim_step_t st;
+    sim_scenario_t clean;
+    double er2 = 0, eb2 = 0, eo2 = 0, er_mean = 0;
+    double n = 0, n_o = 0, n_fp = 0, n_lt = 0, n_conf = 0, n_vis = 0, frames = 0;
+    double n_post = 0, n_post_sided = 0, n_side_wrong = 0;
+    double miss_rate, fp_rate, conf_rate;
+    CHECK_EQ(sim_scenario_builtin(&sc, "spl2013"), 0);
+    sc.duration_s = t_quick ? 200 : 400;   /* quick (qemu): half */
+    clean = sc;
+    sim_scenario_noise_off(&clean);
+    sc.slip_rate_hz = 0;
+    CHECK_EQ(sim_init(&sim, &sc), 0);
+    while (sim_step(&sim, &st)) {
+        int j, goal_seen[2] = {0, 0};
+        fl_camera_t cam;
+        sim_step_t ref;
+        uint64_t rng = 1;
+        /* what a perfect detector would see from the same pose */
+        CHECK_EQ(fl_camera_init(&cam, sc.camera, &st.head), FL_OK);
+        memset(&ref, 0, sizeof ref);
+        sim_observe(&clean, &cam, st.x_mm, st.y_mm, st.heading, &rng, &ref);
+        n_vis += ref.obs.n;
+        frames++;
+        for (j = 0; j < st.obs.n; j++) {
+            int k = st.obs_landmark[j];
+            if (k >= 0 && sc.field->landmarks[k].kind == FL_LM_POST)
+                goal_seen[sc.field->landmarks[k].goal > 0]++;
+        }
+        for (j = 0; j < st.obs.n; j++) {
+            const fl_obs_t *o = &st.obs.obs[j];
+            const fl_landmark_t *lm;
+            double h = ang_rad(st.heading), r, b;
+            int k = st.obs_landmark[j];
+            if (k < 0) {
+                n_fp++;
+                continue;
+            }
+            lm = &sc.field->landmarks[k];
+            r = hypot(lm->x_mm - st.x_mm, lm->y_mm - st.y_mm);
+            b = atan2(lm->y_mm - st.y_mm, lm->x_mm - st.x_mm) - h;
+            er_mean += (o->range_mm - r) / r;
+            er2 += ((o->range_mm - r) / r) * ((o->range_mm - r) / r);
+            eb2 += pow(wrap_pi(ang_rad(o->bearing) - b) * 180 / PI, 2);
+            if (o->has_orientation) {
+                fl_angle_t mo;
+                fl_landmark_orientation(lm, &mo);
+                eo2 += pow(wrap_pi(ang_rad(o->orientation) - (ang_rad(mo) - h)) * 180 / PI, 2);
+                n_o++;
+            }
+            if (lm->kind == FL_LM_L || lm->kind == FL_LM_T) {
+                n_lt++;
+                n_conf += st.obs_confused[j];
+                CHECK_EQ(st.obs_confused[j], o->kind != lm->kind);
+            }
+            if (lm->kind == FL_LM_POST) {
+                int both = goal_seen[lm->goal > 0] >= 2;
+                n_post++;
+                n_post_sided += o->side != FL_SIDE_UNKNOWN;
+                n_side_wrong += both ? o->side != lm->side : o->side != FL_SIDE_UNKNOWN;
+            }
+            n++;
+        }
+    }
+    er_mean /= n;
+    miss_rate = 1.0 - n / n_vis;
+    fp_rate = n_fp / frames;
+    conf_rate = n_conf / n_lt;
+    t_info("sim.noise spl2013 %.0f s: %.0f observations of %.0f visible: range error "
+           "mean %.4f sd %.4f (set %.2f), bearing sd %.3f deg (%.2f), orientation sd "
+           "%.3f deg (%.1f), miss rate %.4f (%.2f), false positives %.4f/frame (%.2f), "
+           "L<->T confusion %.4f (%.2f), posts %.0f (%.0f with side)",
+           sc.duration_s, n, n_vis, er_mean, sqrt(er2 / n - er_mean * er_mean), sc.range_sigma_pct / 100,
+           sqrt(eb2 / n), sc.bearing_sigma_deg, sqrt(eo2 / n_o), sc.orientation_sigma_deg,
+           miss_rate, sc.p_miss, fp_rate, sc.fp_per_frame, conf_rate, sc.p_confuse,
+           n_post, n_post_sided);
+    CHECK(n > 10000);
+    CHECK_LE(fabs(er_mean), 0.005);
+    CHECK_LE(fabs(sqrt(er2 / n - er_mean * er_mean) / (sc.range_sigma_pct / 100) - 1), 0.05);
+    CHECK_LE(fabs(sqrt(eb2 / n) / sc.bearing_sigma_deg - 1), 0.05);
+    CHECK_LE(fabs(sqrt(eo2 / n_o) / sc.orientation_sigma_deg - 1), 0.05);
+    CHECK_LE(fabs(miss_rate - sc.p_miss), 0.02);
+    CHECK_LE(fabs(fp_rate - sc.fp_per_frame), 0.02);
+    CHECK_LE(fabs(conf_rate - sc.p_confuse), 0.015);
+    CHECK(n_post > 100);
+    CHECK(n_post_sided > 0 && n_post_sided < n_post);
+    CHECK_EQ(n_side_wrong, 0);
+}
+
+/* ---- events ---------------------------------------------------------------- */
+
+static void test_events(void)
+{
+    int i, sides[2] = {0, 0};
+    unsigned seed;
+    for (i = 0; i < 3; i++) {
+        sim_scenario_t sc;
+        sim_t sim;
+        sim_step_t st, prev;
+        int n_kidnap = 0, n_pen = 0, n_unpen = 0, penalized = 0;
+        int32_t px = 0, py = 0;
+        fl_angle_t ph = 0;
+        double pen_t = 0, pen_dur = 0;
+        int j;
+        if (load_builtin(&sc, i) != 0)
+            continue;
+        for (j = 0; j < sc.n_events; j++)
+            if (sc.event[j].kind == SIM_EVENT_PENALTY) {
+                pen_t = sc.event[j].t_s;
+                pen_dur = sc.event[j].duration_s;
+            }
+        CHECK_EQ(sim_init(&sim, &sc), 0);
+        memset(&prev, 0, sizeof prev);
+        while (sim_step(&sim, &st)) {
+            double step_max = (sc.v_forward_mm_s + sc.v_side_mm_s) / sc.frame_hz *
+                              (1 + sc.odo_scale_x + sc.odo_scale_y) * 2 + 1;
+            if (st.events & SIM_EV_KIDNAP) {
+                const sim_event_t *e = NULL;
+                for (j = 0; j < sc.n_events; j++)
+                    if (sc.event[j].kind == SIM_EVENT_KIDNAP)
+                        e = &sc.event[j];
+                n_kidnap++;
+                CHECK(e != NULL);
+                if (e) {
+                    CHECK_EQ(st.x_mm, (int32_t)lround(e->x_mm));
+                    CHECK_EQ(st.y_mm, (int32_t)lround(e->y_mm));
+                    CHECK_LE(abs(fl_angle_sub(st.heading,
+                                              fl_angle_from_mdeg((int32_t)(e->heading_deg * 1000)))), 1);
+                    CHECK_LE(fabs(st.t_ms - e->t_s * 1000), 1000 / sc.frame_hz);
+                    /* far from where the robot was: a real teleport */
+                    CHECK(hypot(st.x_mm - prev.x_mm, st.y_mm - prev.y_mm) > 500);
+                }
+                /* odometry says nothing about it: one ordinary step */
+                CHECK_LE(hypot(st.odo_dx_mm, st.odo_dy_mm), step_max);
+            }
+            if (st.events & SIM_EV_PENALIZED) {
+                n_pen++;
+                penalized = 1;
+                CHECK_LE(fabs(st.t_ms - pen_t * 1000), 1000 / sc.frame_hz);
+                CHECK_EQ(st.x_mm, (int32_t)lround(sc.penalty_x_mm));
+                CHECK_EQ(abs(st.y_mm), sc.field->width_mm / 2);   /* touchline */
+                /* facing into the field: +90 deg on the -y line, -90 on +y */
+                CHECK_EQ(st.heading, st.y_mm > 0 ? -FL_ANGLE_90 : FL_ANGLE_90);
+                CHECK_LE(hypot(st.odo_dx_mm, st.odo_dy_mm), step_max);
+                CHECK(st.penalized);
+                px = st.x_mm;
+                py = st.y_mm;
+                ph = st.heading;
+                sides[st.y_mm > 0]++;
+            } else if (penalized && !(st.events & SIM_EV_UNPENALIZED)) {
+                /* standing still at the spot, head still scanning */
+                CHECK(st.penalized);
+                CHECK_EQ(st.x_mm, px);
+                CHECK_EQ(st.y_mm, py);
+                CHECK_EQ(st.heading, ph);
+                CHECK_EQ(st.odo_dx_mm, 0);
+                CHECK_EQ(st.odo_dy_mm, 0);
+                CHECK_EQ(st.odo_dtheta, 0);
+            }
+            if (st.events & SIM_EV_UNPENALIZED) {
+                n_unpen++;
+                CHECK(penalized);
+                CHECK(!st.penalized);
+                CHECK_LE(fabs(st.t_ms - (pen_t + pen_dur) * 1000), 1000 / sc.frame_hz + 1);
+                penalized = 0;
+            }
+            prev = st;
+        }
+        CHECK_EQ(n_kidnap, 1);
+        CHECK_EQ(n_pen, 1);
+        CHECK_EQ(n_unpen, 1);
+    }
+    /* both touchlines get used over seeds */
+    for (seed = 1; seed <= 16; seed++) {
+        sim_scenario_t sc;
+        sim_t sim;
+        sim_step_t st;
+        char text[256];
+        snprintf(text, sizeof text, "field uva2013\ncamera nao4-top-320\nseed %u\n"
+                 "duration_s 2\nwaypoint 0 0\npenalty 1 0.5\n", seed);
+        CHECK_EQ(sim_scenario_parse(&sc, text, NULL, 0), 0);
+        CHECK_EQ(sim_init(&sim, &sc), 0);
+        while (sim_step(&sim, &st))
+            if (st.events & SIM_EV_PENALIZED)
+                sides[st.y_mm > 0]++;
+    }
+    CHECK(sides[0] >= 3 && sides[1] >= 3);
+}
+
+/* ---- head ------------------------------------------------------------------ */
+
+static void test_head(void)
+{
+    int i;
+    for (i = 0; i < 3; i++) {
+        sim_scenario_t sc;
+        sim_t sim;
+        sim_step_t st;
+        double ymin = 1e9, ymax = -1e9, max_rate = 0, prev_yaw = 0;
+        int pitch_values[2] = {0, 0};
+        if (load_builtin(&sc, i) != 0)
+            continue;
+        CHECK_EQ(sim_init(&sim, &sc), 0);
+        while (sim_step(&sim, &st)) {
+            ymin = fmin(ymin, st.head_yaw_rad);
+            ymax = fmax(ymax, st.head_yaw_rad);
+            if (st.index > 0)
+                max_rate = fmax(max_rate, fabs(st.head_yaw_rad - prev_yaw) * sc.frame_hz);
+            prev_yaw = st.head_yaw_rad;
+            if (fabs(st.head_pitch_rad - sc.head_pitch_rad[0]) < 1e-4)
+                pitch_values[0]++;
+            else if (fabs(st.head_pitch_rad - sc.head_pitch_rad[1]) < 1e-4)
+                pitch_values[1]++;
+            else
+                CHECK(0);
+        }
+        t_info("sim.head %s: yaw %.3f..%.3f rad, max yaw rate %.3f rad/s",
+               sim_builtin_names[i], ymin, ymax, max_rate);
+        /* the sweep is sampled: the extremes are reached within one
+         * frame's worth of yaw motion */
+        CHECK_LE(sc.yaw_amplitude_rad - ymax, 4 * sc.yaw_amplitude_rad / sc.yaw_period_s / sc.frame_hz + 1e-4);
+        CHECK_LE(sc.yaw_amplitude_rad + ymin, 4 * sc.yaw_amplitude_rad / sc.yaw_period_s / sc.frame_hz + 1e-4);
+        CHECK_LE(ymax, sc.yaw_amplitude_rad + 1e-4);
+        CHECK_LE(-ymin, sc.yaw_amplitude_rad + 1e-4);
+        CHECK_LE(max_rate, 4 * sc.yaw_amplitude_rad / sc.yaw_period_s * 1.01);
+        CHECK(pitch_values[0] > 0);
+        if (sc.pitch_period_s > 0)
+            CHECK(pitch_values[1] > 0);
+    }
+}
+
+/* ---- scenario text ----------------------------------------------------------- */
+
+static int scenario_equal(const sim_scenario_t *a, const sim_scenario_t *b)
+{
+    return memcmp(a, b, sizeof *a) == 0;
+}
+
+static void test_scenario_text(void)
+{
+    int i;
+    char err[128];
+    sim_scenario_t sc, bad;
+    static const char *const bad_texts[] = {
+        "field spl2013\ncamera nao4-top-320\n",                       /* no waypoint */
+        "field nowhere\ncamera nao4-top-320\nwaypoint 0 0\n",         /* field */
+        "field spl2013\ncamera nocam\nwaypoint 0 0\n",                /* camera */
+        "field spl2013\nrobot aibo\ncamera aibo-ers7\nwaypoint 0 0\n",/* robot late */
+        "field spl2013\ncamera nao4-top-320\nwaypoint 0\n",           /* arity */
+        "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\nspeed 3\n",/* unknown */
+        "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\np_miss 2\n",/* range */
+        "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\nkidnap 5 0 0 0\nkidnap 4 0 0 0\n",
+        "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\nframe_hz 0\n",
+    };
+    for (i = 0; i < 3; i++) {
+        FILE *f;
+        char *buf = NULL;
+        size_t len = 0;
+        sim_scenario_t back;
+        if (load_builtin(&sc, i) != 0)
+            continue;
+        f = open_memstream(&buf, &len);
+        CHECK(f != NULL);
+        if (f == NULL)
+            continue;
+        CHECK_EQ(sim_scenario_write(f, &sc), 0);
+        fclose(f);
+        CHECK_EQ(sim_scenario_parse(&back, buf, err, (int)sizeof err), 0);
+        /* names are stored in fixed arrays, pointers resolve identically */
+        CHECK(scenario_equal(&sc, &back));
+        free(buf);
+        CHECK_EQ(sc.n_events, 2);
+        CHECK(sc.duration_s >= 120);
+    }
+    for (i = 0; i < (int)(sizeof bad_texts / sizeof bad_texts[0]); i++) {
+        err[0] = '\0';
+        CHECK_EQ(sim_scenario_parse(&bad, bad_texts[i], err, (int)sizeof err), -1);
+        CHECK(err[0] != '\0');
+    }
+    CHECK_EQ(sim_scenario_parse(NULL, "x", NULL, 0), -1);
+    CHECK_EQ(sim_scenario_parse(&bad, NULL, NULL, 0), -1);
+    CHECK_EQ(sim_scenario_builtin(&bad, "nowhere"), -1);
+    CHECK(sim_builtin_text(NULL) == NULL);
+    CHECK_EQ(sim_init(NULL, &sc), -1);
+    {
+        sim_t sim;
+        sim_step_t st;
+        CHECK_EQ(sim_init(&sim, NULL), -1);
+        CHECK_EQ(sim_step(&sim, &st), 0);   /* unusable state: no steps */
+        CHECK_EQ(sim_step(NULL, &st), 0);
+    }
+}
+
+/* ---- determinism ----------------------------------------------------------- */
+
+static uint32_t walk_digest(const sim_scenario_t *sc, uint32_t *n_steps)
+{
+    sim_t sim;
+    sim_step_t st;
+    uint32_t h = t_hash_init();
+    int j;
+    *n_steps = 0;
+    if (sim_init(&sim, sc) != 0)
+        return 0;
+    while (sim_step(&sim, &st)) {
+        int32_t v[] = {(int32_t)st.index, st.t_ms, st.x_mm, st.y_mm, st.heading,
+                       st.true_dx_mm, st.true_dy_mm, st.true_dtheta, st.odo_dx_mm,
+                       st.odo_dy_mm, st.odo_dtheta, st.head.neck_height_mm,
+                       st.head.head_pitch, st.head.head_yaw, st.head.pitch_offset,
+                       (int32_t)st.events, st.obs.n, st.obs.dropped};
+        size_t k;
+        for (k = 0; k < sizeof v / sizeof v[0]; k++)
+            h = t_hash_i32(h, v[k]);
+        for (j = 0; j < st.obs.n; j++) {
+            const fl_obs_t *o = &st.obs.obs[j];
+            int32_t w[] = {(int32_t)o->kind, (int32_t)o->side, (int32_t)o->colour,
+                           o->range_mm, o->bearing, o->orientation, o->has_orientation,
+                           o->confidence, o->u_q4, o->v_q4, st.obs_landmark[j],
+                           st.obs_confused[j]};
+            for (k = 0; k < sizeof w / sizeof w[0]; k++)
+                h = t_hash_i32(h, w[k]);
+        }
+        (*n_steps)++;
+    }
+    return h;
+}
+
+static void test_determinism(void)
+{
+    int i;
+    for (i = 0; i < 3; i++) {
+        sim_scenario_t sc;
+        uint32_t a, b, na, nb;
+        char label[64];
+        if (load_builtin(&sc, i) != 0)
+            continue;
+        a = walk_digest(&sc, &na);
+        b = walk_digest(&sc, &nb);
+        CHECK_EQ(a, b);
+        CHECK_EQ(na, nb);
+        CHECK_EQ(na, (uint32_t)(sc.duration_s * sc.frame_hz) + 1);
+        snprintf(label, sizeof label, "sim.walk.%s", sim_builtin_names[i]);
+        t_digest(label, a);
+        /* a different seed gives a different walk */
+        sc.seed++;
+        CHECK(walk_digest(&sc, &nb) != a);
+    }
+}
+
+/* ---- committed fixtures ------------------------------------------------------ */
+
+static char *read_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    char *buf;
+    long n;
+    if (f == NULL)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    buf = malloc((size_t)n + 1);
+    if (buf == NULL || fread(buf, 1, (size_t)n, f) != (size_t)n) {
+        free(buf);
+        fclose(f);
+        return NULL;
+    }
+    fclose(f);
+    buf[n] = '\0';
+    *len = (size_t)n;
+    return buf;
+}
+
+static void test_fixtures(void)
+{
+    int i;
+    for (i = 0; i < 3; i++) {
+        const char *name = sim_builtin_names[i];
+        char path[256], err[128];
+        char *walk, *trace, *gen = NULL;
+        size_t wlen = 0, tlen = 0, glen = 0;
+        sim_scenario_t sc;
+        FILE *f;
+        snprintf(path, sizeof path, "fixtures/walks/%s.walk", name);
+        walk = read_file(path, &wlen);
+        CHECK(walk != NULL);
+        if (walk == NULL) {
+            t_fail_msg(__FILE__, __LINE__, "missing %s (run from the repository root)", path);
+            continue;
+        }
+        CHECK(strcmp(walk, sim_builtin_text(name)) == 0);
+        CHECK_EQ(sim_scenario_load(&sc, path, err, (int)sizeof err), 0);
+        snprintf(path, sizeof path, "fixtures/walks/%s.trace", name);
+        trace = read_file(path, &tlen);
+        CHECK(trace != NULL);
+        f = open_memstream(&gen, &glen);
+        CHECK(f != NULL);
+        if (f != NULL) {
+            CHECK_EQ(sim_write_trace(f, &sc), 0);
+            fclose(f);
+        }
+        CHECK(trace != NULL && gen != NULL && tlen == glen && memcmp(trace, gen, glen) == 0);
+        CHECK_LE(tlen, 1000000);
+        if (trace != NULL && gen != NULL && (tlen != glen || memcmp(trace, gen, glen) != 0))
+            t_fail_msg(__FILE__, __LINE__, "%s differs from the generator (%zu vs %zu bytes): "
+                       "regenerate with sim_write_walk_fixtures", path, tlen, glen);
+        free(walk);
+        free(trace);
+        free(gen);
+    }
+}
+
+/* ---- mode (b): sequence file ------------------------------------------------- */
+
+static void test_sequence(void)
+{
+    sim_scenario_t sc;
+    char dir[] = "/tmp/fl_sim_seqXXXXXX", path[256], line[512];
+    FILE *f;
+    int frames = 0, header = 0, prior = 0;
+    if (render_frame == NULL) {
+        t_info("sim.sequence: skipped, tools/render.c not built");
+        return;
+    }
+    if (t_quick) {
+        t_info("sim.sequence: skipped in quick mode (renders frames)");
+        return;
+    }
+    CHECK_EQ(sim_scenario_builtin(&sc, "uva2013"), 0);
+    CHECK(mkdtemp(dir) != NULL);
+    snprintf(path, sizeof path, "%s/walk.seq", dir);
+    CHECK_EQ(sim_write_sequence(&sc, path, "img/f", 15, 3, 1), 0);
+    f = fopen(path, "r");
+    CHECK(f != NULL);
+    while (f != NULL && fgets(line, sizeof line, f)) {
+        char img[128], full[400];
+        double dx, dy, dth, p, y;
+        render_frame_t fr;
+        char err[128];
+        if (strncmp(line, "field uva2013", 13) == 0 || strncmp(line, "camera ", 7) == 0)
+            header++;
+        else if (strncmp(line, "prior ", 6) == 0)
+            prior++;
+        else {
+            CHECK_EQ(sscanf(line, "frame %127s odo %lf %lf %lf head %lf %lf", img, &dx,
+                            &dy, &dth, &p, &y), 6);
+            snprintf(full, sizeof full, "%s/%s", dir, img);
+            CHECK_EQ(render_read_frame(full, &fr, err, (int)sizeof err), 0);
+            if (fr.data != NULL) {
+                CHECK_EQ(fr.width, 320);
+                render_frame_free(&fr);
+            }
+            remove(full);
+            CHECK_LE(fabs(p - (-0.54)), 1e-3);
+            if (frames > 0)   /* 15 steps at 150 mm/s: at most ~90 mm */
+                CHECK_LE(hypot(dx, dy), 150.0 * 15 / 30 * 1.3 + 5);
+            frames++;
+        }
+    }
+    if (f != NULL)
+        fclose(f);
+    CHECK_EQ(header, 2);
+    CHECK_EQ(prior, 1);
+    CHECK_EQ(frames, 3);
+    remove(path);
+    snprintf(path, sizeof path, "%s/img", dir);
+    rmdir(path);
+    rmdir(dir);
+}
+
+void suite_sim(void)
+{
+    t_run("sim.consistency", test_consistency);
+    t_run("sim.odometry", test_odometry);
+    t_run("sim.geometry_noiseless", test_geometry_noiseless);
+    t_run("sim.field_of_view", test_field_of_view);
+    t_run("sim.observation_noise", test_observation_noise);
+    t_run("sim.events", test_events);
+    t_run("sim.head", test_head);
+    t_run("sim.scenario_text", test_scenario_text);
+    t_run("sim.determinism", test_determinism);
+    t_run("sim.fixtures", test_fixtures);
+    t_run("sim.sequence", test_sequence);
+}
