@@ -11,6 +11,7 @@ SHELL := /bin/bash
 #   make test-exhaustive  the sweeps too long for every run (all uint32 isqrt)
 #   make sanitize   test suite under ASan + UBSan (clang, integer checks too)
 #   make bench      benchmarks, writes build/bench.tsv
+#   make fuzz-smoke every libFuzzer harness for FUZZ_SECONDS (default 20)
 #   make stack      worst-case stack depth of every public entry point
 #   make valgrind   test suite (quick mode) under valgrind memcheck
 #   make install    PREFIX=/usr/local: headers, library, pkg-config file
@@ -70,7 +71,7 @@ TOOL_LIB_OBJ := $(TOOL_LIB_SRC:%.c=$(BUILD)/%.o) $(TOOL_CXX_OBJ)
 CLI      := $(BUILD)/fieldloc
 RUNNER   := $(BUILD)/run_tests
 
-.PHONY: stack valgrind fixtures all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
+.PHONY: fuzz-build fuzz-smoke stack valgrind fixtures all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
 
 all: $(LIB) $(CLI)
 
@@ -160,6 +161,39 @@ stack:
 # The test suite under valgrind memcheck (quick mode: the sweeps are long).
 valgrind: $(RUNNER)
 	valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite -q $(RUNNER) --quick
+
+# Fuzzing with libFuzzer (clang): one binary per host_tests/fuzz/fuzz_NAME.c,
+# linked with the firmware and the host tools, ASan + UBSan.  fuzz-smoke runs
+# each for FUZZ_SECONDS on a copy of its committed corpus
+# (host_tests/fuzz/corpus/NAME); a crash leaves its input in build/fuzz/.
+FUZZ_CC      ?= clang
+FUZZ_SECONDS ?= 20
+FUZZ_FLAGS    = -g -O1 -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all \
+                -Iinclude -Itools -Ihost_tests -D_DEFAULT_SOURCE
+FUZZ_NAMES   := $(patsubst host_tests/fuzz/fuzz_%.c,%,$(wildcard host_tests/fuzz/fuzz_*.c))
+FUZZ_LIB_SRC := $(FW_SRC) $(TOOL_LIB_SRC)
+fuzz-build:
+	@mkdir -p $(BUILD)/fuzz/obj
+	@for f in $(FUZZ_LIB_SRC); do \
+	  o=$(BUILD)/fuzz/obj/$$(echo $$f | tr / _ | sed 's/\.c$$/.o/'); \
+	  [ $$o -nt $$f ] || $(FUZZ_CC) $(FUZZ_FLAGS) -c $$f -o $$o || exit 1; \
+	done
+	@for n in $(FUZZ_NAMES); do \
+	  $(FUZZ_CC) $(FUZZ_FLAGS) -fsanitize=fuzzer host_tests/fuzz/fuzz_$$n.c $(BUILD)/fuzz/obj/*.o -lm \
+	    -o $(BUILD)/fuzz/fuzz_$$n || exit 1; \
+	done
+	@echo "fuzz: built $(FUZZ_NAMES)"
+
+fuzz-smoke: fuzz-build
+	@status=0; for n in $(FUZZ_NAMES); do \
+	  rm -rf $(BUILD)/fuzz/corpus_$$n; mkdir -p $(BUILD)/fuzz/corpus_$$n; \
+	  cp host_tests/fuzz/corpus/$$n/* $(BUILD)/fuzz/corpus_$$n/ 2>/dev/null; \
+	  if $(BUILD)/fuzz/fuzz_$$n -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=2048 \
+	       -artifact_prefix=$(BUILD)/fuzz/crash_$$n- $(BUILD)/fuzz/corpus_$$n \
+	       > $(BUILD)/fuzz/log_$$n.txt 2>&1; then \
+	    echo "fuzz $$n: $$(grep -o 'Done [0-9]* runs' $(BUILD)/fuzz/log_$$n.txt), no crash"; \
+	  else echo "fuzz $$n: CRASH (see $(BUILD)/fuzz/log_$$n.txt)"; tail -30 $(BUILD)/fuzz/log_$$n.txt; status=1; fi; \
+	done; exit $$status
 
 install: $(LIB)
 	install -d $(DESTDIR)$(PREFIX)/include/fieldloc $(DESTDIR)$(PREFIX)/lib/pkgconfig

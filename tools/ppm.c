@@ -37,11 +37,34 @@ static int read_uint(FILE *f, int *v)
     return 0;   /* c (one whitespace) consumed */
 }
 
+int ppm_read_file(FILE *f, const char *name, host_image_t *out, char *err, int err_len)
+{
+    int w, h, maxv;
+    size_t n;
+    out->rgb = NULL;
+    out->width = out->height = 0;
+    if (fgetc(f) != 'P' || fgetc(f) != '6' || read_uint(f, &w) || read_uint(f, &h) ||
+        read_uint(f, &maxv) || maxv != 255 || w < 1 || h < 1 || w > 16384 || h > 16384) {
+        if (err) snprintf(err, (size_t)err_len, "%s: not a binary PPM (P6, maxval 255)", name);
+        return -1;
+    }
+    n = (size_t)w * (size_t)h * 3;
+    out->rgb = malloc(n);
+    if (!out->rgb || fread(out->rgb, 1, n, f) != n) {
+        if (err) snprintf(err, (size_t)err_len, "%s: truncated pixel data", name);
+        free(out->rgb);
+        out->rgb = NULL;
+        return -1;
+    }
+    out->width = w;
+    out->height = h;
+    return 0;
+}
+
 int ppm_read(const char *path, host_image_t *out, char *err, int err_len)
 {
     FILE *f;
-    int w, h, maxv;
-    size_t n;
+    int rc;
     out->rgb = NULL;
     out->width = out->height = 0;
     f = fopen(path, "rb");
@@ -49,25 +72,9 @@ int ppm_read(const char *path, host_image_t *out, char *err, int err_len)
         if (err) snprintf(err, (size_t)err_len, "%s: cannot open", path);
         return -1;
     }
-    if (fgetc(f) != 'P' || fgetc(f) != '6' || read_uint(f, &w) || read_uint(f, &h) ||
-        read_uint(f, &maxv) || maxv != 255 || w < 1 || h < 1 || w > 16384 || h > 16384) {
-        if (err) snprintf(err, (size_t)err_len, "%s: not a binary PPM (P6, maxval 255)", path);
-        fclose(f);
-        return -1;
-    }
-    n = (size_t)w * (size_t)h * 3;
-    out->rgb = malloc(n);
-    if (!out->rgb || fread(out->rgb, 1, n, f) != n) {
-        if (err) snprintf(err, (size_t)err_len, "%s: truncated pixel data", path);
-        free(out->rgb);
-        out->rgb = NULL;
-        fclose(f);
-        return -1;
-    }
+    rc = ppm_read_file(f, path, out, err, err_len);
     fclose(f);
-    out->width = w;
-    out->height = h;
-    return 0;
+    return rc;
 }
 
 int ppm_write(const char *path, const uint8_t *rgb, int width, int height)

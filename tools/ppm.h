@@ -6,6 +6,7 @@
 #define FL_TOOLS_PPM_H
 
 #include <stdint.h>
+#include <stdio.h>
 
 typedef struct {
     int width, height;
@@ -15,6 +16,9 @@ typedef struct {
 /* Read a P6 (maxval 255; comments allowed) file.  0 on success, -1 with a
  * message in err (may be NULL) on failure; out->rgb is NULL then. */
 int ppm_read(const char *path, host_image_t *out, char *err, int err_len);
+/* The same from an open stream (e.g. fmemopen in the fuzz harness); name is
+ * used in messages only. */
+int ppm_read_file(FILE *f, const char *name, host_image_t *out, char *err, int err_len);
 /* Write P6.  0 on success. */
 int ppm_write(const char *path, const uint8_t *rgb, int width, int height);
 /* Allocate a width x height image filled with one colour (NULL rgb on failure). */
