@@ -7,4 +7,5 @@ T_SUITE(obs);
 T_SUITE(render);
 T_SUITE(sim);
 T_SUITE(realdata);
+T_SUITE(fuzzy);
 T_SUITE(rules);

@@ -15,4 +15,145 @@
 #error "FL_IMAGE_MAX_DIM must be in 16..4096"
 #endif
 
+/* ---- fuzzy position grid (fuzzy.h, seed 004) ---------------------------
+ * FL_FUZZY_CELL_MM   cell side, mm.  Default 100 (seed 004's 10 cm).
+ *                    Range 50..250 (sub-cell offsets are int8 mm).
+ * FL_FUZZY_MAX_NX/NY grid capacity in cells along field x / y.  Default
+ *                    104 x 74: the SPL 2013 carpet (10.4 x 7.4 m) at 100 mm;
+ *                    smaller fields use a sub-rectangle.  Range 4..255 each,
+ *                    and at most 20 m per side (squared distances in the
+ *                    update stay below 2^32).
+ * FL_FUZZY_MAX_REGIONS  landmark regions one observation may visit (one per
+ *                    matching map landmark and orientation candidate, e.g.
+ *                    2 X crossings x 4 orientations = 8).  Default 48, range
+ *                    8..255; extra regions are dropped and counted.
+ * Memory: 8 bytes per cell + 24 bytes per column of scratch (see fuzzy.h). */
+#ifndef FL_FUZZY_CELL_MM
+#define FL_FUZZY_CELL_MM 100
+#endif
+#if FL_FUZZY_CELL_MM < 50 || FL_FUZZY_CELL_MM > 250
+#error "FL_FUZZY_CELL_MM must be in 50..250"
+#endif
+#ifndef FL_FUZZY_MAX_NX
+#define FL_FUZZY_MAX_NX 104
+#endif
+#ifndef FL_FUZZY_MAX_NY
+#define FL_FUZZY_MAX_NY 74
+#endif
+#if FL_FUZZY_MAX_NX < 4 || FL_FUZZY_MAX_NX > 255 || FL_FUZZY_MAX_NY < 4 || FL_FUZZY_MAX_NY > 255
+#error "FL_FUZZY_MAX_NX and FL_FUZZY_MAX_NY must be in 4..255"
+#endif
+#if FL_FUZZY_MAX_NX * FL_FUZZY_CELL_MM > 20000 || FL_FUZZY_MAX_NY * FL_FUZZY_CELL_MM > 20000
+#error "the fuzzy grid may cover at most 20 m per side"
+#endif
+#ifndef FL_FUZZY_MAX_REGIONS
+#define FL_FUZZY_MAX_REGIONS 48
+#endif
+#if FL_FUZZY_MAX_REGIONS < 8 || FL_FUZZY_MAX_REGIONS > 255
+#error "FL_FUZZY_MAX_REGIONS must be in 8..255"
+#endif
+
+/* ---- column scanner (scan.h, seed 000) ----------------------------------
+ * FL_SCAN_MAX_COLS   grid columns of one scan (width / col_step, rounded
+ *                    up).  Default 640: every column of a 640x480 frame.
+ *                    Range 32..4096.
+ * FL_SCAN_MAX_ROWS   grid rows (height / row_step).  Default 480.  Range
+ *                    16..4096.
+ * FL_SCAN_MAX_FEET   yellow->green transitions kept per frame.  Default
+ *                    64, range 1..4096; more are counted (feet_dropped).
+ * Memory: fl_scan_t is about 8 * rows * cols / 32 (the 2-bit class map)
+ * + 120 bytes per 32 columns + 10 bytes per column and row: 87 KB at the
+ * defaults.  */
+#ifndef FL_SCAN_MAX_COLS
+#define FL_SCAN_MAX_COLS 640
+#endif
+#if FL_SCAN_MAX_COLS < 32 || FL_SCAN_MAX_COLS > 4096
+#error "FL_SCAN_MAX_COLS must be in 32..4096"
+#endif
+#ifndef FL_SCAN_MAX_ROWS
+#define FL_SCAN_MAX_ROWS 480
+#endif
+#if FL_SCAN_MAX_ROWS < 16 || FL_SCAN_MAX_ROWS > 4096
+#error "FL_SCAN_MAX_ROWS must be in 16..4096"
+#endif
+#ifndef FL_SCAN_MAX_FEET
+#define FL_SCAN_MAX_FEET 64
+#endif
+#if FL_SCAN_MAX_FEET < 1 || FL_SCAN_MAX_FEET > 4096
+#error "FL_SCAN_MAX_FEET must be in 1..4096"
+#endif
+
+/* ---- line points, segments and field features (lines.h, crossings.h,
+ * goal.h, circle.h, vision.h; seed 000 sections 3.6-3.9) -----------------
+ * FL_LINES_MAX_POINTS    line points per frame.  Default 1024, range
+ *                        64..4096 (ids are uint16; more are counted).
+ * FL_LINES_MAX_SEGMENTS  line segments per frame.  Default 96, range
+ *                        8..1024 (more are counted).
+ * FL_LINES_MAX_BUCKETS   cells of the neighbour-search bucket grid (buckets
+ *                        grow when the image needs more).  Default 2048,
+ *                        range 64..65535.
+ * FL_LINES_WTAB          knots of the per-row projected line width table
+ *                        (rows between knots interpolated).  Default 65,
+ *                        range 9..1025.
+ * FL_CROSSINGS_MAX       L/T/X crossings and marks per frame.  Default 24,
+ *                        range 4..255 (more are counted).
+ * FL_GOAL_MAX_POSTS      goal posts per frame.  Default 4, range 1..16.
+ * FL_CIRCLE_MAX_CHORDS   centre-circle centre candidates per frame (from
+ *                        curved segments and pairs of them).  Default 32,
+ *                        range 4..255 (more are counted).
+ * FL_CIRCLE_MAX_POINTS   ground points in the circle fit (more are
+ *                        subsampled).  Default 192, range 16..4096.
+ * Memory: fl_lines_t about 8 B per point + 96 B per segment + 2 B per
+ * bucket + 4 B per width knot (about 22 KB at the defaults); crossings
+ * about 50 B each, posts about 70 B each; the circle 16 B per candidate,
+ * 8 B per fit point and 20 B per segment of scratch. */
+#ifndef FL_LINES_MAX_POINTS
+#define FL_LINES_MAX_POINTS 1024
+#endif
+#if FL_LINES_MAX_POINTS < 64 || FL_LINES_MAX_POINTS > 4096
+#error "FL_LINES_MAX_POINTS must be in 64..4096"
+#endif
+#ifndef FL_LINES_MAX_SEGMENTS
+#define FL_LINES_MAX_SEGMENTS 96
+#endif
+#if FL_LINES_MAX_SEGMENTS < 8 || FL_LINES_MAX_SEGMENTS > 1024
+#error "FL_LINES_MAX_SEGMENTS must be in 8..1024"
+#endif
+#ifndef FL_LINES_MAX_BUCKETS
+#define FL_LINES_MAX_BUCKETS 2048
+#endif
+#if FL_LINES_MAX_BUCKETS < 64 || FL_LINES_MAX_BUCKETS > 65535
+#error "FL_LINES_MAX_BUCKETS must be in 64..65535"
+#endif
+#ifndef FL_LINES_WTAB
+#define FL_LINES_WTAB 65
+#endif
+#if FL_LINES_WTAB < 9 || FL_LINES_WTAB > 1025
+#error "FL_LINES_WTAB must be in 9..1025"
+#endif
+#ifndef FL_CROSSINGS_MAX
+#define FL_CROSSINGS_MAX 24
+#endif
+#if FL_CROSSINGS_MAX < 4 || FL_CROSSINGS_MAX > 255
+#error "FL_CROSSINGS_MAX must be in 4..255"
+#endif
+#ifndef FL_GOAL_MAX_POSTS
+#define FL_GOAL_MAX_POSTS 4
+#endif
+#if FL_GOAL_MAX_POSTS < 1 || FL_GOAL_MAX_POSTS > 16
+#error "FL_GOAL_MAX_POSTS must be in 1..16"
+#endif
+#ifndef FL_CIRCLE_MAX_CHORDS
+#define FL_CIRCLE_MAX_CHORDS 32
+#endif
+#if FL_CIRCLE_MAX_CHORDS < 4 || FL_CIRCLE_MAX_CHORDS > 255
+#error "FL_CIRCLE_MAX_CHORDS must be in 4..255"
+#endif
+#ifndef FL_CIRCLE_MAX_POINTS
+#define FL_CIRCLE_MAX_POINTS 192
+#endif
+#if FL_CIRCLE_MAX_POINTS < 16 || FL_CIRCLE_MAX_POINTS > 4096
+#error "FL_CIRCLE_MAX_POINTS must be in 16..4096"
+#endif
+
 #endif /* FIELDLOC_CONFIG_H */

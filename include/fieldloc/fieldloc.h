@@ -12,5 +12,6 @@
 #include "fieldloc/camera.h"
 #include "fieldloc/field.h"
 #include "fieldloc/obs.h"
+#include "fieldloc/fuzzy.h"
 
 #endif /* FIELDLOC_FIELDLOC_H */

@@ -1,0 +1,694 @@
+/*
+ * src/fuzzy_update.c - the observation update of the fuzzy position grid
+ * (seed 004, section 3.3 and "Update").
+ *
+ * Algorithm.  An observation (kind, range r, bearing b, orientation o,
+ * confidence) of a landmark that is not unique induces, in each cell, the
+ * UNION over the map landmarks L_k of that kind (posts: of the observed
+ * side and colour when known) of
+ *   - a fuzzy ring around L_k: membership 1 within rc of distance r, falling
+ *     linearly to 0 at rc + rs (rc, rs grow linearly with r: camera range
+ *     errors grow with distance), evaluated where the cell's content is
+ *     (centre + sub-cell offset);
+ *   - the heading it implies there: direction(cell -> L_k) - b, a
+ *     trapezoid of the bearing accuracy plus the angle half a cell
+ *     subtends, with a relative bias head_bias (right ring, wrong heading);
+ *   - when the observation has an orientation and the kind one (L, T: mod
+ *     360; X, marks: mod 90; centre circle: mod 180), the agreement between
+ *     the heading the orientation implies, o_map(L_k) - o (one candidate
+ *     per period), and the bearing-implied one: the ring is multiplied by
+ *     it, so an oriented crossing gives an arc, not a ring.  At ranges
+ *     where the robot may stand on the landmark the bearing says nothing
+ *     and the heading is the orientation's;
+ *   - a position factor rho = bP + (1 - bP) ring with the outlier bias
+ *     bP = 1 - confidence (1 - bias_min): the observation may be false.
+ * Per cell the best ring (and its heading) and the best ring with another
+ * heading are kept; C x (S1 u S2) = (C x S1) u (C x S2) is computed with
+ * the product's outer envelope (fuzzy_trap.c) and the union's; any further
+ * hypothesis k is bounded by C x rho_k (the cell's own shape, scaled), so
+ * it never widens nor flattens the cell.  Cells outside every ring are
+ * multiplied by bP.  Heading cores and slopes are kept at least
+ * head_min_core / head_min_slope (widening: still an envelope).  Then, on
+ * a symmetric field, each cell and its 180-degree mirror get their union
+ * (nothing an observation says tells them apart; rounding would otherwise
+ * let one mode die at random); then the grid is normalized to a peak of 1
+ * (heights below min_height become 0; an empty grid becomes ignorance,
+ * counted).  No data association: every hypothesis stays in the grid.
+ *
+ * Robustness (false positives and L/T confusions arrive several times per
+ * second in a legged robot's vision).  While a mode is tracked, the
+ * observation is first evaluated on the tracked mode's core only: if it
+ * leaves none of those cells at least gate_q8 of its height, it
+ * contradicts the mode and is deferred (not applied, counted), except
+ * every (gate_run + 1)-th of a run.  The fit feeds the consistency
+ * (low-passed); consistency collapsing while contradictions arrive at
+ * kidnap_rate_q8 per frame or more means a kidnap: reset to ignorance,
+ * prior dropped, counted.
+ *
+ * Cost.  Per observation one region per matching landmark and orientation
+ * candidate (bounding box of the ring, or of the arc); per grid row and
+ * region two integer square roots give the one or two cell intervals the
+ * ring crosses; only live cells there are evaluated (one isqrt, one atan2,
+ * the agreement, the envelope).  Then passes over the grid: product,
+ * symmetry, normalization: O(cells + cells in the rings), bounded by
+ * O(cells x landmarks of the kind x orientation candidates).  The gate adds
+ * the rows of the tracked window.  Measured (tools/bench_fuzzy.c): see the
+ * report in fuzzy.h.  Memory: the row accumulator and the region list live
+ * in g->scratch; stack < 400 B.
+ *
+ * Invariant: the grid is valid after every call (never empty, bias <=
+ * height); ignored and deferred observations leave the cells untouched.
+ */
+#include "fieldloc/fuzzy.h"
+#include "fuzzy_int.h"
+
+#include <string.h>
+
+#define HT 32768
+
+static bool ready(const fl_fuzzy_t *g)
+{
+    return g != NULL && g->field != NULL && g->nx > 0 && g->ny > 0;
+}
+
+static int32_t iabs(int32_t v)
+{
+    return v < 0 ? -v : v;   /* callers: |v| <= 2^20 */
+}
+
+static int32_t clamp32(int32_t v, int32_t lo, int32_t hi)
+{
+    return v < lo ? lo : v > hi ? hi : v;
+}
+
+/* Period of the orientation of a kind, binary angle units (0: none). */
+static int32_t orientation_period(fl_landmark_kind_t k)
+{
+    switch (k) {
+    case FL_LM_L:
+    case FL_LM_T:
+        return 65536;
+    case FL_LM_X:
+    case FL_LM_PENALTY_MARK:
+    case FL_LM_CENTRE_MARK:
+        return 16384;
+    case FL_LM_CENTRE_CIRCLE:
+        return 32768;
+    default:
+        return 0;
+    }
+}
+
+/* Trapezoid t(delta) in Q16 (65536 = 1), delta = |angle| in [0, 32768]. */
+static uint32_t tpos(int32_t delta, int32_t core, int32_t slope)
+{
+    int32_t L;
+    if (delta <= core)
+        return 65536u;
+    L = core + slope;
+    if (delta >= L || slope <= 0)
+        return 0;
+    return (uint32_t)(((uint32_t)(L - delta) << 16) / (uint32_t)slope);
+}
+
+typedef struct {
+    int32_t r, rc, rs, rw, rin, rout;
+    uint32_t inv_rs;             /* 65535 * 2^16 / rs */
+    fl_angle_t bearing;
+    int32_t hcore, hslope;       /* heading trapezoid of the observation */
+    int32_t ocore, oslope;       /* orientation agreement */
+    bool no_bearing_heading;     /* the robot may stand on the landmark */
+    uint32_t bias_q16;           /* bP: possibility of an outlier */
+    uint8_t bias_q8;
+    uint32_t head_bias_q16;      /* relative heading bias of the trapezoid */
+} obsp_t;
+
+/* Position factor of a ring value r (Q16): bP + (1 - bP) r, Q16. */
+static uint32_t rho(const obsp_t *q, uint32_t r_q16)
+{
+    return q->bias_q16 + (uint32_t)(((uint64_t)(65536u - q->bias_q16) * r_q16) >> 16);
+}
+
+static bool post_matches(const fl_landmark_t *lm, const fl_obs_t *o)
+{
+    if ((lm->kind == FL_LM_POST) && o->side != FL_SIDE_UNKNOWN &&
+        lm->side != o->side)
+        return false;
+    if ((lm->kind == FL_LM_POST || lm->kind == FL_LM_BEACON) &&
+        o->colour != FL_COLOUR_NONE && lm->colour != FL_COLOUR_NONE &&
+        lm->colour != o->colour)
+        return false;
+    return true;
+}
+
+static void add_region(fl_fuzzy_t *g, int *n, const fl_fuzzy_region_t *r)
+{
+    if (*n >= FL_FUZZY_MAX_REGIONS) {
+        g->stats.regions_dropped = fz_sat_inc(g->stats.regions_dropped);
+        return;
+    }
+    g->scratch.upd.region[*n] = *r;
+    (*n)++;
+}
+
+/* Regions of an observation: one per matching landmark and orientation
+ * candidate.  Scaling and overflow: r + rw <= 3 * 30000; arc half size
+ * 2 (r + rw) sin(tol / 2) from a Q15 sine in 64 bit. */
+static int build_regions(fl_fuzzy_t *g, const fl_obs_t *o, const obsp_t *q)
+{
+    const fl_field_t *f = g->field;
+    uint16_t i, nk = fl_field_count_kind(f, o->kind);
+    int32_t period = orientation_period(o->kind);
+    int n = 0;
+    for (i = 0; i < nk; i++) {
+        const fl_landmark_t *lm = fl_field_nth_kind(f, o->kind, i);
+        fl_angle_t om;
+        int32_t bx0, bx1, by0, by1;
+        if (lm == NULL || !post_matches(lm, o))
+            continue;
+        bx0 = lm->x_mm - q->rout - FZ_CELL;
+        bx1 = lm->x_mm + q->rout + FZ_CELL;
+        by0 = lm->y_mm - q->rout - FZ_CELL;
+        by1 = lm->y_mm + q->rout + FZ_CELL;
+        if (o->has_orientation && period > 0 && fl_landmark_orientation(lm, &om)) {
+            fl_angle_t base = fl_angle_sub(om, o->orientation);
+            int32_t j, nj = 65536 / period;
+            int32_t tol = q->ocore + q->oslope;
+            int32_t arc;
+            if (tol > HT)
+                tol = HT;
+            arc = (int32_t)(((int64_t)2 * (q->r + q->rw) * fl_sin_q15(fl_angle_wrap(tol / 2)) + 32767) >> 15);
+            arc += q->rw + FZ_CELL;
+            for (j = 0; j < nj; j++) {
+                fl_angle_t ho = fl_angle_wrap(base + j * period);
+                /* direction landmark -> robot = heading + bearing + 180 */
+                fl_angle_t phi = fl_angle_wrap((int32_t)ho + q->bearing + 32768);
+                int32_t px = lm->x_mm + (int32_t)(((int64_t)q->r * fl_cos_q15(phi) + 16384) >> 15);
+                int32_t py = lm->y_mm + (int32_t)(((int64_t)q->r * fl_sin_q15(phi) + 16384) >> 15);
+                int32_t x0 = px - arc > bx0 ? px - arc : bx0;
+                int32_t x1 = px + arc < bx1 ? px + arc : bx1;
+                int32_t y0 = py - arc > by0 ? py - arc : by0;
+                int32_t y1 = py + arc < by1 ? py + arc : by1;
+                if (q->no_bearing_heading) {   /* no arc: the whole disc */
+                    x0 = bx0;
+                    x1 = bx1;
+                    y0 = by0;
+                    y1 = by1;
+                }
+                if (x0 <= x1 && y0 <= y1) {
+                    fl_fuzzy_region_t r;
+                    r.lx_mm = lm->x_mm;
+                    r.ly_mm = lm->y_mm;
+                    r.x0_mm = x0;
+                    r.x1_mm = x1;
+                    r.y0_mm = y0;
+                    r.y1_mm = y1;
+                    r.head_o = ho;
+                    r.oriented = true;
+                    add_region(g, &n, &r);
+                }
+            }
+        } else {
+            fl_fuzzy_region_t r;
+            r.lx_mm = lm->x_mm;
+            r.ly_mm = lm->y_mm;
+            r.x0_mm = bx0;
+            r.x1_mm = bx1;
+            r.y0_mm = by0;
+            r.y1_mm = by1;
+            r.head_o = 0;
+            r.oriented = false;
+            add_region(g, &n, &r);
+        }
+    }
+    return n;
+}
+
+/* Offer region reg's ring to the live cells ix0..ix1 of row iy.
+ * Scaling and overflow: content positions and landmarks within 20 m of
+ * each other (config.h), so dx^2 + dy^2 < 2^30 in uint32; ring value Q16
+ * from (rw - delta) * inv_rs < rs * inv_rs <= 65535 * 2^16. */
+static void eval_cells(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
+                       const obsp_t *q, int iy, int ix0, int ix1)
+{
+    fl_fuzzy_acc_t *acc = g->scratch.upd.acc;
+    const fl_fuzzy_cell_t *row = &g->cell[(size_t)iy * g->nx];
+    int32_t cy = g->y0_mm + iy * FZ_CELL + FZ_HALF;
+    int ix;
+    for (ix = ix0; ix <= ix1; ix++) {
+        const fl_fuzzy_cell_t *c = &row[ix];
+        int32_t ddx, ddy, d, delta;
+        uint32_t m;
+        fl_angle_t head;
+        fl_fuzzy_acc_t *a;
+        if (c->height == 0)
+            continue;
+        ddx = reg->lx_mm - (g->x0_mm + ix * FZ_CELL + FZ_HALF + c->off_x_mm);
+        ddy = reg->ly_mm - (cy + c->off_y_mm);
+        d = (int32_t)fl_isqrt32((uint32_t)(ddx * ddx) + (uint32_t)(ddy * ddy));
+        delta = iabs(d - q->r);
+        if (delta >= q->rw)
+            continue;
+        m = delta <= q->rc ? 65535u : ((uint32_t)(q->rw - delta) * q->inv_rs) >> 16;
+        if (q->no_bearing_heading) {
+            head = reg->oriented ? reg->head_o : 0;
+        } else {
+            head = fl_angle_sub(fl_atan2(ddy, ddx), q->bearing);
+            if (reg->oriented) {
+                uint32_t agree = tpos(iabs(fl_angle_sub(head, reg->head_o)), q->ocore, q->oslope);
+                m = (uint32_t)(((uint64_t)m * agree) >> 16);
+            }
+        }
+        if (m == 0)
+            continue;
+        a = &acc[ix];
+        if (a->r1_q16 == 0) {
+            a->r1_q16 = (uint16_t)m;
+            a->head1 = head;
+        } else if (iabs(fl_angle_sub(head, a->head1)) <= q->hcore) {
+            if (m > a->r1_q16) {      /* the same heading: no competitor */
+                a->r1_q16 = (uint16_t)m;
+                a->head1 = head;
+            }
+        } else if (a->r2_q16 != 0 && iabs(fl_angle_sub(head, a->head2)) <= q->hcore) {
+            if (m > a->r2_q16) {
+                a->r2_q16 = (uint16_t)m;
+                a->head2 = head;
+            }
+            if (a->r2_q16 > a->r1_q16) {
+                uint16_t tr = a->r1_q16;
+                fl_angle_t th = a->head1;
+                a->r1_q16 = a->r2_q16;
+                a->head1 = a->head2;
+                a->r2_q16 = tr;
+                a->head2 = th;
+            }
+        } else if (m > a->r1_q16) {
+            if (a->r2_q16 > a->r3_q16)
+                a->r3_q16 = a->r2_q16;
+            a->r2_q16 = a->r1_q16;
+            a->head2 = a->head1;
+            a->r1_q16 = (uint16_t)m;
+            a->head1 = head;
+        } else if (m > a->r2_q16) {
+            if (a->r2_q16 > a->r3_q16)
+                a->r3_q16 = a->r2_q16;
+            a->r2_q16 = (uint16_t)m;
+            a->head2 = head;
+        } else if (m > a->r3_q16) {
+            a->r3_q16 = (uint16_t)m;
+        }
+    }
+}
+
+/* Cells of row iy whose centre lies in [xa, xb] (mm), clamped to the grid. */
+static void visit_interval(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
+                           const obsp_t *q, int iy, int32_t xa, int32_t xb)
+{
+    int32_t i0, i1;
+    if (xa > xb)
+        return;
+    i0 = fl_floor_div(xa - g->x0_mm - FZ_HALF + FZ_CELL - 1, FZ_CELL);
+    i1 = fl_floor_div(xb - g->x0_mm - FZ_HALF, FZ_CELL);
+    if (i0 < g->row_lo[iy])            /* only where the row has live cells */
+        i0 = g->row_lo[iy];
+    if (i1 > g->row_hi[iy])
+        i1 = g->row_hi[iy];
+    if (i0 <= i1)
+        eval_cells(g, reg, q, iy, (int)i0, (int)i1);
+}
+
+/* Scaling and overflow: q->rout <= 3 * 30000 mm so rout^2 < 2^33: the
+ * squares are taken in uint64 and the roots with fl_isqrt64. */
+static void visit_row(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
+                      const obsp_t *q, int iy)
+{
+    const int32_t m = (3 * FZ_CELL) / 4;   /* content may sit off-centre */
+    int32_t cy = g->y0_mm + iy * FZ_CELL + FZ_HALF;
+    int32_t ady, dyo, dyi, xo, xi, bx0, bx1;
+    if (cy + m < reg->y0_mm || cy - m > reg->y1_mm)
+        return;
+    ady = iabs(cy - reg->ly_mm);
+    if (ady > q->rout + m)
+        return;
+    dyo = ady > m ? ady - m : 0;
+    xo = (int32_t)fl_isqrt64((uint64_t)q->rout * (uint64_t)q->rout -
+                             (uint64_t)dyo * (uint64_t)dyo) + m;
+    dyi = ady + m;
+    xi = -1;
+    if (q->rin > dyi)
+        xi = (int32_t)fl_isqrt64((uint64_t)q->rin * (uint64_t)q->rin -
+                                 (uint64_t)dyi * (uint64_t)dyi) - m;
+    bx0 = reg->x0_mm - m;
+    bx1 = reg->x1_mm + m;
+    if (xi <= 0) {
+        int32_t a = reg->lx_mm - xo, b = reg->lx_mm + xo;
+        visit_interval(g, reg, q, iy, a > bx0 ? a : bx0, b < bx1 ? b : bx1);
+    } else {
+        int32_t a = reg->lx_mm - xo, b = reg->lx_mm - xi;
+        visit_interval(g, reg, q, iy, a > bx0 ? a : bx0, b < bx1 ? b : bx1);
+        a = reg->lx_mm + xi;
+        b = reg->lx_mm + xo;
+        visit_interval(g, reg, q, iy, a > bx0 ? a : bx0, b < bx1 ? b : bx1);
+    }
+}
+
+/* Scaling and overflow: range <= max_range_mm <= 30000; rc, rs = base +
+ * r * q8 / 256 <= 5000 + 30000; confidence Q0.8 -> bias Q0.8 -> Q16. */
+static void obs_params(const fl_fuzzy_t *g, const fl_obs_t *o, obsp_t *q)
+{
+    const fl_fuzzy_params_t *p = &g->params;
+    int32_t dmin, cell_ang;
+    uint32_t conf = o->confidence, bmin = p->bias_min_q8;
+    q->r = o->range_mm;
+    q->rc = clamp32(p->ring_base_mm, 0, 5000) +
+            (int32_t)(((uint32_t)q->r * (p->ring_core_q8 > 256 ? 256u : p->ring_core_q8)) >> 8);
+    q->rs = clamp32(p->ring_slope_mm, 1, 5000) +
+            (int32_t)(((uint32_t)q->r * (p->ring_slope_q8 > 256 ? 256u : p->ring_slope_q8)) >> 8);
+    q->rw = q->rc + q->rs;
+    q->rin = q->r - q->rw;
+    q->rout = q->r + q->rw;
+    q->inv_rs = (uint32_t)((65535ull << 16) / (uint32_t)q->rs);
+    q->bearing = o->bearing;
+    dmin = q->rin > FZ_CELL ? q->rin : FZ_CELL;
+    cell_ang = fl_atan2(FZ_HALF, dmin);
+    q->hcore = clamp32((int32_t)p->bearing_core + cell_ang, 0, HT);
+    q->hslope = clamp32((int32_t)p->bearing_slope + cell_ang, 0, HT);
+    q->ocore = clamp32(p->orient_core, 0, HT);
+    q->oslope = clamp32(p->orient_slope, 1, HT);
+    q->no_bearing_heading = q->rin < FZ_CELL;
+    q->bias_q8 = (uint8_t)(255u - (conf * (255u - bmin)) / 255u);
+    q->bias_q16 = (uint32_t)q->bias_q8 * 257u + (uint32_t)(q->bias_q8 >> 7);
+    q->head_bias_q16 = (uint32_t)p->head_bias_q8 * 257u + (uint32_t)(p->head_bias_q8 >> 7);
+}
+
+/* Symmetric field (fl_field_t.symmetric): nothing an observation says can
+ * tell a pose from its 180-degree mirror (-x, -y, h + 180), so the belief
+ * is made exactly symmetric (each cell and its mirror get their union):
+ * without this, rounding lets the two modes' ratio drift as a random walk
+ * until one dies.  The prior or the tracked mode picks one (estimate).
+ * Mirror of cell (ix, iy) is (nx-1-ix, ny-1-iy) (the grid is centred);
+ * offsets negate (clamped into [-CELL/2, CELL/2)).  (The centre cell of a
+ * grid with odd nx and ny maps onto itself and is left alone.) */
+static void mirror_cell(const fl_fuzzy_cell_t *c, fl_fuzzy_cell_t *m)
+{
+    *m = *c;
+    m->centre = fl_angle_add(c->centre, (fl_angle_t)FL_ANGLE_180);
+    m->off_x_mm = (int8_t)(c->off_x_mm <= -FZ_HALF ? FZ_HALF - 1 : -c->off_x_mm);
+    m->off_y_mm = (int8_t)(c->off_y_mm <= -FZ_HALF ? FZ_HALF - 1 : -c->off_y_mm);
+}
+
+static void sym_merge(fl_fuzzy_cell_t *dst, const fl_fuzzy_cell_t *src)
+{
+    fl_fuzzy_trap_t a, b, u;
+    int8_t ox = dst->off_x_mm, oy = dst->off_y_mm;
+    if (src->height == 0)
+        return;
+    if (dst->height == 0 || (src->height == dst->height && src->bias == dst->bias &&
+                             src->centre == dst->centre && src->core == dst->core &&
+                             src->slope == dst->slope)) {
+        *dst = *src;
+        return;
+    }
+    if (src->height > dst->height) {
+        ox = src->off_x_mm;
+        oy = src->off_y_mm;
+    }
+    fl_fuzzy_trap_from_cell(dst, &a);
+    fl_fuzzy_trap_from_cell(src, &b);
+    fl_fuzzy_trap_union(&a, &b, &u);
+    fl_fuzzy_trap_to_cell(&u, dst);
+    dst->off_x_mm = ox;
+    dst->off_y_mm = oy;
+}
+
+static void symmetrize(fl_fuzzy_t *g)
+{
+    size_t n = (size_t)g->nx * g->ny, i;
+    for (i = 0; i < n / 2; i++) {
+        fl_fuzzy_cell_t *a = &g->cell[i], *b = &g->cell[n - 1 - i];
+        size_t iy = i / g->nx, my = (size_t)g->ny - 1 - iy;
+        if (i % g->nx == 0 && g->row_lo[iy] > g->row_hi[iy] && g->row_lo[my] > g->row_hi[my]) {
+            i += (size_t)g->nx - 1;    /* both rows dead: skip the row */
+            continue;
+        }
+        fl_fuzzy_cell_t mb;
+        if (a->height == 0 && b->height == 0)
+            continue;
+        mirror_cell(b, &mb);
+        sym_merge(a, &mb);
+        mirror_cell(a, b);
+    }
+}
+
+/* The observation applied to one live cell c (acc: what the rings said
+ * there), result in *out (may be c).  Cells outside every ring: product
+ * with the outlier bias bP (same shape).  Ring cells: product with the
+ * observation's trapezoid, outer envelope (fuzzy_trap.c), per heading
+ * hypothesis, then the heading floors (widening only: still an envelope). */
+typedef struct {
+    const fl_fuzzy_t *g;
+    const obsp_t *q;
+    bool any_oriented;
+} prodctx_t;
+
+static void cell_product(const prodctx_t *x, const fl_fuzzy_acc_t *a,
+                         const fl_fuzzy_cell_t *c, fl_fuzzy_cell_t *out)
+{
+    const fl_fuzzy_t *g = x->g;
+    const obsp_t *q = x->q;
+    bool any_oriented = x->any_oriented;
+    fl_fuzzy_trap_t ct, st, et;
+    int8_t ox = c->off_x_mm, oy = c->off_y_mm;
+    int32_t hmin_core = clamp32(g->params.head_min_core, 0, HT);
+    int32_t hmin_slope = clamp32(g->params.head_min_slope, 0, HT);
+    if (a->r1_q16 == 0) {
+        *out = *c;
+        out->height = fz_mul8_ceil(c->height, q->bias_q8);
+        out->bias = fz_mul8_ceil(c->bias, q->bias_q8);
+        return;
+    }
+    fl_fuzzy_trap_from_cell(c, &ct);
+    st.centre = a->head1;
+    if (q->no_bearing_heading) {
+        st.core = any_oriented ? q->ocore : HT;
+        st.slope = any_oriented ? q->oslope : 0;
+    } else {
+        st.core = q->hcore;
+        st.slope = q->hslope;
+    }
+    /* position factor rho = bP + (1 - bP) r (outlier bias bP), heading
+     * trapezoid with relative bias head_bias */
+    st.height_q16 = rho(q, a->r1_q16);
+    st.bias_q16 = (uint32_t)(((uint64_t)st.height_q16 * q->head_bias_q16) >> 16);
+    fl_fuzzy_trap_isect(&ct, &st, &et);
+    if (a->r2_q16 != 0) {
+        /* a second heading: C x (S1 u S2) = (C x S1) u (C x S2) */
+        fl_fuzzy_trap_t s2 = st, e2, e1 = et;
+        s2.centre = a->head2;
+        s2.height_q16 = rho(q, a->r2_q16);
+        s2.bias_q16 = (uint32_t)(((uint64_t)s2.height_q16 * q->head_bias_q16) >> 16);
+        fl_fuzzy_trap_isect(&ct, &s2, &e2);
+        fl_fuzzy_trap_union(&e1, &e2, &et);
+    }
+    if (a->r3_q16 != 0) {
+        /* any further heading k: C x Sk <= C x rho(rk) (C's own shape
+         * scaled), so the rest never widens nor flattens the cell */
+        fl_fuzzy_trap_t e3 = ct, e1 = et;
+        uint32_t r3 = rho(q, a->r3_q16);
+        e3.height_q16 = (uint32_t)(((uint64_t)ct.height_q16 * r3 + 65535u) >> 16);
+        e3.bias_q16 = (uint32_t)(((uint64_t)ct.bias_q16 * r3 + 65535u) >> 16);
+        fl_fuzzy_trap_union(&e1, &e3, &et);
+    }
+    if (et.core < hmin_core) {                    /* widening: still >= */
+        et.slope = et.slope + et.core > hmin_core ? et.slope + et.core - hmin_core : 0;
+        et.core = hmin_core;
+    }
+    if (et.slope < hmin_slope)
+        et.slope = hmin_slope;
+    fl_fuzzy_trap_to_cell(&et, out);
+    out->off_x_mm = ox;
+    out->off_y_mm = oy;
+}
+
+/* Consistency: low-pass of how well observations fit (Q8 fit in, Q16
+ * state): while tracking, the fit on the tracked mode (mode_fit), else the
+ * peak the observation left before normalization.  Collapsing while a mode
+ * is tracked, with contradictions arriving at kidnap_rate_q8 or more per
+ * frame (predict call, low-passed over about 8 frames: false positives, a
+ * fraction per frame while the robot sees nothing real, must not do it;
+ * real observations after a kidnap come several per frame), means the
+ * robot is not where the belief says (kidnap): reset to ignorance and drop
+ * the prior, counted. */
+static void update_consistency(fl_fuzzy_t *g, uint32_t fit_q8)
+{
+    const fl_fuzzy_params_t *p = &g->params;
+    int32_t cons = (int32_t)g->consistency_q16;
+    cons += ((int32_t)(fit_q8 * 257u) - cons) >> (p->cons_shift > 8 ? 8 : p->cons_shift);
+    g->consistency_q16 = (uint16_t)clamp32(cons, 0, 65535);
+}
+
+static bool kidnapped(fl_fuzzy_t *g)
+{
+    if (g->track_valid && g->consistency_q16 < g->params.kidnap_q16 &&
+        g->contra_rate_q8 >= g->params.kidnap_rate_q8) {
+        /* lost: the belief and the prior no longer hold */
+        g->stats.kidnaps = fz_sat_inc(g->stats.kidnaps);
+        fl_fuzzy_internal_ignorance(g);
+        g->prior.kind = FL_FUZZY_PRIOR_NONE;
+        return true;
+    }
+    return false;
+}
+
+/* Gating (robustness to false positives and confusions, which arrive at
+ * several per second): while a mode is tracked, the observation is first
+ * evaluated on the core of the tracked mode only (cells within mode_radius
+ * of the tracked position with at least 3/4 of the highest height there):
+ * its fit is the largest fraction of its height such a cell keeps (Q8).
+ * Without a track the fit is 255.  Cost: the rows of that window only. */
+static uint32_t mode_fit(fl_fuzzy_t *g, const obsp_t *q, int nreg, bool any_oriented)
+{
+    const fl_fuzzy_params_t *p = &g->params;
+    int32_t R = clamp32(p->mode_radius_mm, FZ_CELL, 2000);
+    int ix0, ix1, iy0, iy1, ix, iy, ir;
+    uint32_t best = 0, top = 0;
+    prodctx_t x;
+    if (!g->track_valid)
+        return 255;
+    x.g = g;
+    x.q = q;
+    x.any_oriented = any_oriented;
+    ix0 = fl_floor_div(g->track_x_mm - R - g->x0_mm, FZ_CELL);
+    ix1 = fl_floor_div(g->track_x_mm + R - g->x0_mm, FZ_CELL);
+    iy0 = fl_floor_div(g->track_y_mm - R - g->y0_mm, FZ_CELL);
+    iy1 = fl_floor_div(g->track_y_mm + R - g->y0_mm, FZ_CELL);
+    if (ix0 < 0)
+        ix0 = 0;
+    if (iy0 < 0)
+        iy0 = 0;
+    if (ix1 > g->nx - 1)
+        ix1 = g->nx - 1;
+    if (iy1 > g->ny - 1)
+        iy1 = g->ny - 1;
+    for (iy = iy0; iy <= iy1; iy++)
+        for (ix = ix0; ix <= ix1; ix++)
+            if (g->cell[(size_t)iy * g->nx + (size_t)ix].height > top)
+                top = g->cell[(size_t)iy * g->nx + (size_t)ix].height;
+    if (top == 0)
+        return 0;
+    for (iy = iy0; iy <= iy1; iy++) {
+        fl_fuzzy_acc_t *acc = g->scratch.upd.acc;
+        const fl_fuzzy_cell_t *row = &g->cell[(size_t)iy * g->nx];
+        memset(acc, 0, sizeof(fl_fuzzy_acc_t) * (size_t)g->nx);
+        for (ir = 0; ir < nreg; ir++)
+            visit_row(g, &g->scratch.upd.region[ir], q, iy);
+        for (ix = ix0; ix <= ix1; ix++) {
+            fl_fuzzy_cell_t e;
+            uint32_t r;
+            if (row[ix].height == 0 || 4u * row[ix].height < 3u * top)
+                continue;                 /* only the mode's core */
+            cell_product(&x, &acc[ix], &row[ix], &e);
+            r = ((uint32_t)e.height * 255u) / row[ix].height;
+            if (r > best)
+                best = r;
+        }
+    }
+    return best > 255u ? 255u : best;
+}
+
+bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
+{
+    const fl_fuzzy_params_t *p;
+    obsp_t q;
+    int nreg, ir, iy, ix, nx;
+    uint32_t maxh = 0, fit;
+    bool any_oriented = false;
+    prodctx_t x;
+    if (!ready(g))
+        return false;
+    p = &g->params;
+    g->stats.updates = fz_sat_inc(g->stats.updates);
+    if (o == NULL || o->confidence == 0 || (unsigned)o->kind >= (unsigned)FL_LM_KIND_COUNT ||
+        o->range_mm < 0 || o->range_mm > clamp32(p->max_range_mm, 100, 30000) ||
+        fl_field_count_kind(g->field, o->kind) == 0) {
+        g->stats.obs_ignored = fz_sat_inc(g->stats.obs_ignored);
+        return false;
+    }
+    obs_params(g, o, &q);
+    nreg = build_regions(g, o, &q);
+    if (nreg == 0) {
+        g->stats.obs_ignored = fz_sat_inc(g->stats.obs_ignored);
+        return false;
+    }
+    for (ir = 0; ir < nreg; ir++)
+        any_oriented = any_oriented || g->scratch.upd.region[ir].oriented;
+    x.g = g;
+    x.q = &q;
+    x.any_oriented = any_oriented;
+    nx = g->nx;
+    /* gating: an observation that contradicts the tracked mode (fit below
+     * gate_q8) is deferred, except every (gate_run + 1)-th of a run of
+     * contradictions: persistent contradiction is how a kidnap shows */
+    fit = mode_fit(g, &q, nreg, any_oriented);
+    if (g->track_valid) {
+        update_consistency(g, fit);
+        if (fit < p->gate_q8) {
+            if (g->contra_run < UINT8_MAX)
+                g->contra_run++;
+            if (g->contra_rate_q8 < UINT16_MAX - 32u)
+                g->contra_rate_q8 = (uint16_t)(g->contra_rate_q8 + 32u);
+            if (kidnapped(g))
+                return false;
+            if (g->contra_run % ((uint32_t)p->gate_run + 1u) != 0) {
+                g->stats.obs_gated = fz_sat_inc(g->stats.obs_gated);
+                return false;
+            }
+        } else {
+            g->contra_run = 0;
+        }
+    }
+    for (iy = 0; iy < g->ny; iy++) {
+        fl_fuzzy_acc_t *acc = g->scratch.upd.acc;
+        fl_fuzzy_cell_t *row = &g->cell[(size_t)iy * (size_t)nx];
+        int lo = g->row_lo[iy], hi = g->row_hi[iy];
+        if (lo > hi)
+            continue;                  /* no live cell in this row */
+        memset(&acc[lo], 0, sizeof(fl_fuzzy_acc_t) * (size_t)(hi - lo + 1));
+        for (ir = 0; ir < nreg; ir++)
+            visit_row(g, &g->scratch.upd.region[ir], &q, iy);
+        for (ix = lo; ix <= hi; ix++) {
+            fl_fuzzy_cell_t *c = &row[ix];
+            if (c->height == 0)
+                continue;
+            cell_product(&x, &acc[ix], c, c);
+            if (c->height > maxh)
+                maxh = c->height;
+        }
+    }
+#ifndef NO_SYM
+    if (g->field->symmetric)
+        symmetrize(g);
+#endif
+    g->stats.obs_used = fz_sat_inc(g->stats.obs_used);
+    if (!g->track_valid)
+        update_consistency(g, maxh);
+    fl_fuzzy_internal_normalize(g, maxh);
+    return true;
+}
+
+uint16_t fl_fuzzy_update(fl_fuzzy_t *g, const fl_obs_list_t *obs)
+{
+    uint16_t i, n, used = 0;
+    if (!ready(g))
+        return 0;
+    if (obs == NULL) {
+        g->stats.obs_ignored = fz_sat_inc(g->stats.obs_ignored);
+        return 0;
+    }
+    n = obs->n > FL_OBS_MAX ? (uint16_t)FL_OBS_MAX : obs->n;
+    for (i = 0; i < n; i++)
+        if (fl_fuzzy_update_one(g, &obs->obs[i]))
+            used++;
+    return used;
+}
