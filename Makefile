@@ -10,7 +10,9 @@ SHELL := /bin/bash
 #                   output compared line by line with the host's
 #   make test-exhaustive  the sweeps too long for every run (all uint32 isqrt)
 #   make sanitize   test suite under ASan + UBSan (clang, integer checks too)
-#   make bench      benchmarks, writes build/bench.tsv
+#   make bench      benchmarks, writes build/bench.tsv; callgrind counts
+#   make perf       hot functions of the scanner (perf record)
+#   make golden     rewrite fixtures/golden/ (expected detections)
 #   make fuzz-smoke every libFuzzer harness for FUZZ_SECONDS (default 20)
 #   make stack      worst-case stack depth of every public entry point
 #   make valgrind   test suite (quick mode) under valgrind memcheck
@@ -71,7 +73,7 @@ TOOL_LIB_OBJ := $(TOOL_LIB_SRC:%.c=$(BUILD)/%.o) $(TOOL_CXX_OBJ)
 CLI      := $(BUILD)/fieldloc
 RUNNER   := $(BUILD)/run_tests
 
-.PHONY: fuzz-build fuzz-smoke stack valgrind fixtures all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
+.PHONY: perf golden fuzz-build fuzz-smoke stack valgrind fixtures all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
 
 all: $(LIB) $(CLI)
 
@@ -142,6 +144,16 @@ sanitize:
 
 bench: $(CLI)
 	@$(CLI) bench --out $(BUILD)/bench.tsv
+	@sh tools/callgrind.sh $(BUILD)
+
+# Hot functions of the column scanner under perf record.
+perf: $(CLI)
+	@sh tools/perf.sh $(BUILD)
+
+# Rewrite the expected detections of every fixture (fixtures/golden/) from
+# the current vision path.  Only when asked: review the diff before committing.
+golden: $(RUNNER)
+	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k features
 
 # Regenerate the committed fixture set (deterministic: identical bytes on
 # every run and machine).

@@ -62,7 +62,7 @@
  * FL_SCAN_MAX_FEET   yellow->green transitions kept per frame.  Default
  *                    64, range 1..4096; more are counted (feet_dropped).
  * Memory: fl_scan_t is about 8 * rows * cols / 32 (the 2-bit class map)
- * + 120 bytes per 32 columns + 10 bytes per column and row: 87 KB at the
+ * + 120 bytes per 32 columns + 10 bytes per column and row: 86 KB at the
  * defaults.  */
 #ifndef FL_SCAN_MAX_COLS
 #define FL_SCAN_MAX_COLS 640

@@ -9,9 +9,16 @@
 #include "fieldloc/common.h"
 #include "fieldloc/fixed.h"
 #include "fieldloc/image.h"
+#include "fieldloc/color.h"
+#include "fieldloc/scan.h"
 #include "fieldloc/camera.h"
 #include "fieldloc/field.h"
 #include "fieldloc/obs.h"
+#include "fieldloc/lines.h"
+#include "fieldloc/circle.h"
+#include "fieldloc/crossings.h"
+#include "fieldloc/goal.h"
+#include "fieldloc/vision.h"
 #include "fieldloc/fuzzy.h"
 
 #endif /* FIELDLOC_FIELDLOC_H */

@@ -1,0 +1,189 @@
+/*
+ * fieldloc/color.h - colour classes: integer HSV and the lookup tables that
+ * turn a pixel into green (field), white (lines), yellow (goals) or other.
+ * Seed 000 (section 3.1, Table 1) classifies in HSV because hue hardly
+ * changes with the light; this module keeps that definition and makes it
+ * cheap.
+ *
+ * HSV.  fl_hsv_from_rgb is OpenCV's 8-bit COLOR_RGB2HSV bit for bit (hue
+ * 0..179 = 2 degrees per unit, saturation and value 0..255; checked for all
+ * 2^24 colours against OpenCV when the tests are built with it).
+ *
+ * Classes.  A class is an HSV box (fl_hsv_box_t: hue range, saturation
+ * range, value range, inclusive).  The class of a colour is the first box
+ * that contains it in the order yellow, green, white; none: other.  White
+ * is only a candidate here: the scanner (scan.h) keeps a white run only
+ * when it is brighter than the neighbouring green by white_contrast_pct.
+ *
+ * Default boxes (fl_color_params_default), measured on the UvA 2013 images
+ * of seed 000 (../shared/realdata, 23 labelled 320x240 frames, OpenCV
+ * hue convention; host test color.realdata_defaults re-measures them):
+ *   carpet, bottom 40 rows away from lines: hue p1/p50/p99 52/64/73; S p1
+ *          82, median ~110; V p1 57, median 131, p99 171.  Everywhere
+ *          below the border (far carpet included): hue p0.5..p95 49..69,
+ *          S p1 56 with a pale far tail down to S ~ 45 (sheen)
+ *   posts (labelled foot -> top):       hue p1..p99 26..32; S >= 167;
+ *          V 166..230
+ *   lines (5x5 around labelled crossings, carpet excluded): S <= 90
+ *          (edge pixels mixed with carpet), V 140..255
+ * Seed 000's Table 1 gives green hue 20..37 and yellow 38..75.  In the
+ * 0..179 convention these rows are swapped: the measured carpet (52..73)
+ * falls in 38..75 and the posts (26..32) in 20..37 (test: Table 1 as
+ * printed finds 0.55 % of the carpet green, the swapped rows 98.9 %).
+ * The defaults are
+ *   green  hue 46..78 (carpet p0.5..p99 +- 4 of drift; re-centred per
+ *          frame by fl_color_adapt), S 48..255 (the pale far carpet; a line
+ *          pixel half covered by near carpet has S ~ 40-57), V 25..255 (the
+ *          carpet at half the light: V p1 57 -> 28)
+ *   white  hue 0..179, S 0..47 (the boxes meet: S >= 48 is green), V
+ *          60..255 (lines at gain 0.5 have V ~ 100); contrast 25 %: a white
+ *          run must be 1.25x as bright (luma) as the green next to it
+ *          (nominal lines are ~2x; pale carpet and grey clutter much less)
+ *   yellow hue 15..40 (posts 26..32 +- 8 of hue drift, clear of green at
+ *          46), S 90..255, V 50..255 (posts at half light: V ~ 85)
+ *
+ * Tables (fl_color_table_t, built by fl_color_init / rebuilt by
+ * fl_color_adapt, no heap, 230 KiB, build < 1 ms on the host):
+ *   YCbCr (YUYV and planar frames): BT.601 full range as src/image.c,
+ *   R = Y + a, G = Y + b, B = Y + c with integer offsets a, b, c that
+ *   depend on (Cb, Cr) only.  So for one chroma, hue H and D = max - min
+ *   are constant and V = Y + M (M = max offset) while no channel clips:
+ *   the class is a fixed pattern over k = V = Y + M for each (hue set, D).
+ *   The chroma table holds, per (Cb, Cr), the offset of that pattern plus
+ *   M, so that class = pattern[chroma[Cb << 8 | Cr] + Y]: one 16-bit and
+ *   one 8-bit load per pixel, and YUYV pixel pairs share the first.  Exact
+ *   (equal to fl_color_class_ycbcr_exact) whenever BT.601 conversion does
+ *   not clip a channel; for clipped colours (outside the RGB gamut) the
+ *   pattern is extrapolated (hue frozen, S and V from the clipped formula,
+ *   chroma with D > 255 -> other).  `exact` is 0 when the patterns did not
+ *   fit and D had to be quantized (never with the default boxes).
+ *   RGB: a 32x32x32 table over (R >> 3, G >> 3, B >> 3), each cell the
+ *   exact class of its centre colour.
+ *
+ * Lifecycle: fl_color_init(&t, &params) -> per frame fl_scan_frame(.., &t,
+ * ..) (scan.h) -> fl_color_adapt(&t, &scan.field) re-centres the green and
+ * yellow hue ranges on the measured field colour and rebuilds when it moved
+ * (returns 1: the caller may re-scan the frame).  Callers read `params`,
+ * `green`, `white`, `yellow`, `hue_shift`, `exact`; the tables are private.
+ */
+#ifndef FIELDLOC_COLOR_H
+#define FIELDLOC_COLOR_H
+
+#include "fieldloc/common.h"
+
+/* ---- HSV ----------------------------------------------------------------- */
+
+typedef struct {
+    uint8_t h;   /* hue, 0..179 (2 degrees per unit; red = 0, green = 60) */
+    uint8_t s;   /* saturation, 0..255 */
+    uint8_t v;   /* value = max(R, G, B) */
+} fl_hsv_t;
+
+/* OpenCV 8-bit RGB -> HSV (COLOR_RGB2HSV), exactly. */
+fl_hsv_t fl_hsv_from_rgb(uint8_t r, uint8_t g, uint8_t b);
+
+/* n pixels of packed RGB888 -> packed H, S, V bytes (may not overlap). */
+void fl_hsv_from_rgb_row(const uint8_t *rgb, uint8_t *hsv, int32_t n);
+
+/* Integer BT.601 full range, the same arithmetic as src/image.c:
+ * Y, Cb, Cr -> R, G, B (rounded, clamped) and R, G, B -> Y (luma). */
+void fl_rgb_from_ycbcr(uint8_t y, uint8_t cb, uint8_t cr, uint8_t rgb[3]);
+uint8_t fl_luma_from_rgb(uint8_t r, uint8_t g, uint8_t b);
+
+/* ---- classes ------------------------------------------------------------- */
+
+/* Class codes: 2 bits, the values stored in the scanner's class map. */
+typedef enum {
+    FL_CLASS_OTHER = 0,
+    FL_CLASS_GREEN = 1,
+    FL_CLASS_WHITE = 2,
+    FL_CLASS_YELLOW = 3
+} fl_color_class_t;
+
+/* An HSV box, all bounds inclusive.  Hue 0..179; h_lo > h_hi means the
+ * range wraps through 0 (e.g. 170..5 for red).  s_lo <= s_hi, v_lo <= v_hi. */
+typedef struct {
+    uint8_t h_lo, h_hi;
+    uint8_t s_lo, s_hi;
+    uint8_t v_lo, v_hi;
+} fl_hsv_box_t;
+
+/* At most 8 parameters per class: a box plus one class-specific number. */
+typedef struct {
+    fl_hsv_box_t green;
+    uint8_t green_sat_ref;      /* carpet saturation the box was made for;
+                                   fl_color_adapt lowers green.s_lo by
+                                   field sat / green_sat_ref (1..255) */
+    fl_hsv_box_t white;
+    uint8_t white_contrast_pct; /* white run luma >= green luma *
+                                   (100 + pct) / 100; 0..200 */
+    fl_hsv_box_t yellow;
+    uint8_t adapt_max_hue;      /* largest hue re-centring, 0..30 units
+                                   (0: fl_color_adapt never moves hues) */
+} fl_color_params_t;
+
+/* The measured defaults described at the top of this file. */
+void fl_color_params_default(fl_color_params_t *p);
+
+/* Field colour measured by the scanner (scan.h, fl_scan_t.field). */
+typedef struct {
+    int32_t n;          /* samples used; 0 = no estimate */
+    uint8_t hue;        /* centre, 0..179 */
+    uint8_t sat;        /* mean saturation of the samples */
+    uint8_t val;        /* mean value */
+    uint8_t luma;       /* mean BT.601 luma */
+} fl_field_colour_t;
+
+/* Capacity of the YCbCr pattern store, bytes (the defaults use ~62 KiB). */
+#define FL_COLOR_PATTERN_BYTES 65536
+
+typedef struct {
+    fl_color_params_t params;   /* as given to fl_color_init */
+    /* Effective boxes: params with the adaptation applied. */
+    fl_hsv_box_t green, white, yellow;
+    int8_t hue_shift;           /* applied to the green and yellow hues */
+    uint8_t exact;              /* 1: YCbCr tables exact (see file top) */
+    uint16_t n_patterns;        /* YCbCr patterns in use */
+    uint8_t d_quant;            /* D bucket size used for the patterns */
+    uint8_t reserved[3];
+    /* private */
+    uint16_t rgb_r[256], rgb_g[256], rgb_b[256]; /* RGB table index parts */
+    uint16_t chroma[65536];     /* (Cb << 8 | Cr) -> pattern index - ... + M */
+    uint8_t pattern[FL_COLOR_PATTERN_BYTES];
+    uint8_t rgb[32768];         /* (R>>3)<<10 | (G>>3)<<5 | B>>3 -> class */
+} fl_color_table_t;
+
+/* Validate params and build the tables.  FL_ERR_NULL, FL_ERR_RANGE (a hue
+ * above 179, lo > hi for S or V, contrast > 200, adapt_max_hue > 30,
+ * green_sat_ref 0); on error *t is left classifying everything as other. */
+fl_status_t fl_color_init(fl_color_table_t *t, const fl_color_params_t *p);
+
+/* Re-centre on a field-colour estimate (at least 16 samples): hue shift =
+ * estimate hue - centre of params.green's hue range, limited to
+ * +-adapt_max_hue, applied to green and yellow; green.s_lo scaled down by
+ * sat / green_sat_ref (never up, never below half).  Rebuilds when the
+ * shift moved by >= 2 or s_lo by >= 6 and returns 1; 0 when nothing
+ * changed or the estimate is empty; FL_ERR_NULL. */
+int fl_color_adapt(fl_color_table_t *t, const fl_field_colour_t *field);
+
+/* Back to params (shift 0) and rebuild.  FL_OK or FL_ERR_NULL. */
+fl_status_t fl_color_reset(fl_color_table_t *t);
+
+/* Class of one colour through the tables (what the scanner uses). */
+fl_color_class_t fl_color_class_rgb(const fl_color_table_t *t, uint8_t r,
+                                    uint8_t g, uint8_t b);
+fl_color_class_t fl_color_class_ycbcr(const fl_color_table_t *t, uint8_t y,
+                                      uint8_t cb, uint8_t cr);
+
+/* The definition the tables implement (slow, for tests and tools): HSV
+ * through fl_hsv_from_rgb (after fl_rgb_from_ycbcr), then the boxes. */
+fl_color_class_t fl_color_class_hsv(const fl_color_table_t *t, fl_hsv_t hsv);
+fl_color_class_t fl_color_class_rgb_exact(const fl_color_table_t *t, uint8_t r,
+                                          uint8_t g, uint8_t b);
+fl_color_class_t fl_color_class_ycbcr_exact(const fl_color_table_t *t,
+                                            uint8_t y, uint8_t cb, uint8_t cr);
+
+/* Hue h (0..179) inside box b's hue range (wrapping ranges included). */
+bool fl_hsv_box_has_hue(const fl_hsv_box_t *b, int32_t h);
+
+#endif /* FIELDLOC_COLOR_H */

@@ -1,0 +1,134 @@
+/*
+ * fieldloc/crossings.h - L, T and X line crossings and the penalty and
+ * centre marks (seed 000, section 3.7).
+ *
+ * Pairs.  Every pair of segments (lines.h) at least min_angle apart in the
+ * image whose (infinite) lines meet inside the image is a candidate.  For
+ * each segment the meeting point X is placed along it: an arm leaves X
+ * where the segment goes on past X by at least arm_px; X may lie beyond a
+ * segment's end by at most reach_px (segments stop short of a crossing,
+ * where white runs merge).  Seed 000's rules follow: near both ends -> L,
+ * inside one and near an end of the other -> T, inside both -> X.  The
+ * direction of a line at X is its chord's, turned by the slope its bulge
+ * gives there (an arc of the centre circle meets the halfway line along
+ * its tangent, not its chord).
+ *
+ * Checks.  Ground: both lines projected through the camera must meet at
+ * 90 degrees within ground_tol (every crossing of a field is square; the
+ * chords of the centre circle are not).  Image: each of the 4 arm
+ * directions is probed in the class map beyond the other line's paint (a
+ * cheap white-ratio test along a short ray); an arm the segment did not
+ * reach but the probe finds white is added (a line broken at the
+ * crossing), an arm the segment claims but the probe finds green lowers
+ * the confidence.  The arm count gives the type (2 L, 3 T, 4 X).
+ * Crossings closer than the merge distance (3 line widths or 4 steps) are
+ * merged by the union of their arms: two opposite T's become an X, an L
+ * and its continuation a T.
+ *
+ * Marks.  The penalty and centre marks (a 100 mm cross) are too small to
+ * make long segments.  Points off long segments are clustered within 0.75
+ * of the projected mark size; a cluster of at least 2 points with no other
+ * point out to 2.5 mark sizes, whose ring of 16 class-map samples at 1.6
+ * mark sizes is green (13 of 16, no white), is a penalty mark.  An X of a
+ * short bar (<= 2.5 mark sizes on the ground) across a long line is a
+ * centre mark, of two short bars a penalty mark.  Both count as X (as the
+ * UvA 2013 labels do); their kind says which.  A found centre circle with
+ * its halfway line gives the centre mark and the two halfway-line x circle
+ * X's where the class map is white (fl_crossings_add_circle).
+ *
+ * Orientation (robot frame, obs.h conventions): L bisector of its arms, T
+ * the stem direction, X and marks the direction of one arm (mod 90 deg);
+ * marks found as blobs have none.
+ *
+ * Lifecycle: fl_crossings_params_default, fl_crossings_init once; per
+ * frame fl_crossings_find after fl_lines_build (and after the circle stage,
+ * which flags its chords: chord pairs are skipped), then
+ * fl_crossings_add_circle.  Work: O(segments^2) pair tests (at most
+ * FL_LINES_MAX_SEGMENTS^2 / 2), each surviving pair 4 probes of at most 64
+ * samples and 3-5 camera projections; marks O(points) with bounded bucket
+ * searches.
+ */
+#ifndef FIELDLOC_CROSSINGS_H
+#define FIELDLOC_CROSSINGS_H
+
+#include "fieldloc/camera.h"
+#include "fieldloc/circle.h"
+#include "fieldloc/common.h"
+#include "fieldloc/config.h"
+#include "fieldloc/field.h"
+#include "fieldloc/fixed.h"
+#include "fieldloc/lines.h"
+#include "fieldloc/scan.h"
+
+typedef struct {
+    fl_landmark_kind_t kind;  /* FL_LM_L, FL_LM_T, FL_LM_X,
+                                 FL_LM_PENALTY_MARK or FL_LM_CENTRE_MARK */
+    int32_t u_q4, v_q4;       /* image position, Q4 px */
+    fl_point_t ground;        /* robot frame, mm */
+    int32_t range_mm;
+    fl_angle_t bearing;
+    fl_angle_t orientation;   /* robot frame, obs.h conventions */
+    bool has_orientation;
+    uint8_t confidence;       /* Q0.8 */
+    uint8_t n_arms;           /* 2 L, 3 T, 4 X and marks */
+    fl_angle_t arm[4];        /* image directions of the arms, atan2(dv, du) */
+    int16_t seg_a, seg_b;     /* segments it came from (-1: none) */
+} fl_crossing_t;
+
+typedef struct {
+    int32_t min_angle_mdeg;   /* image angle between the two segments,
+                                 millidegrees, 1000..60000 (seed: 10 deg) */
+    int32_t ground_tol_mdeg;  /* allowed deviation from 90 deg on the
+                                 ground, 1000..45000 */
+    int32_t arm_px;           /* segment extent past X that makes an arm,
+                                 px; 0 = auto (max(2 step, 2 line width)) */
+    int32_t reach_px;         /* largest gap between X and a segment end,
+                                 px; 0 = auto (max(3 step, 3 line width)) */
+    int32_t probe_white_pct;  /* probe: arm present at >= this % white */
+    int32_t probe_green_pct;  /* probe: arm absent at < this % white */
+    int32_t min_confidence;   /* crossings below are dropped, 0..255 */
+    int32_t marks;            /* 1: look for penalty/centre marks */
+} fl_crossings_params_t;
+
+typedef struct {
+    fl_crossings_params_t params;
+    int32_t n;
+    fl_crossing_t c[FL_CROSSINGS_MAX];
+    /* counters of the last frame */
+    int32_t dropped;          /* beyond FL_CROSSINGS_MAX */
+    int32_t pairs;            /* segment pairs tested */
+    int32_t rejected_ground;  /* failed the 90 degree ground check */
+    int32_t rejected_arms;    /* arm set that is no crossing */
+    int32_t merged;           /* crossings merged into others */
+    int32_t marks_capped;     /* mark search stopped after 256 clusters */
+    /* ---- private ---- */
+    fl_angle_t garm[FL_CROSSINGS_MAX][4]; /* ground arms (robot frame) */
+} fl_crossings_t;
+
+/* Defaults: 10 deg, 25 deg, auto, auto, 55 %, 25 %, confidence 60,
+ * marks on. */
+void fl_crossings_params_default(fl_crossings_params_t *p);
+
+fl_status_t fl_crossings_init(fl_crossings_t *c, const fl_crossings_params_t *p);
+
+/* Find the crossings of a frame's segments.  scan may be NULL (no image
+ * probes, no marks), camera may be NULL (no ground check, no ground
+ * position: range 0), field may be NULL (no marks; line width from the
+ * lines stage).  Returns n. */
+int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
+                          const fl_scan_t *scan, const fl_camera_t *camera,
+                          const fl_field_t *field);
+
+/* Crossings implied by a found centre circle whose halfway line was seen
+ * (circle->has_orientation): the two X where the halfway line crosses the
+ * circle and the centre mark.  Each is added (merged with a crossing
+ * already there, which then becomes an X) only when its pixel is inside
+ * the image and the class map is white within one cell of it; confidence
+ * 3/4 of the circle's.  Call after fl_crossings_find.  Returns the number
+ * added or merged. */
+int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
+                                const fl_lines_t *lines, const fl_scan_t *scan,
+                                const fl_camera_t *camera,
+                                const fl_field_t *field);
+
+#endif /* FIELDLOC_CROSSINGS_H */

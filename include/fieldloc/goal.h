@@ -1,0 +1,90 @@
+/*
+ * fieldloc/goal.h - yellow goal posts (seed 000, section 3.8): foot, top,
+ * width, side and ground distance.
+ *
+ * Method.  The scanner (scan.h) counts yellow cells per grid column
+ * (yellow_cols, the post's run above the border included when it touches
+ * the border) and lists yellow->green transitions (feet).  Because a post
+ * stands on the goal line, a line between the yellow and the carpet can
+ * keep the scanner from following it up; so the image is also probed (by
+ * the colour table) at 2, 6, 12 and 20 px above each grid column's border.
+ * A candidate is a run of columns with yellow at two probes or
+ * yellow_cols >= min_cells (gaps of two columns bridged).  In the image:
+ * its yellow column is followed down to the foot and up through the post
+ * rows (no wider than 1.6 widths) into a crossbar band (wider rows, at
+ * most two widths thick: the top is the band's top) or clutter (thicker:
+ * top unknown); the width is the median of three horizontal runs at 10,
+ * 25 and 40 % of the post's height.  It is a post when the height is at
+ * least 2.5 widths and half of what the camera predicts for a post of the
+ * field's height at the foot's distance (small yellow things are not
+ * posts), and its foot lies below the field border: carpet (or a line)
+ * right under the foot and the border of the columns beside the post
+ * above the foot (a yellow object beyond the carpet stands above the
+ * border).  The scanner's lowest transition near the foot refines it.  The
+ * side comes from the crossbar band: the image is probed beside the top at
+ * 1.5, 2.5 and 3.5 widths; crossbar to the right = the left post as seen
+ * facing the goal, to the left = the right post.  With two posts and no
+ * crossbar seen, the left one in the image is the left.
+ *
+ * Distance.  The foot pixel is projected through the camera (the visible
+ * foot is the front of the post: half a diameter is added along the ray,
+ * and the reported foot pixel is the base centre projected back).  When
+ * the foot is not visible (below the image) the range comes from the
+ * width: f * diameter / width, a fallback flagged in the result.
+ *
+ * Lifecycle: fl_goal_find per frame after fl_scan_frame; no init (the
+ * result struct is overwritten).  Cost: 4 pixel classifications per grid
+ * column, then per candidate one column walk (every 4th row measured
+ * across, at most 2 widths each way) and a few probes.
+ */
+#ifndef FIELDLOC_GOAL_H
+#define FIELDLOC_GOAL_H
+
+#include "fieldloc/camera.h"
+#include "fieldloc/color.h"
+#include "fieldloc/common.h"
+#include "fieldloc/config.h"
+#include "fieldloc/field.h"
+#include "fieldloc/fixed.h"
+#include "fieldloc/image.h"
+#include "fieldloc/scan.h"
+
+typedef struct {
+    int32_t foot_u_q4, foot_v_q4; /* base centre, Q4 px (estimated from the
+                                     width when !foot_visible) */
+    int32_t top_u_q4, top_v_q4;   /* top of the yellow run, Q4 px */
+    int32_t width_q4;             /* post width at the foot, Q4 px */
+    bool foot_visible;            /* foot seen on the field */
+    bool top_visible;             /* top inside the image */
+    bool range_from_width;        /* range by the width fallback */
+    fl_side_t side;               /* from the crossbar (or the pair) */
+    fl_point_t ground;            /* post centre, robot frame, mm */
+    int32_t range_mm;
+    fl_angle_t bearing;
+    uint8_t confidence;           /* Q0.8 */
+} fl_post_t;
+
+typedef struct {
+    int32_t n;
+    fl_post_t post[FL_GOAL_MAX_POSTS];
+    int32_t dropped;              /* posts beyond FL_GOAL_MAX_POSTS */
+    int32_t candidates;           /* column runs examined */
+    int32_t rejected_border;      /* foot above the field border */
+    int32_t rejected_shape;       /* not a vertical bar */
+} fl_posts_t;
+
+/* Find the posts of a scanned frame.  img and colors (the table the scan
+ * used) are needed (NULL: no posts); camera may be NULL: no ground position
+ * (range 0) and no height check; field gives the post diameter and height
+ * (NULL: 100 and 800 mm).  Returns n. */
+int32_t fl_goal_find(fl_posts_t *out, const fl_scan_t *scan,
+                     const fl_image_t *img, const fl_color_table_t *colors,
+                     const fl_camera_t *camera, const fl_field_t *field);
+
+/* Colour class of one image pixel through the tables (RGB888: the RGB
+ * table; YUYV/planar: the YCbCr table).  OTHER outside the image. */
+fl_color_class_t fl_goal_pixel_class(const fl_image_t *img,
+                                     const fl_color_table_t *colors,
+                                     int32_t u, int32_t v);
+
+#endif /* FIELDLOC_GOAL_H */

@@ -1,0 +1,84 @@
+/*
+ * fieldloc/vision.h - the whole per-frame vision path in one call (seed
+ * 000's pipeline, DESIGN.md "Data flow"): image -> column scanner ->
+ * line points -> segments -> centre circle -> crossings and marks -> goal
+ * posts -> observations.
+ *
+ *     static fl_color_table_t colors;  fl_color_init(&colors, &cp);
+ *     static fl_vision_t vis;          fl_vision_params_default(&vp);
+ *                                      fl_vision_init(&vis, &vp);
+ *     per frame:  fl_camera_init(&cam, model, &pose);
+ *                 n = fl_vision_frame(&vis, &colors, &img, &cam, field, &obs);
+ *
+ * Every buffer lives in the caller's fl_vision_t (the scanner's class map
+ * is most of it: see sizeof, printed by the features suite); every stage
+ * is bounded by the caps of config.h and counts what did not fit.  The
+ * stage results stay readable after the call (vis.lines, vis.circle,
+ * vis.crossings, vis.posts, vis.scan) for pictures and evaluation.
+ *
+ * Observations (obs.h), in this order: posts (kind FL_LM_POST, side,
+ * colour = the field's goal colour, range from the foot or the width),
+ * the centre circle (FL_LM_CENTRE_CIRCLE, orientation = halfway line),
+ * then crossings and marks by falling confidence (FL_LM_L, T, X,
+ * PENALTY_MARK, CENTRE_MARK).  Image positions are kept in u_q4 / v_q4.
+ * Those below min_confidence are left out.
+ */
+#ifndef FIELDLOC_VISION_H
+#define FIELDLOC_VISION_H
+
+#include "fieldloc/camera.h"
+#include "fieldloc/circle.h"
+#include "fieldloc/color.h"
+#include "fieldloc/common.h"
+#include "fieldloc/crossings.h"
+#include "fieldloc/field.h"
+#include "fieldloc/goal.h"
+#include "fieldloc/image.h"
+#include "fieldloc/lines.h"
+#include "fieldloc/obs.h"
+#include "fieldloc/scan.h"
+
+typedef struct {
+    fl_scan_params_t scan;        /* col_step / row_step 0 = auto: 1 up to
+                                     320 px wide, else width / 320 (rounded
+                                     up); border_run_px 4 (the scanner's
+                                     default 8 puts the far lines, with
+                                     only a 1-3 px strip of carpet between
+                                     them, above the border) */
+    fl_lines_params_t lines;
+    fl_crossings_params_t crossings;
+    int32_t min_confidence;       /* observations below are dropped, 0..255 */
+    int32_t posts;                /* 1: goal posts */
+    int32_t circle;               /* 1: centre circle */
+} fl_vision_params_t;
+
+typedef struct {
+    fl_vision_params_t params;
+    fl_scan_t scan;
+    fl_lines_t lines;
+    fl_circle_t circle;
+    fl_crossings_t crossings;
+    fl_posts_t posts;
+    /* counters */
+    uint32_t frames;              /* frames processed */
+    uint32_t obs_dropped;         /* observations beyond FL_OBS_MAX, summed */
+    fl_status_t status;           /* of the last frame (FL_OK or why empty) */
+    /* private */
+    fl_scan_params_t scan_active; /* scan params in effect */
+} fl_vision_t;
+
+/* Defaults of every stage, automatic grid, border run 4 px, confidence 40,
+ * posts and circle on. */
+void fl_vision_params_default(fl_vision_params_t *p);
+
+/* Validate every stage's params and clear.  FL_ERR_NULL, FL_ERR_RANGE. */
+fl_status_t fl_vision_init(fl_vision_t *v, const fl_vision_params_t *p);
+
+/* One frame.  colors: the tables (not changed); camera: this frame's pose;
+ * field: geometry (line width, radius, post size).  Fills out (cleared
+ * first) and returns out->n; 0 with status set on bad input. */
+int32_t fl_vision_frame(fl_vision_t *v, const fl_color_table_t *colors,
+                        const fl_image_t *img, const fl_camera_t *camera,
+                        const fl_field_t *field, fl_obs_list_t *out);
+
+#endif /* FIELDLOC_VISION_H */

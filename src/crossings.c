@@ -1,0 +1,768 @@
+/*
+ * src/crossings.c - L, T and X crossings and the field marks (seed 000,
+ * section 3.7); see crossings.h for the method.
+ *
+ * Algorithm.
+ *   pairs    for i < j over the segments: image angle test (|sin| of the
+ *            angle between the directions), intersection X of the two
+ *            infinite lines (exact 64-bit solve in Q4), X inside the image,
+ *            X's position t along each segment, the local directions there
+ *            (chord turned by the bulge's slope); arms by extent (t and
+ *            len - t against arm_q4), probes in the class map for all four;
+ *            ground check from the directions of both lines at X through
+ *            the camera; type by arm count; marks by the ground length of
+ *            short bars; insertion with merging into a crossing within
+ *            merge distance (union of arms).
+ *   marks    clusters of points off long segments within the projected
+ *            mark size (bucket search from lines.c), isolated out to 2.5
+ *            mark sizes, a ring of 16 samples at 1.6 mark sizes that must
+ *            be green.
+ *   circle   the centre mark and the halfway-line x circle X's of a found
+ *            circle, projected back and checked white in the class map.
+ *
+ * Invariant.  Every stored crossing has 2..4 arms (marks from blobs: 0,
+ * until merged), no two stored crossings are closer than the merge
+ * distance at the time of insertion, n <= FL_CROSSINGS_MAX.
+ *
+ * Memory: the caller's fl_crossings_t (about 54 B per crossing, ground
+ * arms included).  Stack: a visited bitmap of FL_LINES_MAX_POINTS bits
+ * (<= 512 B) and a FL_LINES_NEAR_MAX id list in the mark search (< 900 B
+ * in all).
+ * Cost: segments^2 / 2 cheap pair tests; per surviving pair 4 probes of at
+ * most 64 samples and 3-5 camera projections; marks: one bucket search per
+ * cluster and 16 map reads per candidate.
+ *
+ * Scaling and overflow.  Pixel positions Q4 (|u|, |v| < 2^17 for images up
+ * to 4096 px).  Segment direction vectors in Q4 (< 2^17 each); the
+ * intersection denominator (cross product) < 2^35, numerator < 2^36, the
+ * product with a direction < 2^53: int64.  Unit directions Q15 from the
+ * segment angle; projections (Q4 x Q15) < 2^33 in int64, shifted back with
+ * rounding.  Angles are binary angles (wrap-around free).  Confidence
+ * factors Q8 (256 = 1), multiplied in int32 (< 2^24).
+ */
+#include "fieldloc/crossings.h"
+
+#include <string.h>
+
+#define CR_KAPPA_Q4 (12 * 16) /* probe distance for ground directions */
+#define CR_SAME_ARM 4551      /* 25 deg: two arms within this are one */
+#define CR_MARK_CLUSTERS_MAX 256 /* mark candidates looked at per frame */
+
+void fl_crossings_params_default(fl_crossings_params_t *p)
+{
+    if (!p)
+        return;
+    p->min_angle_mdeg = 10000;
+    p->ground_tol_mdeg = 25000;
+    p->arm_px = 0;
+    p->reach_px = 0;
+    p->probe_white_pct = 55;
+    p->probe_green_pct = 25;
+    p->min_confidence = 60;
+    p->marks = 1;
+}
+
+fl_status_t fl_crossings_init(fl_crossings_t *c, const fl_crossings_params_t *p)
+{
+    if (!c || !p)
+        return FL_ERR_NULL;
+    memset(c, 0, sizeof *c);
+    fl_crossings_params_default(&c->params);
+    if (p->min_angle_mdeg < 1000 || p->min_angle_mdeg > 60000 ||
+        p->ground_tol_mdeg < 1000 || p->ground_tol_mdeg > 45000 ||
+        p->arm_px < 0 || p->arm_px > 255 || p->reach_px < 0 ||
+        p->reach_px > 255 || p->probe_white_pct < 0 ||
+        p->probe_white_pct > 100 || p->probe_green_pct < 0 ||
+        p->probe_green_pct > p->probe_white_pct || p->min_confidence < 0 ||
+        p->min_confidence > 255 || p->marks < 0 || p->marks > 1)
+        return FL_ERR_RANGE;
+    c->params = *p;
+    return FL_OK;
+}
+
+static int32_t cr_abs(int32_t a) { return a < 0 ? -a : a; }
+
+/* |a - b| folded to [0, 180 deg] as a non-negative int32 (0..32768). */
+static int32_t cr_adiff(fl_angle_t a, fl_angle_t b)
+{
+    return cr_abs(fl_angle_sub(a, b));
+}
+
+/* An image ray: from (xu, xv) (Q4) along the unit vector (cu, cv) (Q15).
+ * (Helpers take it by pointer: at most six arguments, so no frame needs
+ * stack-passed arguments.) */
+typedef struct {
+    int32_t xu, xv, cu, cv;
+    int32_t r0, len;          /* probe: from r0 to r0 + len along it, Q4 */
+    fl_point_t gx;            /* ground point of the start */
+    int32_t white;            /* out: probe white ratio */
+    fl_angle_t dir;           /* out: ground direction */
+} cr_ray_t;
+
+/* Ground direction (robot frame) of an image ray into r->dir.  r->gx:
+ * ground point of its start.  False when neither this direction nor the
+ * opposite one reaches the ground.  (The results are written into the
+ * struct: gcc then keeps it a pointer instead of splitting it into more
+ * than six scalar arguments.) */
+static bool cr_ground_dir(const fl_camera_t *cam, cr_ray_t *r)
+{
+    fl_point_t g, gx = r->gx;
+    fl_angle_t *dir = &r->dir;
+    int32_t xu = r->xu, xv = r->xv, cu = r->cu, cv = r->cv;
+    int32_t du = fl_rshift_round((int64_t)cu * CR_KAPPA_Q4, 15);
+    int32_t dv = fl_rshift_round((int64_t)cv * CR_KAPPA_Q4, 15);
+    if (fl_camera_pixel_to_ground(cam, xu + du, xv + dv, &g) &&
+        (g.x_mm != gx.x_mm || g.y_mm != gx.y_mm)) {
+        *dir = fl_atan2(g.y_mm - gx.y_mm, g.x_mm - gx.x_mm);
+        return true;
+    }
+    if (fl_camera_pixel_to_ground(cam, xu - du, xv - dv, &g) &&
+        (g.x_mm != gx.x_mm || g.y_mm != gx.y_mm)) {
+        *dir = fl_angle_add(fl_atan2(g.y_mm - gx.y_mm, g.x_mm - gx.x_mm),
+                            FL_ANGLE_180);
+        return true;
+    }
+    return false;
+}
+
+/* Orientation of a crossing from its ground arms (obs.h conventions). */
+static void cr_orient(fl_crossing_t *x, const fl_angle_t *garm, bool ground)
+{
+    int32_t i, j;
+    x->has_orientation = false;
+    x->orientation = 0;
+    if (!ground || x->n_arms < 2)
+        return;
+    if (x->n_arms == 2) {
+        int32_t d = fl_angle_sub(garm[1], garm[0]);
+        x->orientation = fl_angle_add(garm[0], fl_angle_wrap(d / 2));
+        x->has_orientation = true;
+    } else if (x->n_arms == 3) {
+        for (i = 0; i < 3; i++) {
+            bool opposite = false;
+            for (j = 0; j < 3; j++)
+                if (j != i && cr_adiff(garm[i], garm[j]) > 32768 - CR_SAME_ARM)
+                    opposite = true;
+            if (!opposite) {
+                x->orientation = garm[i];
+                x->has_orientation = true;
+                return;
+            }
+        }
+    } else {
+        x->orientation = garm[0];
+        x->has_orientation = true;
+    }
+}
+
+/* Type from the arm count (marks keep their kind). */
+static bool cr_type(fl_crossing_t *x)
+{
+    if (x->kind == FL_LM_PENALTY_MARK || x->kind == FL_LM_CENTRE_MARK)
+        return true;
+    if (x->n_arms == 2)
+        x->kind = FL_LM_L;
+    else if (x->n_arms == 3)
+        x->kind = FL_LM_T;
+    else if (x->n_arms == 4)
+        x->kind = FL_LM_X;
+    else
+        return false;
+    return true;
+}
+
+/* Crossing plus its ground arms, while building. */
+typedef struct {
+    fl_crossing_t x;
+    fl_angle_t garm[4];
+    bool ground;
+} cr_item_t;
+
+/* Insert with merging.  Ground arms of stored crossings are kept in
+ * garm_store (parallel to c->c). */
+static void cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
+                   const cr_item_t *it, int32_t merge_q4)
+{
+    int32_t k, a, b;
+    for (k = 0; k < c->n; k++) {
+        fl_crossing_t *e = &c->c[k];
+        int64_t du = (int64_t)e->u_q4 - it->x.u_q4, dv = (int64_t)e->v_q4 - it->x.v_q4;
+        bool emark = e->kind == FL_LM_PENALTY_MARK || e->kind == FL_LM_CENTRE_MARK;
+        bool imark = it->x.kind == FL_LM_PENALTY_MARK || it->x.kind == FL_LM_CENTRE_MARK;
+        if (du * du + dv * dv > (int64_t)merge_q4 * merge_q4)
+            continue;
+        /* union of the arms */
+        for (a = 0; a < it->x.n_arms; a++) {
+            bool have = false;
+            for (b = 0; b < e->n_arms; b++)
+                if (cr_adiff(e->arm[b], it->x.arm[a]) < CR_SAME_ARM)
+                    have = true;
+            if (!have && e->n_arms < 4) {
+                e->arm[e->n_arms] = it->x.arm[a];
+                garm_store[k][e->n_arms] = it->garm[a];
+                e->n_arms++;
+            }
+        }
+        if (imark && !emark)
+            e->kind = it->x.kind;
+        else if (!emark)
+            (void)cr_type(e);
+        if (it->x.confidence > e->confidence) {
+            e->u_q4 = it->x.u_q4;
+            e->v_q4 = it->x.v_q4;
+            e->ground = it->x.ground;
+            e->range_mm = it->x.range_mm;
+            e->bearing = it->x.bearing;
+            e->confidence = it->x.confidence;
+        }
+        if (e->kind != FL_LM_PENALTY_MARK || e->n_arms >= 2)
+            cr_orient(e, garm_store[k], it->ground);
+        c->merged++;
+        return;
+    }
+    if (c->n >= FL_CROSSINGS_MAX) {
+        c->dropped++;
+        return;
+    }
+    c->c[c->n] = it->x;
+    for (a = 0; a < 4; a++)
+        garm_store[c->n][a] = it->garm[a];
+    c->n++;
+}
+
+/* White ratio of a probe ray between r0 and r0 + len (Q4) from its start,
+ * into r->white: -1 when less than half of it lies inside the image
+ * (w_px x h_px). */
+static void cr_probe(const fl_scan_t *scan, int32_t w_px, int32_t h_px, cr_ray_t *r)
+{
+    int32_t xu = r->xu, xv = r->xv, cu = r->cu, cv = r->cv, r0 = r->r0, len = r->len;
+    int32_t u0 = xu + fl_rshift_round((int64_t)cu * r0, 15);
+    int32_t v0 = xv + fl_rshift_round((int64_t)cv * r0, 15);
+    int32_t u1 = xu + fl_rshift_round((int64_t)cu * (r0 + len), 15);
+    int32_t v1 = xv + fl_rshift_round((int64_t)cv * (r0 + len), 15);
+    int32_t um = (u0 + u1) / 2, vm = (v0 + v1) / 2;
+    int32_t maxu = 16 * (w_px - 1), maxv = 16 * (h_px - 1);
+    r->white = -1;
+    if (u0 < 0 || v0 < 0 || u0 > maxu || v0 > maxv)
+        return;
+    if (um < 0 || vm < 0 || um > maxu || vm > maxv)
+        return;
+    if (u1 < 0 || v1 < 0 || u1 > maxu || v1 > maxv) {
+        u1 = um;
+        v1 = vm;
+    }
+    r->white = fl_lines_white_pct(scan, u0, v0, u1, v1);
+}
+
+/* Direction of a segment at distance t (Q4) from its end 0: the chord
+ * angle plus atan of the slope of a parabolic arc with the segment's
+ * bulge, 4 b (L - 2t) / L^2 (t clamped to the segment, at most 45 deg).
+ * Scaling: numerator and denominator in int64 (< 2^36), shifted together
+ * below 2^30 for fl_atan2. */
+static fl_angle_t cr_local_angle(const fl_segment_t *s, int32_t t)
+{
+    int64_t L = s->len_q4, num, den, tt = t;
+    int32_t d;
+    /* straight lines bulge by point noise only: below 1.5 px, no turn */
+    if (L <= 0 || (s->bulge_q4 < 24 && s->bulge_q4 > -24))
+        return s->angle;
+    if (tt < 0)
+        tt = 0;
+    if (tt > L)
+        tt = L;
+    num = 4 * (int64_t)s->bulge_q4 * (L - 2 * tt);
+    den = L * L;
+    while (num >= (1LL << 30) || num <= -(1LL << 30) || den >= (1LL << 30)) {
+        num >>= 1;
+        den >>= 1;
+    }
+    if (den <= 0)
+        return s->angle;
+    d = fl_atan2((int32_t)num, (int32_t)den);
+    if (d > 8192)
+        d = 8192;
+    if (d < -8192)
+        d = -8192;
+    return fl_angle_add(s->angle, (fl_angle_t)d);
+}
+
+/* Ground length (mm) of a segment, or -1 when an end has no ground point. */
+static int32_t cr_ground_len(const fl_camera_t *cam, const fl_segment_t *s)
+{
+    fl_point_t a, b;
+    if (!cam || !fl_camera_pixel_to_ground(cam, s->u0_q4, s->v0_q4, &a) ||
+        !fl_camera_pixel_to_ground(cam, s->u1_q4, s->v1_q4, &b))
+        return -1;
+    return (int32_t)fl_hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm);
+}
+
+/* Line width (Q4 px) at row v for the thresholds; step when unknown. */
+static int32_t cr_width_q4(const fl_lines_t *l, int32_t v_q4)
+{
+    int32_t w = fl_lines_width_q4(l, v_q4 / 16, false);
+    int32_t wv = fl_lines_width_q4(l, v_q4 / 16, true);
+    if (wv > w)
+        w = wv;
+    return w;
+}
+
+/* What every pair test of a frame shares. */
+typedef struct {
+    fl_crossings_t *c;
+    const fl_lines_t *l;
+    const fl_scan_t *scan;
+    const fl_camera_t *cam;
+    const fl_field_t *field;
+    int32_t sin_min_q15, sin_tol_q15;
+} cr_ctx_t;
+
+static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
+{
+    fl_crossings_t *c = ctx->c;
+    fl_angle_t (*garm_store)[4] = c->garm;
+    const fl_lines_t *l = ctx->l;
+    const fl_scan_t *scan = ctx->scan;
+    const fl_camera_t *cam = ctx->cam;
+    const fl_field_t *field = ctx->field;
+    int32_t sin_min_q15 = ctx->sin_min_q15, sin_tol_q15 = ctx->sin_tol_q15;
+    const fl_segment_t *A = &l->segments[ia], *B = &l->segments[ib];
+    const fl_crossings_params_t *pp = &c->params;
+    int64_t ax = (int64_t)A->u1_q4 - A->u0_q4, ay = (int64_t)A->v1_q4 - A->v0_q4;
+    int64_t bx = (int64_t)B->u1_q4 - B->u0_q4, by = (int64_t)B->v1_q4 - B->v0_q4;
+    int64_t den, num;
+    int32_t xu, xv, ca, sa, cb, sb, ta, tb, w, arm, reach, sinab, k;
+    int32_t step_q4 = 16 * l->step_px, conf, f;
+    bool pres[4], geo[4];
+    int32_t dirc[4], dirs[4], conflicts = 0, cntA, cntB;
+    cr_item_t it;
+    fl_point_t gx;
+    bool ground = false;
+
+    den = ax * by - ay * bx;
+    if (den == 0)
+        return;
+    ca = fl_cos_q15(A->angle);
+    sa = fl_sin_q15(A->angle);
+    cb = fl_cos_q15(B->angle);
+    sb = fl_sin_q15(B->angle);
+    sinab = fl_sin_q15(fl_angle_sub(B->angle, A->angle));
+    if (cr_abs(sinab) < sin_min_q15)
+        return;
+    c->pairs++;
+    num = ((int64_t)B->u0_q4 - A->u0_q4) * by - ((int64_t)B->v0_q4 - A->v0_q4) * bx;
+    xu = A->u0_q4 + fl_div_round(ax * num, den);
+    xv = A->v0_q4 + fl_div_round(ay * num, den);
+    if (xu < 0 || xv < 0 || xu > 16 * (l->width - 1) || xv > 16 * (l->height - 1))
+        return;
+    ta = fl_rshift_round(((int64_t)xu - A->u0_q4) * ca + ((int64_t)xv - A->v0_q4) * sa, 15);
+    tb = fl_rshift_round(((int64_t)xu - B->u0_q4) * cb + ((int64_t)xv - B->v0_q4) * sb, 15);
+    /* the lines' directions at X: the chord's, turned by the slope of the
+     * segment's bulge there (a circle arc meets a line along its tangent) */
+    {
+        fl_angle_t la = cr_local_angle(A, ta), lb = cr_local_angle(B, tb);
+        ca = fl_cos_q15(la);
+        sa = fl_sin_q15(la);
+        cb = fl_cos_q15(lb);
+        sb = fl_sin_q15(lb);
+        sinab = fl_sin_q15(fl_angle_sub(lb, la));
+        if (cr_abs(sinab) < sin_min_q15)
+            return;
+    }
+    w = cr_width_q4(l, xv);
+    arm = pp->arm_px > 0 ? 16 * pp->arm_px : 2 * step_q4 > 2 * w ? 2 * step_q4 : 2 * w;
+    reach = pp->reach_px > 0 ? 16 * pp->reach_px : 3 * step_q4 > 3 * w ? 3 * step_q4 : 3 * w;
+    if (ta < -reach || ta > A->len_q4 + reach || tb < -reach || tb > B->len_q4 + reach)
+        return;
+    /* arms: 0 = A forward, 1 = A backward, 2 = B forward, 3 = B backward */
+    geo[0] = A->len_q4 - ta >= arm;
+    geo[1] = ta >= arm;
+    geo[2] = B->len_q4 - tb >= arm;
+    geo[3] = tb >= arm;
+    dirc[0] = ca; dirs[0] = sa;
+    dirc[1] = -ca; dirs[1] = -sa;
+    dirc[2] = cb; dirs[2] = sb;
+    dirc[3] = -cb; dirs[3] = -sb;
+    for (k = 0; k < 4; k++) {
+        pres[k] = geo[k];
+        if (scan) {
+            /* start beyond the other line's paint: w / |sin| + w / 2 */
+            int32_t r0 = (int32_t)((int64_t)w * 32768 / cr_abs(sinab)) + w / 2 + 16;
+            int32_t len = 3 * step_q4 > 2 * w ? 3 * step_q4 : 2 * w;
+            int32_t pr;
+            if (r0 > 6 * w + 48)
+                r0 = 6 * w + 48;
+            if (len > 16 * 64)
+                len = 16 * 64;
+            cr_ray_t ray;
+            ray.xu = xu;
+            ray.xv = xv;
+            ray.cu = dirc[k];
+            ray.cv = dirs[k];
+            ray.r0 = r0;
+            ray.len = len;
+            cr_probe(scan, l->width, l->height, &ray);
+            pr = ray.white;
+            if (pr >= pp->probe_white_pct && !geo[k])
+                pres[k] = true;
+            else if (pr >= 0 && pr < pp->probe_green_pct && geo[k])
+                conflicts++;
+        }
+    }
+    cntA = (int32_t)pres[0] + (int32_t)pres[1];
+    cntB = (int32_t)pres[2] + (int32_t)pres[3];
+    if (cntA == 0 || cntB == 0) {
+        c->rejected_arms++;
+        return;
+    }
+    memset(&it, 0, sizeof it);
+    it.x.seg_a = (int16_t)ia;
+    it.x.seg_b = (int16_t)ib;
+    it.x.u_q4 = xu;
+    it.x.v_q4 = xv;
+    for (k = 0; k < 4; k++)
+        if (pres[k])
+            it.x.arm[it.x.n_arms++] = fl_atan2(dirs[k], dirc[k]);
+
+    /* ground check and ground arms */
+    if (cam) {
+        fl_angle_t ga, gb;
+        int32_t between;
+        cr_ray_t ra, rb;
+        ra.xu = rb.xu = xu;
+        ra.xv = rb.xv = xv;
+        ra.cu = ca;
+        ra.cv = sa;
+        rb.cu = cb;
+        rb.cv = sb;
+        if (!fl_camera_pixel_to_ground(cam, xu, xv, &gx)) {
+            c->rejected_ground++;
+            return;
+        }
+        ra.gx = rb.gx = gx;
+        if (!cr_ground_dir(cam, &ra) || !cr_ground_dir(cam, &rb)) {
+            c->rejected_ground++;
+            return;
+        }
+        ga = ra.dir;
+        gb = rb.dir;
+        between = cr_adiff(ga, gb);            /* 0..180 deg */
+        if (between > 16384)
+            between = 32768 - between;         /* 0..90 deg */
+        /* deviation from square: sin(90 - between) = cos(between) */
+        f = fl_cos_q15((fl_angle_t)between);
+        if (f > sin_tol_q15) {
+            c->rejected_ground++;
+            return;
+        }
+        ground = true;
+        it.ground = true;
+        it.x.ground = gx;
+        fl_polar_from_point(gx, &it.x.range_mm, &it.x.bearing);
+        k = 0;
+        if (pres[0]) it.garm[k++] = ga;
+        if (pres[1]) it.garm[k++] = fl_angle_add(ga, FL_ANGLE_180);
+        if (pres[2]) it.garm[k++] = gb;
+        if (pres[3]) it.garm[k++] = fl_angle_add(gb, FL_ANGLE_180);
+        /* confidence factor of squareness, Q8: 256 at 90 deg, 128 at tol */
+        conf = 256 - (int32_t)(((int64_t)f * 128) / (sin_tol_q15 > 0 ? sin_tol_q15 : 1));
+    } else {
+        conf = 256;
+    }
+    /* short segments and contradicted arms lower the confidence */
+    {
+        int32_t m = A->len_q4 < B->len_q4 ? A->len_q4 : B->len_q4;
+        int32_t ref = 4 * step_q4;
+        f = m >= ref ? 256 : 77 + (int32_t)((int64_t)179 * m / ref);
+        conf = conf * f / 256;
+        for (k = 0; k < conflicts; k++)
+            conf = conf * 154 / 256;
+    }
+    conf = conf * 255 / 256;
+    it.x.confidence = (uint8_t)(conf < 0 ? 0 : conf > 255 ? 255 : conf);
+    if (!cr_type(&it.x)) {
+        c->rejected_arms++;
+        return;
+    }
+    /* a short bar crossing a line is a mark: centre mark (on a line) or
+     * penalty mark (two short bars) */
+    if (it.x.kind == FL_LM_X && cam && field && field->mark_size_mm > 0) {
+        int32_t la = cr_ground_len(cam, A), lb = cr_ground_len(cam, B);
+        int32_t lim = 5 * field->mark_size_mm / 2;
+        bool sa_ = la >= 0 && la <= lim, sb_ = lb >= 0 && lb <= lim;
+        if (sa_ && sb_)
+            it.x.kind = FL_LM_PENALTY_MARK;
+        else if (sa_ || sb_)
+            it.x.kind = FL_LM_CENTRE_MARK;
+    }
+    if (it.x.confidence < pp->min_confidence)
+        return;
+    cr_orient(&it.x, it.garm, ground);
+    {
+        int32_t merge = 3 * w > 4 * step_q4 ? 3 * w : 4 * step_q4;
+        cr_add(c, garm_store, &it, merge);
+    }
+}
+
+/* ---- marks ------------------------------------------------------------------ */
+
+static int32_t cr_class_px(const fl_scan_t *s, int32_t u_q4, int32_t v_q4)
+{
+    int32_t i, j;
+    uint64_t w;
+    if (u_q4 < 0 || v_q4 < 0)
+        return FL_CLASS_OTHER;
+    i = (u_q4 / 16 + s->params.col_step / 2) / s->params.col_step;
+    j = (v_q4 / 16 + s->params.row_step / 2) / s->params.row_step;
+    if (i >= s->cols || j >= s->rows)
+        return FL_CLASS_OTHER;
+    w = s->map[j][i >> 5];
+    return (int32_t)((w >> (62 - 2 * (i & 31))) & 3u);
+}
+
+/* cos / sin of k * 22.5 deg, Q8 */
+static const int16_t cr_ring_c[16] = {256, 237, 181, 98, 0, -98, -181, -237,
+                                      -256, -237, -181, -98, 0, 98, 181, 237};
+
+/* A census of the line points around a mark candidate: in: the centre
+ * (cu, cv), the inner ellipse half-axes (iu, iv), the outer box (ou, ov),
+ * all Q1, and the length (Q4) above which a segment is "long"; out: the
+ * points inside the inner ellipse (summed into su, sv, counted in n_in,
+ * long_in of them on long segments) and those outside it but within the
+ * outer ellipse (n_out). */
+typedef struct {
+    int32_t cu, cv, iu, iv, ou, ov, long_q4;
+    int32_t su, sv, n_in, n_out, long_in;
+} cr_census_t;
+
+static void cr_mark_census(const fl_lines_t *l, cr_census_t *k, uint32_t *vis)
+{
+    uint16_t ids[FL_LINES_NEAR_MAX];
+    int32_t n, j, cu = k->cu, cv = k->cv;
+    int64_t iu = k->iu, iv = k->iv, ou = k->ou, ov = k->ov;
+    k->su = k->sv = k->n_in = k->n_out = k->long_in = 0;
+    n = fl_lines_points_near(l, cu, cv, k->ou / 2 + 1, k->ov / 2 + 1, ids);
+    if (n > FL_LINES_NEAR_MAX) {
+        k->n_out = n;
+        return;
+    }
+    for (j = 0; j < n; j++) {
+        const fl_line_point_t *q = &l->points[ids[j]];
+        int64_t du = q->u_q1 - cu, dv = q->v_q1 - cv;
+        /* inside the inner ellipse: du^2 / iu^2 + dv^2 / iv^2 <= 1 */
+        if (du * du * iv * iv + dv * dv * iu * iu <= iu * iu * iv * iv) {
+            k->n_in++;
+            k->su += q->u_q1;
+            k->sv += q->v_q1;
+            if (q->seg != FL_LINES_NONE && l->segments[q->seg].len_q4 > k->long_q4)
+                k->long_in++;
+            if (vis)
+                vis[ids[j] >> 5] |= 1u << (ids[j] & 31);
+        } else if (du * du * ov * ov + dv * dv * ou * ou <= ou * ou * ov * ov) {
+            k->n_out++;
+        }
+    }
+}
+
+static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
+                     const fl_lines_t *l, const fl_scan_t *scan,
+                     const fl_camera_t *cam, const fl_field_t *field)
+{
+    uint32_t vis[(FL_LINES_MAX_POINTS + 31) / 32];
+    int32_t k, lw = l->line_width_mm, step_q4 = 16 * l->step_px, clusters = 0;
+    if (!scan || !field || field->mark_size_mm <= 0 || lw <= 0 || !cam)
+        return;
+    memset(vis, 0, sizeof vis);
+    for (k = 0; k < l->n_points; k++) {
+        const fl_line_point_t *p = &l->points[k];
+        int32_t wh, wv, mh, mv, iu, iv, ou, ov, n_in, cu, cv, green = 0, white = 0,
+            conf, ru, rv, j, long_q4;
+        cr_census_t cc;
+        cr_item_t it;
+        fl_point_t g;
+        if (vis[k >> 5] & (1u << (k & 31)))
+            continue;
+        vis[k >> 5] |= 1u << (k & 31);
+        if (++clusters > CR_MARK_CLUSTERS_MAX) {
+            c->marks_capped++;
+            return;
+        }
+        wh = fl_lines_width_q4(l, p->v_q1 / 2, false);
+        wv = fl_lines_width_q4(l, p->v_q1 / 2, true);
+        if (wh <= 0 || wv <= 0)
+            continue;
+        mh = field->mark_size_mm * wh / lw;  /* mark size, Q4 px */
+        mv = field->mark_size_mm * wv / lw;
+        /* a mark under 2.5 px tall is a speck, as are the corners of far
+         * lines too faint for the class map: not looked for */
+        if (mv < 0)
+            continue;
+        long_q4 = 2 * mh + step_q4;
+        if (p->seg != FL_LINES_NONE && l->segments[p->seg].len_q4 > long_q4)
+            continue;
+        /* inner ellipse 0.75 mark (>= 2 px), outer 2.5 marks (>= 7 / 5 px), Q1 */
+        iu = mh * 3 / 32 > 4 ? mh * 3 / 32 : 4;
+        iv = mv * 3 / 32 > 4 ? mv * 3 / 32 : 4;
+        ou = mh * 5 / 16 > 14 ? mh * 5 / 16 : 14;
+        ov = mv * 5 / 16 > 10 ? mv * 5 / 16 : 10;
+        cc.cu = p->u_q1;
+        cc.cv = p->v_q1;
+        cc.iu = iu;
+        cc.iv = iv;
+        cc.ou = ou;
+        cc.ov = ov;
+        cc.long_q4 = long_q4;
+        cr_mark_census(l, &cc, NULL);
+        if (cc.n_in < 2 || cc.long_in > 0)
+            continue;
+        cc.cu = cc.su / cc.n_in;
+        cc.cv = cc.sv / cc.n_in;
+        cr_mark_census(l, &cc, vis);
+        if (cc.n_in < 2 || cc.long_in > 0 || cc.n_out > 0)
+            continue;
+        n_in = cc.n_in;
+        cu = cc.su * 8 / n_in; /* Q4 */
+        cv = cc.sv * 8 / n_in;
+        /* ring of 16 samples at 1.6 mark sizes (at least 4 / 3 px) */
+        ru = mh * 16 / 10;
+        rv = mv * 16 / 10;
+        if (ru < 64)
+            ru = 64;
+        if (rv < 48)
+            rv = 48;
+        for (j = 0; j < 16; j++) {
+            int32_t cls = cr_class_px(scan, cu + ru * cr_ring_c[j] / 256,
+                                      cv + rv * cr_ring_c[(j + 4) & 15] / 256);
+            if (cls == FL_CLASS_GREEN)
+                green++;
+            else if (cls == FL_CLASS_WHITE)
+                white++;
+        }
+        if (green < 13 || white > 0)
+            continue;
+        if (!fl_camera_pixel_to_ground(cam, cu, cv, &g))
+            continue;
+        memset(&it, 0, sizeof it);
+        it.x.kind = FL_LM_PENALTY_MARK;
+        it.x.u_q4 = cu;
+        it.x.v_q4 = cv;
+        it.x.ground = g;
+        fl_polar_from_point(g, &it.x.range_mm, &it.x.bearing);
+        it.x.seg_a = it.x.seg_b = -1;
+        it.ground = true;
+        conf = 110 + 25 * (n_in < 5 ? n_in : 5) - 10 * (16 - green);
+        it.x.confidence = (uint8_t)(conf > 255 ? 255 : conf < 0 ? 0 : conf);
+        if (it.x.confidence < c->params.min_confidence)
+            continue;
+        {
+            int32_t merge = 2 * mh > 4 * step_q4 ? 2 * mh : 4 * step_q4;
+            cr_add(c, garm_store, &it, merge);
+        }
+    }
+}
+
+int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
+                          const fl_scan_t *scan, const fl_camera_t *camera,
+                          const fl_field_t *field)
+{
+    fl_angle_t (*garm)[4];
+    int32_t i, j, sin_min, sin_tol;
+    cr_ctx_t ctx;
+    if (!c)
+        return 0;
+    c->n = 0;
+    c->dropped = 0;
+    c->pairs = 0;
+    c->rejected_ground = 0;
+    c->rejected_arms = 0;
+    c->merged = 0;
+    c->marks_capped = 0;
+    if (!lines || lines->width <= 0)
+        return 0;
+    if (scan && (scan->width != lines->width || scan->height != lines->height))
+        scan = NULL;
+    sin_min = fl_sin_q15(fl_angle_from_mdeg(c->params.min_angle_mdeg));
+    sin_tol = fl_sin_q15(fl_angle_from_mdeg(c->params.ground_tol_mdeg));
+    garm = c->garm;
+    memset(c->garm, 0, sizeof c->garm);
+    if (c->params.marks)
+        cr_marks(c, garm, lines, scan, camera, field);
+    ctx.c = c;
+    ctx.l = lines;
+    ctx.scan = scan;
+    ctx.cam = camera;
+    ctx.field = field;
+    ctx.sin_min_q15 = sin_min;
+    ctx.sin_tol_q15 = sin_tol;
+    for (i = 0; i < lines->n_segments; i++)
+        for (j = i + 1; j < lines->n_segments; j++) {
+            if ((lines->segments[i].flags & FL_SEG_CIRCLE) &&
+                (lines->segments[j].flags & FL_SEG_CIRCLE))
+                continue;
+            cr_pair(&ctx, i, j);
+        }
+    return c->n;
+}
+
+/* White within one cell of a pixel (Q4). */
+static bool cr_white_near(const fl_scan_t *s, int32_t u_q4, int32_t v_q4)
+{
+    int32_t du = 16 * s->params.col_step, dv = 16 * s->params.row_step;
+    return cr_class_px(s, u_q4, v_q4) == FL_CLASS_WHITE ||
+           cr_class_px(s, u_q4 + du, v_q4) == FL_CLASS_WHITE ||
+           cr_class_px(s, u_q4 - du, v_q4) == FL_CLASS_WHITE ||
+           cr_class_px(s, u_q4, v_q4 + dv) == FL_CLASS_WHITE ||
+           cr_class_px(s, u_q4, v_q4 - dv) == FL_CLASS_WHITE;
+}
+
+int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
+                                const fl_lines_t *lines, const fl_scan_t *scan,
+                                const fl_camera_t *camera,
+                                const fl_field_t *field)
+{
+    int32_t k, a, added = 0, R, step_q4;
+    if (!c || !circle || !lines || !scan || !camera || !field || !circle->found ||
+        !circle->has_orientation || field->circle_radius_mm <= 0 || lines->width <= 0 ||
+        scan->width != lines->width || scan->height != lines->height)
+        return 0;
+    R = field->circle_radius_mm;
+    step_q4 = 16 * lines->step_px;
+    for (k = -1; k <= 1; k++) {
+        cr_item_t it;
+        fl_point_t p;
+        int32_t u, v, w, merge;
+        int16_t co = fl_cos_q15(circle->orientation), so = fl_sin_q15(circle->orientation);
+        p.x_mm = circle->centre.x_mm + k * fl_mul_q15(R, co);
+        p.y_mm = circle->centre.y_mm + k * fl_mul_q15(R, so);
+        if (!fl_camera_ground_to_pixel(camera, p, &u, &v) || u < 0 || v < 0 ||
+            u > 16 * (lines->width - 1) || v > 16 * (lines->height - 1) ||
+            !cr_white_near(scan, u, v))
+            continue;
+        memset(&it, 0, sizeof it);
+        it.x.kind = k == 0 ? FL_LM_CENTRE_MARK : FL_LM_X;
+        it.x.u_q4 = u;
+        it.x.v_q4 = v;
+        it.x.ground = p;
+        fl_polar_from_point(p, &it.x.range_mm, &it.x.bearing);
+        it.x.seg_a = it.x.seg_b = -1;
+        it.ground = true;
+        for (a = 0; a < 4; a++) {
+            fl_angle_t g = fl_angle_add(circle->orientation, (fl_angle_t)(a == 0 ? 0 : a == 1 ? 16384 : a == 2 ? -32768 : -16384));
+            fl_point_t q;
+            int32_t u2, v2;
+            q.x_mm = p.x_mm + fl_mul_q15(100, fl_cos_q15(g));
+            q.y_mm = p.y_mm + fl_mul_q15(100, fl_sin_q15(g));
+            it.garm[it.x.n_arms] = g;
+            if (fl_camera_ground_to_pixel(camera, q, &u2, &v2) && (u2 != u || v2 != v))
+                it.x.arm[it.x.n_arms++] = fl_atan2(v2 - v, u2 - u);
+        }
+        it.x.confidence = (uint8_t)(circle->confidence * 3 / 4);
+        cr_orient(&it.x, it.garm, true);
+        if (it.x.confidence < c->params.min_confidence)
+            continue;
+        w = cr_width_q4(lines, v);
+        merge = 3 * w > 4 * step_q4 ? 3 * w : 4 * step_q4;
+        cr_add(c, c->garm, &it, merge);
+        added++;
+    }
+    return added;
+}

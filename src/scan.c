@@ -1,0 +1,1044 @@
+/*
+ * src/scan.c - the column scanner of seed 000 (see include/fieldloc/scan.h
+ * for the outputs and their definitions).
+ *
+ * Algorithm, per frame, over the scan grid (col_step x row_step):
+ *  A  candidates: per grid column, from the search start (horizon - margin
+ *     with a camera, else row 0), only every ns-th sample (ns =
+ *     ceil(N / row_step)) is classified until one is green: every run of ns
+ *     green samples contains one of them, so no run starts earlier than
+ *     ns - 1 samples before it (cost ~1/ns of a classification per row above
+ *     the border).
+ *  B  bands of 32 grid columns, top-down from the band's earliest possible
+ *     run start: each row classified once into 32 2-bit codes (table
+ *     lookups; YUYV pixel pairs share one chroma lookup), bit-sliced run
+ *     counters find the first run of ns green samples per column (the
+ *     border; refined to the pixel between grid rows), the cells below the
+ *     border are stored, white run starts (W & ~W_above) get the contrast
+ *     check (one per horizontal group), rejected runs are cleared to their
+ *     end, yellow->green transitions become feet, yellow cells go to
+ *     bit-sliced column counters.
+ *  A' then per column, scalar and short: extend the border up over a thin
+ *     line with carpet (or a post) above it; reject green clutter beyond the
+ *     carpet (bumps above the border of the flat stretch next to them,
+ *     re-searched below the clutter in the class map); repair columns
+ *     without a border between columns with one (a line running down the
+ *     column).
+ *  C  goal posts: yellow right above a border is followed upward into the
+ *     map and a foot recorded there.
+ *  D  field colour: exact HSV of every estimate_step_px-th pixel below the
+ *     border; hue mode and mean (see scan.h).
+ *  "One pass per column": each column is traversed top-down once; a grid
+ *  cell is classified at most once in B, plus a few samples per column in
+ *  A, A' (around the border) and C (post pixels).
+ * Invariant: map cells above a column's border are OTHER except yellow
+ *  kept by C; below it they hold the colour class (white only after its
+ *  contrast check passed or the per-column check cap was reached).
+ * Memory: fl_scan_t only (85 824 bytes at the default capacities);
+ *  the stack holds a few words and one 8-entry window.
+ * Cost (x86-64 host, callgrind, tools/callgrind.sh): full resolution YUYV
+ *  about 9 instructions per pixel of the frame on the UvA 2013 frame (the
+ *  table lookups alone are 6 per classified pixel), the default 2 x 2 grid
+ *  about 3.8; worst case bounded by cells + per-column caps (noise frames
+ *  in bench_scan).
+ */
+#include "fieldloc/scan.h"
+
+#include <string.h>
+
+#define EVEN 0x5555555555555555ULL
+
+void fl_scan_params_default(fl_scan_params_t *p)
+{
+    if (p == NULL)
+        return;
+    p->col_step = 2;
+    p->row_step = 2;
+    p->border_run_px = 8;
+    p->horizon_margin_px = 2;
+    p->feet_per_column = 4;
+    p->checks_per_column = 32;
+    p->estimate_step_px = 24;
+}
+
+fl_status_t fl_scan_init(fl_scan_t *s, const fl_scan_params_t *p)
+{
+    if (s == NULL || p == NULL)
+        return FL_ERR_NULL;
+    memset(s, 0, sizeof *s);
+    s->status = FL_ERR_SIZE;   /* no frame yet */
+    if (p->col_step < 1 || p->col_step > 16 || p->row_step < 1 ||
+        p->row_step > 16 || p->border_run_px < 1 || p->border_run_px > 255 ||
+        p->horizon_margin_px < 0 || p->horizon_margin_px > 255 ||
+        p->feet_per_column < 0 || p->feet_per_column > 255 ||
+        p->checks_per_column < 0 || p->checks_per_column > 255 ||
+        p->estimate_step_px < 0 || p->estimate_step_px > 255) {
+        fl_scan_params_default(&s->params);
+        return FL_ERR_RANGE;
+    }
+    s->params = *p;
+    return FL_OK;
+}
+
+/* ---- pixel access ------------------------------------------------------------ */
+
+typedef struct {
+    const fl_color_table_t *ct;
+    fl_pixel_format_t fmt;
+    const uint8_t *p0, *p1, *p2;
+    size_t st0, st1, st2;
+    int32_t cs, rs;
+} frame_t;
+
+/* One image column as three byte pointers (Y, Cb, Cr of pixel (u, 0); for
+ * RGB888 y points at R) and the bytes from one pixel row to the next. */
+typedef struct {
+    const uint8_t *y, *cb, *cr;
+    size_t sy, scb, scr;
+    bool rgb;
+} col_t;
+
+static inline void col_init(col_t *c, const frame_t *f, int32_t u)
+{
+    size_t uu = (size_t)u;
+    c->rgb = f->fmt == FL_FMT_RGB888;
+    c->sy = f->st0;
+    c->scb = f->fmt == FL_FMT_YCBCR_PLANAR ? f->st1 : f->st0;
+    c->scr = f->fmt == FL_FMT_YCBCR_PLANAR ? f->st2 : f->st0;
+    if (f->fmt == FL_FMT_RGB888) {
+        c->y = c->cb = c->cr = f->p0 + 3 * uu;
+    } else if (f->fmt == FL_FMT_YUYV422) {
+        c->y = f->p0 + 2 * uu;
+        c->cb = f->p0 + 4 * (uu >> 1) + 1;  /* the pixel pair's chroma */
+        c->cr = c->cb + 2;
+    } else {
+        c->y = f->p0 + uu;
+        c->cb = f->p1 + uu;
+        c->cr = f->p2 + uu;
+    }
+}
+
+/* Class of the column's pixel in row v. */
+static inline int32_t col_class(const col_t *c, const fl_color_table_t *ct, int32_t v)
+{
+    size_t vv = (size_t)v;
+    if (c->rgb) {
+        const uint8_t *q = c->y + vv * c->sy;
+        return ct->rgb[ct->rgb_r[q[0]] | ct->rgb_g[q[1]] | ct->rgb_b[q[2]]];
+    }
+    return ct->pattern[(size_t)ct->chroma[((unsigned)c->cb[vv * c->scb] << 8) |
+                                          c->cr[vv * c->scr]] +
+                       c->y[vv * c->sy]];
+}
+
+/* BT.601 luma (RGB888) or Y of the column's pixel in row v. */
+static int32_t col_luma(const col_t *c, int32_t v)
+{
+    size_t vv = (size_t)v;
+    if (c->rgb) {
+        const uint8_t *q = c->y + vv * c->sy;
+        return fl_luma_from_rgb(q[0], q[1], q[2]);
+    }
+    return c->y[vv * c->sy];
+}
+
+/* R, G, B of the column's pixel in row v. */
+static void col_rgb(const col_t *c, int32_t v, uint8_t rgb[3])
+{
+    size_t vv = (size_t)v;
+    if (c->rgb) {
+        const uint8_t *q = c->y + vv * c->sy;
+        rgb[0] = q[0];
+        rgb[1] = q[1];
+        rgb[2] = q[2];
+        return;
+    }
+    fl_rgb_from_ycbcr(c->y[vv * c->sy], c->cb[vv * c->scb], c->cr[vv * c->scr], rgb);
+}
+
+static int32_t px_luma(const frame_t *f, int32_t u, int32_t v)
+{
+    col_t c;
+    col_init(&c, f, u);
+    return col_luma(&c, v);
+}
+
+/* ---- word classification (phase B) ----------------------------------------------
+ * 32 cells -> 64 bits, cell k at bits 63 - 2k, 62 - 2k. */
+
+/* YUYV at full resolution: 16 pixel pairs from q (an even pixel). */
+static uint64_t word_yuyv_pairs(const uint8_t *q, const uint16_t *chroma,
+                                const uint8_t *pat)
+{
+    uint64_t acc = 0;
+    const uint8_t *r;
+#define FL_PAIR(k)                                                              \
+    r = pat + chroma[((unsigned)q[4 * (k) + 1] << 8) | q[4 * (k) + 3]];         \
+    acc = (acc << 2) + r[q[4 * (k)]];                                           \
+    acc = (acc << 2) + r[q[4 * (k) + 2]];
+    FL_PAIR(0) FL_PAIR(1) FL_PAIR(2) FL_PAIR(3)
+    FL_PAIR(4) FL_PAIR(5) FL_PAIR(6) FL_PAIR(7)
+    FL_PAIR(8) FL_PAIR(9) FL_PAIR(10) FL_PAIR(11)
+    FL_PAIR(12) FL_PAIR(13) FL_PAIR(14) FL_PAIR(15)
+#undef FL_PAIR
+    return acc;
+}
+
+/* RGB, 32 cells D bytes apart from q.  D is a literal in the common
+ * cases so that every address is a constant offset. */
+#define FL_RGB(k) acc = (acc << 2) + tab[tr[q[(k) * D]] | tg[q[(k) * D + 1]] | tb[q[(k) * D + 2]]];
+#define FL_RGB8(k) FL_RGB(k) FL_RGB(k + 1) FL_RGB(k + 2) FL_RGB(k + 3) \
+    FL_RGB(k + 4) FL_RGB(k + 5) FL_RGB(k + 6) FL_RGB(k + 7)
+#define FL_RGB_WORD(name)                                                     \
+    static uint64_t name(const uint8_t *q, size_t d, const fl_color_table_t *ct) \
+    {                                                                         \
+        const uint16_t *tr = ct->rgb_r, *tg = ct->rgb_g, *tb = ct->rgb_b;     \
+        const uint8_t *tab = ct->rgb;                                         \
+        uint64_t acc = 0;                                                     \
+        (void)d;                                                              \
+        FL_RGB8(0) FL_RGB8(8) FL_RGB8(16) FL_RGB8(24)                         \
+        return acc;                                                           \
+    }
+#define D 3
+FL_RGB_WORD(word_rgb_1)
+#undef D
+#define D 6
+FL_RGB_WORD(word_rgb_2)
+#undef D
+#define D d
+FL_RGB_WORD(word_rgb)
+#undef D
+
+/* YUYV, 32 cells on even pixels D bytes apart from q (D = 2 col_step). */
+#define FL_YE(k) acc = (acc << 2) + pat[(size_t)chroma[((unsigned)q[(k) * D + 1] << 8) | \
+                                                        q[(k) * D + 3]] + q[(k) * D]];
+#define FL_YE8(k) FL_YE(k) FL_YE(k + 1) FL_YE(k + 2) FL_YE(k + 3) \
+    FL_YE(k + 4) FL_YE(k + 5) FL_YE(k + 6) FL_YE(k + 7)
+#define FL_YE_WORD(name)                                                      \
+    static uint64_t name(const uint8_t *q, size_t d, const uint16_t *chroma,  \
+                         const uint8_t *pat)                                  \
+    {                                                                         \
+        uint64_t acc = 0;                                                     \
+        (void)d;                                                              \
+        FL_YE8(0) FL_YE8(8) FL_YE8(16) FL_YE8(24)                             \
+        return acc;                                                           \
+    }
+#define D 4
+FL_YE_WORD(word_yuyv_2)
+#undef D
+#define D d
+FL_YE_WORD(word_yuyv_even)
+#undef D
+
+/* Any format and step, n cells (1..32) of pixel row v from cell i0. */
+static uint64_t word_generic(const frame_t *f, int32_t v, int32_t i0, int32_t n)
+{
+    const fl_color_table_t *ct = f->ct;
+    uint64_t acc = 0;
+    int32_t k;
+    for (k = 0; k < n; k++) {
+        col_t c;
+        col_init(&c, f, (i0 + k) * f->cs);
+        acc = (acc << 2) + (uint64_t)col_class(&c, ct, v);
+    }
+    return acc << (2 * (32 - n));
+}
+
+/* ---- bit helpers ----------------------------------------------------------------- */
+
+/* Index of the lowest set bit of x != 0 (de Bruijn). */
+static int32_t lowest_bit(uint64_t x)
+{
+    static const uint8_t tab[64] = {
+        0, 1, 2, 53, 3, 7, 54, 27, 4, 38, 41, 8, 34, 55, 48, 28,
+        62, 5, 39, 46, 44, 42, 22, 9, 24, 35, 59, 56, 49, 18, 29, 11,
+        63, 52, 6, 26, 37, 40, 33, 47, 61, 45, 43, 21, 23, 58, 17, 10,
+        51, 25, 36, 32, 60, 20, 57, 16, 50, 31, 19, 15, 30, 14, 13, 12};
+    return tab[((x & (~x + 1)) * 0x022FDD63CC95386DULL) >> 58];
+}
+
+static int32_t popcount64(uint64_t x)
+{
+    x = x - ((x >> 1) & EVEN);
+    x = (x & 0x3333333333333333ULL) + ((x >> 2) & 0x3333333333333333ULL);
+    x = (x + (x >> 4)) & 0x0F0F0F0F0F0F0F0FULL;
+    return (int32_t)((x * 0x0101010101010101ULL) >> 56);
+}
+
+/* Low bit of cell k (0..31) in a word. */
+static uint64_t cell_bit(int32_t k)
+{
+    return 1ULL << (62 - 2 * k);
+}
+
+static int32_t map_class(const fl_scan_t *s, int32_t i, int32_t j)
+{
+    return (int32_t)((s->map[j][i >> 5] >> (62 - 2 * (i & 31))) & 3);
+}
+
+/* ---- phase A: where the search for a run can start ------------------------------------ */
+
+/* Per grid column, the first of the samples j0 + ns - 1, j0 + 2 ns - 1, ...
+ * that is green (cand_row; rows when none).  Every run of ns green samples
+ * below j0 contains one of these samples, so no run starts before
+ * cand_row - ns + 1 and a column without a green one has no run. */
+static void find_candidates(fl_scan_t *s, const frame_t *f, int32_t j0, int32_t ns)
+{
+    const fl_color_table_t *ct = f->ct;
+    int32_t i, j;
+    for (i = 0; i < s->cols; i++) {
+        col_t col;
+        col_init(&col, f, i * f->cs);
+        s->first_row[i] = (int16_t)s->rows;
+        s->border_v[i] = (int16_t)s->height;
+        for (j = j0 + ns - 1; j < s->rows; j += ns)
+            if (col_class(&col, ct, j * f->rs) == FL_CLASS_GREEN) {
+                s->first_row[i] = (int16_t)j;   /* the candidate, for now */
+                break;
+            }
+    }
+}
+
+/* ---- phase B helpers ------------------------------------------------------------------ */
+
+static void add_foot(fl_scan_t *s, int32_t i, int32_t u, int32_t v)
+{
+    if (s->col_feet[i] >= s->params.feet_per_column || s->n_feet >= FL_SCAN_MAX_FEET) {
+        s->feet_dropped++;
+        return;
+    }
+    s->col_feet[i]++;
+    s->feet[s->n_feet].u = (int16_t)u;
+    s->feet[s->n_feet].v = (int16_t)v;
+    s->n_feet++;
+}
+
+/* Contrast check of a white run starting at cell (i, j), k = i % 32 in its
+ * word; g1, g2: green of the two rows above in this word (words left of it
+ * and this word are final in the map for row j).  True: keep. */
+static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
+                       int32_t k, uint64_t g1, uint64_t g2)
+{
+    int32_t v = j * f->rs, lw, lg = -1, d;
+    col_t col;
+    if (s->col_checks[i] >= s->params.checks_per_column) {
+        s->checks_skipped++;
+        return true;
+    }
+    s->col_checks[i]++;
+    col_init(&col, f, i * f->cs);
+    /* brightest pixel from this sample to the next: a thin line sampled
+     * on its blurred edge still shows its core */
+    lw = col_luma(&col, v);
+    for (d = 1; d <= f->rs && v + d < s->height; d++) {
+        int32_t l2 = col_luma(&col, v + d);
+        if (l2 > lw)
+            lw = l2;
+    }
+    /* the darkest green of the three samples above: the one right above a
+     * line is often its blurred edge, brighter than the carpet */
+    if (g1 & cell_bit(k))
+        lg = col_luma(&col, v - f->rs);
+    if (g2 & cell_bit(k)) {
+        int32_t l2 = col_luma(&col, v - 2 * f->rs);
+        lg = lg < 0 || l2 < lg ? l2 : lg;
+    }
+    if (lg >= 0 && v - 3 * f->rs >= 0 &&
+        col_class(&col, f->ct, v - 3 * f->rs) == FL_CLASS_GREEN) {
+        int32_t l3 = col_luma(&col, v - 3 * f->rs);
+        lg = l3 < lg ? l3 : lg;
+    }
+    for (d = 1; d <= 2 && lg < 0; d++) {
+        if (i - d >= 0 && map_class(s, i - d, j) == FL_CLASS_GREEN)
+            lg = px_luma(f, (i - d) * f->cs, v);
+        else if (i + d < s->cols && ((i + d) >> 5) == (i >> 5) &&
+                 map_class(s, i + d, j) == FL_CLASS_GREEN)
+            lg = px_luma(f, (i + d) * f->cs, v);
+    }
+    if (lg < 0) {
+        if (s->field.n <= 0)
+            return true;
+        lg = s->field.luma;   /* the previous frame's field */
+    }
+    /* Scaling: luma <= 255, products <= 255 * 300 */
+    return lw * 100 >= lg * (100 + (int32_t)f->ct->params.white_contrast_pct);
+}
+
+static void count_yellow(uint64_t *planes, uint64_t x)
+{
+    int32_t p;
+    for (p = 0; p < FL_SCAN_COUNT_BITS && x != 0; p++) {
+        uint64_t t = planes[p] & x;
+        planes[p] ^= x;
+        x = t;
+    }
+}
+
+/* A column's run of ns green samples completed at grid row j: its border. */
+static void border_found(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
+                         int32_t ns)
+{
+    int32_t st = j - ns + 1, v = st * f->rs, lo;
+    col_t col;
+    lo = (st - 1) * f->rs + 1;
+    if (lo < s->start_v)
+        lo = s->start_v;
+    if (f->rs > 1) {   /* refine between grid rows */
+        col_init(&col, f, i * f->cs);
+        while (v - 1 >= lo && col_class(&col, f->ct, v - 1) == FL_CLASS_GREEN)
+            v--;
+    }
+    s->border_v[i] = (int16_t)v;
+    s->first_row[i] = (int16_t)st;
+    s->n_border++;
+}
+
+/* Above the border.  Far away the carpet beyond the boundary line is a
+ * strip thinner than N: the first run of N is then below the line.  From
+ * the border up: a white stretch of at most 2 N px (a line) with green
+ * right above it moves the border to the top of that green (twice at most:
+ * two lines); with yellow above it (a post standing on the line) to the top
+ * of the white.  Yellow right above the border (or above the line, or with
+ * one other sample between) marks the column for the post trace (phase C).
+ * The cells passed are classified into the map (they were masked). */
+static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
+{
+    const fl_color_table_t *ct = f->ct;
+    int32_t rs = f->rs, jb = s->first_row[i], k, j;
+    int32_t max_white = (2 * s->params.border_run_px + rs - 1) / rs;
+    int32_t lo = (s->start_v + rs - 1) / rs;
+    uint64_t shift = (uint64_t)(62 - 2 * (i & 31));
+    col_t col;
+    col_init(&col, f, i * f->cs);
+    for (k = 0; k < 2; k++) {
+        int32_t jw = jb - 1, jg, c;
+        while (jw >= lo && jb - jw <= max_white &&
+               col_class(&col, ct, jw * rs) == FL_CLASS_WHITE)
+            jw--;
+        if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1) {
+            /* a line cut by the top of an image that is all ground */
+            for (j = 0; j < jb; j++)
+                s->map[j][i >> 5] |= (uint64_t)col_class(&col, ct, j * rs) << shift;
+            s->first_row[i] = 0;
+            s->border_v[i] = 0;
+            return;
+        }
+        if (jw < 0 || jb - jw > max_white)
+            return;
+        c = col_class(&col, ct, jw * rs);
+        /* one other sample (the blurred edge) may sit under a post */
+        if (c == FL_CLASS_OTHER && jw > 0 &&
+            col_class(&col, ct, (jw - 1) * rs) == FL_CLASS_YELLOW)
+            c = FL_CLASS_YELLOW;
+        if (c == FL_CLASS_YELLOW) {
+            if (jw == jb - 1) {
+                s->post_top[i >> 5] |= 1ULL << shift;
+                return;
+            }
+            /* a post standing on a line (thin: not a floor strip beyond
+             * the carpet under a yellow box): the line is field */
+            int32_t q, wmin = s->rows;
+            for (q = i - 2 * ns; q <= i + 2 * ns; q++)
+                if (q >= 0 && q < s->cols && q != i && s->first_row[q] < wmin)
+                    wmin = s->first_row[q];
+            /* ... and inside the field: its line lies below the carpet
+             * edge of the columns around it */
+            if (jw < lo || 2 * (jb - 1 - jw) > ns || jw + 1 <= wmin)
+                return;
+            s->post_top[i >> 5] |= 1ULL << shift;
+            jg = jw + 1;
+        } else if (c == FL_CLASS_GREEN && jw < jb - 1 && jw >= lo) {
+            jg = jw;
+            while (jg - 1 >= lo && col_class(&col, ct, (jg - 1) * rs) == FL_CLASS_GREEN)
+                jg--;
+        } else {
+            return;
+        }
+        for (j = jg; j < jb; j++)
+            s->map[j][i >> 5] |= (uint64_t)col_class(&col, ct, j * rs) << shift;
+        jb = jg;
+        s->first_row[i] = (int16_t)jb;
+        s->border_v[i] = (int16_t)(jb * rs);
+        if (c == FL_CLASS_YELLOW)
+            return;
+    }
+}
+
+/* Band w (32 grid columns): rows from j_lo down, each row classified once
+ * (32 cells), the run detector for columns still without a border, then
+ * the bit logic on the cells below the border.  State lives in locals. */
+static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
+                      int32_t ns, int32_t nplanes)
+{
+    const fl_color_table_t *ct = f->ct;
+    int32_t n = s->cols - 32 * w, j, p;
+    uint64_t found = 0, g1 = 0, g2 = 0, y1 = 0, y2 = 0, y3 = 0, wprev = 0, wrej = 0;
+    uint64_t cnt[8] = {0, 0, 0, 0, 0, 0, 0, 0}, want, all;
+    uint64_t *ycount = s->ycount[w];
+    size_t cs = (size_t)f->cs, u0 = (size_t)w * 32 * cs, step = (size_t)f->rs * f->st0;
+    const uint8_t *row;
+    int32_t kind = 0;
+    if (n > 32)
+        n = 32;
+    all = n == 32 ? EVEN : EVEN & ~((1ULL << (64 - 2 * n)) - 1);
+    if (n == 32 && f->fmt == FL_FMT_YUYV422)
+        kind = cs == 1 ? 1 : (cs == 2 ? 4 : ((cs & 1) == 0 ? 2 : 0));
+    else if (n == 32 && f->fmt == FL_FMT_RGB888)
+        kind = cs == 1 ? 5 : (cs == 2 ? 6 : 3);
+    memset(ycount, 0, sizeof s->ycount[w]);
+    for (j = 0; j < j_lo && j < s->rows; j++)
+        s->map[j][w] = 0;
+    row = f->p0 + (size_t)j_lo * step;
+    for (j = j_lo; j < s->rows; j++, row += step) {
+        uint64_t c, lo, hi, g, wh, y, starts, rej, cand;
+        switch (kind) {
+        case 1: c = word_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern); break;
+        case 2: c = word_yuyv_even(row + 2 * u0, 2 * cs, ct->chroma, ct->pattern); break;
+        case 3: c = word_rgb(row + 3 * u0, 3 * cs, ct); break;
+        case 4: c = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern); break;
+        case 5: c = word_rgb_1(row + 3 * u0, 3, ct); break;
+        case 6: c = word_rgb_2(row + 3 * u0, 6, ct); break;
+        default: c = word_generic(f, j * f->rs, 32 * w, n); break;
+        }
+        lo = c & EVEN;
+        hi = (c >> 1) & EVEN;
+        if (found != all) {
+            /* bit-sliced run counters: +1 where green, 0 elsewhere */
+            uint64_t gr = lo & ~hi, x = gr & ~found, eq;
+            for (p = 0; p < nplanes; p++) {
+                uint64_t t = cnt[p] & x;
+                cnt[p] ^= x;
+                x = t;
+            }
+            x = gr & ~found;
+            eq = x;
+            for (p = 0; p < nplanes; p++) {
+                cnt[p] &= x;
+                want = (ns >> p) & 1 ? cnt[p] : ~cnt[p];
+                eq &= want;
+            }
+            if (eq != 0) {
+                uint64_t e = eq;
+                int32_t jj;
+                found |= eq;
+                for (jj = j - ns + 1; jj < j; jj++)  /* the run was masked: green */
+                    s->map[jj][w] |= eq;
+                while (e != 0) {
+                    int32_t b = lowest_bit(e);
+                    e &= e - 1;
+                    border_found(s, f, 32 * w + 31 - (b >> 1), j, ns);
+                }
+            }
+        }
+        c &= found | (found << 1);
+        lo &= found;
+        hi &= found;
+        g = lo & ~hi;
+        wh = hi & ~lo;
+        y = lo & hi;
+        s->map[j][w] = c;
+        rej = wrej & wh;
+        starts = wh & ~wprev;
+        if (starts != 0) {
+            int32_t last = -4;
+            bool keep = true;
+            while (starts != 0) {   /* right to left; one check per group */
+                int32_t b = lowest_bit(starts), k = 31 - (b >> 1);
+                starts &= starts - 1;
+                if (b != last + 2)
+                    keep = white_keep(s, f, 32 * w + k, j, k, g1, g2);
+                last = b;
+                if (!keep) {
+                    rej |= 1ULL << b;
+                    s->white_rejected++;
+                }
+            }
+        }
+        if (rej != 0)
+            s->map[j][w] = c & ~(rej | (rej << 1));
+        wrej = rej;
+        wprev = wh;
+        /* two yellow samples right above, or above one non-green sample */
+        cand = g & ~g1 & ((y1 & y2) | (y2 & y3));
+        while (cand != 0) {
+            int32_t b = lowest_bit(cand), k = 31 - (b >> 1);
+            cand &= cand - 1;
+            add_foot(s, 32 * w + k, (32 * w + k) * f->cs, j * f->rs);
+        }
+        if (y != 0) {
+            count_yellow(ycount, y);
+            s->yellow_rows[j] = (uint16_t)(s->yellow_rows[j] + popcount64(y));
+        }
+        g2 = g1;
+        g1 = g;
+        y3 = y2;
+        y2 = y1;
+        y1 = y;
+    }
+    for (p = 0; p < FL_SCAN_COUNT_BITS; p++) {   /* bit-sliced counts -> columns */
+        uint64_t x = ycount[p];
+        while (x != 0) {
+            int32_t b = lowest_bit(x);
+            x &= x - 1;
+            s->yellow_cols[32 * w + 31 - (b >> 1)] =
+                (uint16_t)(s->yellow_cols[32 * w + 31 - (b >> 1)] + (1 << p));
+        }
+    }
+}
+
+/* Green clutter beyond the carpet (a couch, a bin, a shirt in carpet
+ * green) stands up from the floor: its columns form a bump above the
+ * border of the columns next to it.  Entering a bump is a step up of at
+ * least t = max(2, ns / 2) rows; the bump goes on while the border stays t
+ * rows above the level extrapolated from the 8 bordered columns before the
+ * step.  In each of its columns the search goes on below the clutter in the
+ * class map (classified below the old border): past the clutter's green, a
+ * gap that looks like floor (an other cell, or at least ns white cells),
+ * then the next run of ns green cells is the border if it starts within
+ * [level - t, level + ns] (the clutter's green must end ns above the
+ * level, the gap be at least ns samples).  Cells between the two borders return to
+ * background (their yellow and feet removed).  Done left to right, then
+ * right to left, so that bumps at either image edge are entered.  Robots
+ * and posts in front of the carpet make dips and are left alone. */
+static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
+                         int32_t t, int32_t level)
+{
+    int32_t j = s->first_row[i], run = 0, st = -1, jj, k, v, lo, n_other = 0, n_white = 0;
+    while (j < s->rows && j <= level - ns && map_class(s, i, j) == FL_CLASS_GREEN)
+        j++;
+    if (j > level - ns)
+        return false;   /* the green (nearly) reaches the level: carpet */
+    for (; j < s->rows; j++) {
+        int32_t c = map_class(s, i, j);
+        if (c == FL_CLASS_GREEN) {
+            if (++run >= ns) {
+                st = j - ns + 1;
+                break;
+            }
+        } else {
+            run = 0;
+            n_other += c != FL_CLASS_WHITE;
+            n_white += c == FL_CLASS_WHITE;
+        }
+    }
+    if (st < 0 || st < level - t || st > level + ns || n_other + n_white < ns ||
+        (n_other == 0 && n_white < ns))
+        return false;
+    for (jj = s->first_row[i]; jj < st; jj++) {
+        if (map_class(s, i, jj) == FL_CLASS_YELLOW) {
+            s->yellow_cols[i]--;
+            s->yellow_rows[jj]--;
+        }
+        s->map[jj][i >> 5] &= ~(3ULL << (62 - 2 * (i & 31)));
+    }
+    v = st * f->rs;
+    for (k = 0; k < s->n_feet; k++)   /* feet inside the clutter */
+        if (s->feet[k].u == i * f->cs && s->feet[k].v < v) {
+            s->feet[k] = s->feet[--s->n_feet];
+            s->col_feet[i]--;
+            k--;
+        }
+    lo = (st - 1) * f->rs + 1;
+    if (f->rs > 1) {
+        col_t col;
+        col_init(&col, f, i * f->cs);
+        while (v - 1 >= lo && col_class(&col, f->ct, v - 1) == FL_CLASS_GREEN)
+            v--;
+    }
+    s->first_row[i] = (int16_t)st;
+    s->border_v[i] = (int16_t)v;
+    return true;
+}
+
+/* Level at column x of the line through window points (x0, y0), (x1, y1).
+ * Scaling: |dy| <= 4096, |x - x0| <= 4096: products < 2^24. */
+static int32_t level_at(int32_t x0, int32_t y0, int32_t x1, int32_t y1, int32_t x)
+{
+    return x1 == x0 ? y1 : y0 + (y1 - y0) * (x - x0) / (x1 - x0);
+}
+
+#define BUMP_WIN 8
+
+static void reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns, int32_t dir)
+{
+    const int16_t *b = s->first_row;
+    int32_t t = ns / 2 > 2 ? ns / 2 : 2, rows = s->rows, cols = s->cols;
+    int32_t wx[BUMP_WIN], wn = 0, wh = 0, i;
+    bool ref = false;
+    int32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    for (i = dir > 0 ? 0 : cols - 1; i >= 0 && i < cols; i += dir) {
+        int32_t k, last, r;
+        if (b[i] >= rows)
+            continue;
+        if (ref && b[i] < level_at(x0, y0, x1, y1, i) - t) {
+            /* a bump: up to where the border comes back to the level */
+            last = i;
+            for (r = i; r >= 0 && r < cols && (r - i) * dir < cols / 2; r += dir) {
+                if (b[r] >= rows)
+                    continue;
+                if (b[r] >= level_at(x0, y0, x1, y1, r) - t)
+                    break;
+                last = r;
+            }
+            for (k = i; k != last + dir; k += dir)
+                if (b[k] < rows)
+                    (void)rerun_column(s, f, k, ns, t, level_at(x0, y0, x1, y1, k));
+            i = last;
+            continue;
+        }
+        /* the window of the last BUMP_WIN bordered columns; a level only
+         * while they are flat: dips of robots rarely make one, post feet
+         * (yellow right above) never */
+        if (s->post_top[i >> 5] & (1ULL << (62 - 2 * (i & 31)))) {
+            wn = 0;
+            ref = false;
+            continue;
+        }
+        wx[wh] = i;
+        wh = (wh + 1) % BUMP_WIN;
+        if (wn < BUMP_WIN)
+            wn++;
+        ref = false;
+        if (wn == BUMP_WIN) {
+            /* flat: the window stays within t of the band between its end
+             * values (a line, or a gentle curve; a dip breaks it) */
+            int32_t first = wx[wh], lastx = wx[(wh + BUMP_WIN - 1) % BUMP_WIN];
+            int32_t lo_b = b[first] < b[lastx] ? b[first] : b[lastx];
+            int32_t hi_b = b[first] < b[lastx] ? b[lastx] : b[first];
+            bool flat = true;
+            for (k = 0; k < BUMP_WIN; k++)
+                flat = flat && b[wx[k]] >= lo_b - t && b[wx[k]] <= hi_b + t;
+            if (flat) {
+                ref = true;
+                x0 = first;
+                y0 = b[first];
+                x1 = lastx;
+                y1 = b[lastx];
+            }
+        }
+    }
+}
+
+/* Columns without a border between columns with one: a field line running
+ * down the column has no green.  Between the neighbours' border row and the
+ * bottom, the lowest stretch of field colours (green or white, at most one
+ * other sample in ten, no yellow) becomes the field; its top is the border
+ * and its cells are classified into the map (white unchecked).  Only such
+ * columns are read again, bottom-up, once. */
+static void repair_borders(fl_scan_t *s, const frame_t *f)
+{
+    const fl_color_table_t *ct = f->ct;
+    int32_t reach = 16 / f->cs > 2 ? 16 / f->cs : 2;
+    int32_t i;
+    for (i = 0; i < s->cols; i++) {
+        int32_t l, r, ref = -1, j, n = 0, nf = 0, best = -1;
+        col_t col;
+        if (s->border_v[i] < s->height)
+            continue;
+        for (l = i - 1; l >= 0 && l >= i - reach; l--)
+            if (s->border_v[l] < s->height)
+                break;
+        for (r = i + 1; r < s->cols && r <= i + reach; r++)
+            if (s->border_v[r] < s->height)
+                break;
+        if (l >= 0 && l >= i - reach)
+            ref = s->first_row[l];
+        if (r < s->cols && r <= i + reach && s->first_row[r] > ref)
+            ref = s->first_row[r];
+        if (ref < 0)
+            continue;
+        col_init(&col, f, i * f->cs);
+        for (j = s->rows - 1; j >= ref; j--) {
+            int32_t c = col_class(&col, ct, j * f->rs);
+            if (c == FL_CLASS_YELLOW)
+                break;
+            n++;
+            if (c == FL_CLASS_GREEN || c == FL_CLASS_WHITE) {
+                nf++;
+                best = j;
+            } else if (nf * 10 < n * 9) {
+                break;
+            }
+        }
+        if (best < 0 || n - nf > (n + 9) / 10)
+            continue;
+        s->border_v[i] = (int16_t)(best * f->rs);
+        s->first_row[i] = (int16_t)best;
+        s->n_border++;
+        s->post_top[i >> 5] |= 1ULL << (62 - 2 * (i & 31));   /* let C look */
+        for (j = best; j < s->rows; j++) {
+            uint64_t c = (uint64_t)col_class(&col, ct, j * f->rs);
+            s->map[j][i >> 5] |= c << (62 - 2 * (i & 31));
+            if (c == FL_CLASS_YELLOW) {
+                s->yellow_cols[i]++;
+                s->yellow_rows[j]++;
+            }
+        }
+    }
+}
+
+/* ---- phase C: posts above the border ---------------------------------------------------- */
+
+static void trace_posts(fl_scan_t *s, const frame_t *f)
+{
+    const fl_color_table_t *ct = f->ct;
+    int32_t i;
+    for (i = 0; i < s->cols; i++) {
+        int32_t jb = s->first_row[i], jj, gap = 0, n = 0;
+        bool yellow = false;
+        col_t col;
+        if (jb >= s->rows)
+            continue;
+        if (!(s->post_top[i >> 5] & (1ULL << (62 - 2 * (i & 31)))))
+            continue;   /* phase B saw no yellow right above this border */
+        col_init(&col, f, i * f->cs);
+        for (jj = jb - 1; jj >= 0 && jj >= jb - 2; jj--)
+            if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
+                yellow = true;
+                break;
+            }
+        if (!yellow)
+            continue;
+        for (jj = jb - 1; jj >= 0; jj--) {
+            if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
+                s->map[jj][i >> 5] |= 3ULL << (62 - 2 * (i & 31));
+                s->yellow_cols[i]++;
+                s->yellow_rows[jj]++;
+                n++;
+                gap = 0;
+            } else if (++gap > 1) {
+                break;
+            }
+        }
+        if (n >= 2)   /* a post, not a yellowish speck at the carpet edge */
+            add_foot(s, i, i * f->cs, s->border_v[i]);
+    }
+}
+
+/* ---- phase D: field colour --------------------------------------------------------------- */
+
+static int32_t hue_wrap(int32_t h)
+{
+    if (h < 0)
+        return h + 180;
+    return h >= 180 ? h - 180 : h;
+}
+
+static void estimate_field(fl_scan_t *s, const frame_t *f)
+{
+    const fl_hsv_box_t *gb = &f->ct->green;
+    int32_t est = s->params.estimate_step_px;
+    int32_t ecs, ers, i, j, h, n = 0, best = -1, mode = 0, acc, wsum, sum;
+    int32_t span = gb->h_hi >= gb->h_lo ? gb->h_hi - gb->h_lo : gb->h_hi + 180 - gb->h_lo;
+    int32_t centre = hue_wrap(gb->h_lo + span / 2);
+    int32_t smin = gb->s_lo / 2;
+    uint32_t ss = 0, sv = 0, sl = 0;
+    memset(&s->field, 0, sizeof s->field);
+    if (est <= 0)
+        return;
+    ecs = est / f->cs > 0 ? est / f->cs : 1;
+    ers = est / f->rs > 0 ? est / f->rs : 1;
+    memset(s->hue_hist, 0, sizeof s->hue_hist);
+    for (i = 0; i < s->cols; i += ecs) {
+        int32_t jf = s->first_row[i];
+        col_t col;
+        col_init(&col, f, i * f->cs);
+        for (j = (jf + ers - 1) / ers * ers; j < s->rows; j += ers) {
+            uint8_t rgb[3];
+            fl_hsv_t hsv;
+            int32_t dh;
+            col_rgb(&col, j * f->rs, rgb);
+            hsv = fl_hsv_from_rgb(rgb[0], rgb[1], rgb[2]);
+            dh = hsv.h - centre;
+            dh = dh > 90 ? dh - 180 : (dh < -90 ? dh + 180 : dh);
+            if (hsv.s < smin || dh > 30 || dh < -30)
+                continue;
+            s->hue_hist[hsv.h]++;
+            ss += hsv.s;
+            sv += hsv.v;
+            sl += fl_luma_from_rgb(rgb[0], rgb[1], rgb[2]);
+            n++;
+        }
+    }
+    if (n == 0)
+        return;
+    /* mode of the histogram smoothed over 5 bins (sliding sum) */
+    sum = s->hue_hist[178] + s->hue_hist[179] + s->hue_hist[0] + s->hue_hist[1] +
+          s->hue_hist[2];
+    for (h = 0; h < 180; h++) {
+        if (sum > best) {
+            best = sum;
+            mode = h;
+        }
+        sum += s->hue_hist[hue_wrap(h + 3)] - s->hue_hist[hue_wrap(h - 2)];
+    }
+    acc = 0;
+    wsum = 0;
+    for (h = -8; h <= 8; h++) {
+        acc += h * s->hue_hist[hue_wrap(mode + h)];
+        wsum += s->hue_hist[hue_wrap(mode + h)];
+    }
+    /* Scaling: |acc| <= 8 * n; rounded division to nearest */
+    if (wsum > 0)
+        mode += (acc >= 0 ? acc + wsum / 2 : acc - wsum / 2) / wsum;
+    s->field.n = n;
+    s->field.hue = (uint8_t)hue_wrap(mode);
+    s->field.sat = (uint8_t)(ss / (uint32_t)n);
+    s->field.val = (uint8_t)(sv / (uint32_t)n);
+    s->field.luma = (uint8_t)(sl / (uint32_t)n);
+}
+
+/* ---- the frame ---------------------------------------------------------------------------- */
+
+static void empty_result(fl_scan_t *s, fl_status_t st)
+{
+    s->status = st;
+    s->width = s->height = s->cols = s->rows = s->words = 0;
+    s->start_v = 0;
+    s->n_border = 0;
+    s->n_feet = 0;
+    s->feet_dropped = s->checks_skipped = s->white_rejected = 0;
+}
+
+int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
+                      const fl_image_t *img, const fl_camera_t *camera)
+{
+    frame_t f;
+    fl_status_t st;
+    int32_t cols, rows, w, j0, ns, nplanes;
+    if (s == NULL)
+        return 0;
+    if (colors == NULL || img == NULL) {
+        empty_result(s, FL_ERR_NULL);
+        return 0;
+    }
+    st = fl_image_validate(img);
+    if (st != FL_OK) {
+        empty_result(s, st);
+        return 0;
+    }
+    cols = (img->width + s->params.col_step - 1) / s->params.col_step;
+    rows = (img->height + s->params.row_step - 1) / s->params.row_step;
+    if (cols > FL_SCAN_MAX_COLS || rows > FL_SCAN_MAX_ROWS) {
+        empty_result(s, FL_ERR_SIZE);
+        return 0;
+    }
+    f.ct = colors;
+    f.fmt = img->format;
+    f.p0 = img->plane[0];
+    f.p1 = img->plane[1];
+    f.p2 = img->plane[2];
+    f.st0 = (size_t)img->stride[0];
+    f.st1 = (size_t)img->stride[1];
+    f.st2 = (size_t)img->stride[2];
+    f.cs = s->params.col_step;
+    f.rs = s->params.row_step;
+
+    empty_result(s, FL_OK);
+    s->width = img->width;
+    s->height = img->height;
+    s->cols = cols;
+    s->rows = rows;
+    s->words = (cols + 31) / 32;
+    s->start_v = 0;
+    s->below_horizon = false;
+    if (camera != NULL) {
+        int32_t hv = fl_camera_horizon_v_q4(camera, (img->width - 1) * 8);
+        if (hv == INT32_MAX)
+            s->start_v = img->height;
+        else if (hv == INT32_MIN || hv < -16)
+            s->below_horizon = true;
+        if (hv != INT32_MAX && hv != INT32_MIN) {
+            int32_t v = (hv >> 4) + 1 - s->params.horizon_margin_px;
+            s->start_v = v < 0 ? 0 : (v > img->height ? img->height : v);
+        }
+    }
+    j0 = (s->start_v + f.rs - 1) / f.rs;
+
+    /* A */
+    ns = (s->params.border_run_px + f.rs - 1) / f.rs;
+    for (nplanes = 1; (1 << nplanes) <= ns; nplanes++)
+        ;
+    find_candidates(s, &f, j0, ns);
+    /* B */
+    memset(s->col_feet, 0, (size_t)cols);
+    memset(s->col_checks, 0, (size_t)cols);
+    memset(s->yellow_cols, 0, (size_t)cols * sizeof s->yellow_cols[0]);
+    memset(s->yellow_rows, 0, (size_t)rows * sizeof s->yellow_rows[0]);
+    memset(s->post_top, 0, sizeof s->post_top);
+    for (w = 0; w < s->words; w++) {
+        int32_t m = rows, k;
+        for (k = 32 * w; k < cols && k < 32 * w + 32; k++)
+            if (s->first_row[k] < m)
+                m = s->first_row[k];
+        m = m - ns + 1 > j0 ? m - ns + 1 : j0;
+        scan_band(s, &f, w, m, ns, nplanes);
+    }
+    for (w = 0; w < cols; w++) {
+        if (s->border_v[w] >= s->height)
+            s->first_row[w] = (int16_t)rows;   /* no run found */
+        else
+            extend_border(s, &f, w, ns);
+    }
+    reject_bumps(s, &f, ns, 1);
+    reject_bumps(s, &f, ns, -1);
+    repair_borders(s, &f);
+    /* C */
+    trace_posts(s, &f);
+    /* D */
+    estimate_field(s, &f);
+    return s->n_border;
+}
+
+/* ---- accessors ------------------------------------------------------------------------------- */
+
+fl_color_class_t fl_scan_class_at(const fl_scan_t *s, int32_t i, int32_t j)
+{
+    if (s == NULL || i < 0 || j < 0 || i >= s->cols || j >= s->rows)
+        return FL_CLASS_OTHER;
+    return (fl_color_class_t)map_class(s, i, j);
+}
+
+/* Spread bits (cells at even positions) of class c in a map word, cells
+ * beyond the grid excluded. */
+static uint64_t select_class(const fl_scan_t *s, int32_t j, int32_t w,
+                             fl_color_class_t c)
+{
+    uint64_t x = s->map[j][w], lo = x & EVEN, hi = (x >> 1) & EVEN, sel;
+    int32_t n = s->cols - 32 * w;
+    switch (c) {
+    case FL_CLASS_GREEN: sel = lo & ~hi; break;
+    case FL_CLASS_WHITE: sel = hi & ~lo; break;
+    case FL_CLASS_YELLOW: sel = lo & hi; break;
+    default: sel = ~(lo | hi) & EVEN; break;
+    }
+    if (n < 32)
+        sel &= ~((1ULL << (64 - 2 * n)) - 1);
+    return sel;
+}
+
+uint32_t fl_scan_mask_word(const fl_scan_t *s, int32_t j, int32_t w,
+                           fl_color_class_t c)
+{
+    uint64_t x;
+    if (s == NULL || j < 0 || j >= s->rows || w < 0 || w >= s->words)
+        return 0;
+    x = select_class(s, j, w, c);
+    x = (x | (x >> 1)) & 0x3333333333333333ULL;
+    x = (x | (x >> 2)) & 0x0F0F0F0F0F0F0F0FULL;
+    x = (x | (x >> 4)) & 0x00FF00FF00FF00FFULL;
+    x = (x | (x >> 8)) & 0x0000FFFF0000FFFFULL;
+    x = (x | (x >> 16)) & 0x00000000FFFFFFFFULL;
+    return (uint32_t)x;
+}
+
+int32_t fl_scan_count(const fl_scan_t *s, fl_color_class_t c)
+{
+    int32_t j, w, n = 0;
+    if (s == NULL)
+        return 0;
+    for (j = 0; j < s->rows; j++)
+        for (w = 0; w < s->words; w++)
+            n += popcount64(select_class(s, j, w, c));
+    return n;
+}

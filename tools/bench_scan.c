@@ -1,0 +1,231 @@
+/*
+ * tools/bench_scan.c - `fieldloc bench` section "scan": the column scanner
+ * against the OpenCV chain on the same frames, single-threaded both.
+ *
+ * fieldloc side: fl_scan_frame (tables built beforehand) on the frame in
+ *   the named format; output = border per grid column, the 2-bit class map
+ *   below the border (+ post yellow above it), yellow histograms, feet,
+ *   field colour.  "full" = every pixel (step 1 1), "default" = the 2 x 2
+ *   grid the later stages use.
+ * OpenCV side (cvpeer_chain_run): cvtColor(YUV2RGB_YUYV) for YUYV input,
+ *   cvtColor(RGB2HSV), inRange for green, white and yellow (three full
+ *   masks, same boxes), first run of N green mask pixels per column.
+ * memcpy rows: one memcpy of the frame's bytes (the floor of any pass).
+ * Frames: real = UvA 2013 qvga_000001 (320x240) and physar black1_point1
+ *   top (640x480, NAO v6, white goals, sunlight); rendered = the fixture
+ *   scenes spl2013_goal_both (320) and spl2013_640_goal (640); noise =
+ *   uniform random RGB (every pixel its own class: the worst case for
+ *   runs, checks and feet) and "classnoise" (random carpet / line / post
+ *   colours per pixel).
+ * Times: ns per frame, best of 5 batches (1 with --quick).
+ */
+#include "scan_tool.h"
+
+#include "ppm.h"
+#include "realdata.h"
+#include "registry.h"
+#ifdef FL_HAVE_OPENCV
+#include "cv_peer.h"
+#endif
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static fl_color_table_t bench_colors;
+static fl_scan_t bench_scanner;
+static volatile int32_t bench_sink;
+
+typedef struct {
+    char name[32];
+    int w, h;
+    uint8_t *rgb;        /* malloc'd */
+} bench_frame_t;
+
+static int load_real(bench_frame_t *f, const char *name, const char *file)
+{
+    const char *dir = rd_dir();
+    host_image_t im;
+    char err[256];
+    if (!dir || rd_read_ppm(dir, file, &im, err, sizeof err) != 0)
+        return -1;
+    snprintf(f->name, sizeof f->name, "%s", name);
+    f->w = im.width;
+    f->h = im.height;
+    f->rgb = im.rgb;
+    return 0;
+}
+
+static int load_rendered(bench_frame_t *f, const char *name, const char *scene)
+{
+    render_scene_t sc;
+    render_frame_t fr;
+    char err[256];
+    if (render_scene_load(scene, &sc, err, sizeof err) != 0)
+        return -1;
+    sc.format = FL_FMT_RGB888;
+    if (render_frame(&sc, &fr) != 0)
+        return -1;
+    snprintf(f->name, sizeof f->name, "%s", name);
+    f->w = fr.width;
+    f->h = fr.height;
+    f->rgb = malloc((size_t)fr.width * (size_t)fr.height * 3);
+    if (f->rgb)
+        memcpy(f->rgb, fr.rgb, (size_t)fr.width * (size_t)fr.height * 3);
+    render_frame_free(&fr);
+    return f->rgb ? 0 : -1;
+}
+
+static int make_noise(bench_frame_t *f, const char *name, int w, int h, int classes)
+{
+    static const uint8_t pal[4][3] = {{82, 141, 85}, {254, 253, 250}, {191, 185, 47}, {90, 60, 40}};
+    uint64_t s = 0x9E3779B97F4A7C15ULL;
+    size_t i, n = (size_t)w * (size_t)h;
+    snprintf(f->name, sizeof f->name, "%s", name);
+    f->w = w;
+    f->h = h;
+    f->rgb = malloc(n * 3);
+    if (!f->rgb)
+        return -1;
+    for (i = 0; i < n; i++) {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        if (classes)
+            memcpy(f->rgb + 3 * i, pal[s & 3], 3);
+        else {
+            f->rgb[3 * i] = (uint8_t)s;
+            f->rgb[3 * i + 1] = (uint8_t)(s >> 8);
+            f->rgb[3 * i + 2] = (uint8_t)(s >> 16);
+        }
+    }
+    return 0;
+}
+
+/* ns per call of fn, best of reps batches of n calls */
+#define BENCH_TIME(result, reps, n, stmt)                                         \
+    do {                                                                          \
+        int r_, k_;                                                               \
+        double best_ = 1e300;                                                     \
+        for (r_ = 0; r_ < (reps); r_++) {                                         \
+            double t0_ = bench_now_ns();                                          \
+            for (k_ = 0; k_ < (n); k_++) {                                        \
+                stmt;                                                             \
+            }                                                                     \
+            t0_ = (bench_now_ns() - t0_) / (n);                                   \
+            if (t0_ < best_)                                                      \
+                best_ = t0_;                                                      \
+        }                                                                         \
+        (result) = best_;                                                         \
+    } while (0)
+
+static void boxes_of(const fl_color_table_t *t, uint8_t boxes[3][6])
+{
+    const fl_hsv_box_t *b[3];
+    int k;
+    b[0] = &t->green;
+    b[1] = &t->white;
+    b[2] = &t->yellow;
+    for (k = 0; k < 3; k++) {
+        boxes[k][0] = b[k]->h_lo;
+        boxes[k][1] = b[k]->h_hi;
+        boxes[k][2] = b[k]->s_lo;
+        boxes[k][3] = b[k]->s_hi;
+        boxes[k][4] = b[k]->v_lo;
+        boxes[k][5] = b[k]->v_hi;
+    }
+}
+
+static void bench_frame(bench_ctx_t *ctx, const bench_frame_t *f, int noise)
+{
+    int reps = ctx->quick ? 1 : 5;
+    int n = f->w * f->h <= 320 * 240 ? 200 : 60;
+    int fmt_i, mode;
+    static const fl_pixel_format_t fmts[2] = {FL_FMT_YUYV422, FL_FMT_RGB888};
+    double peer[2] = {0, 0};
+    char name[400], desc[400];
+    if (ctx->quick)
+        n /= 10;
+#ifdef FL_HAVE_OPENCV
+    {
+        cvpeer_chain_t *c = cvpeer_chain_new();
+        int16_t *border = malloc(sizeof(int16_t) * (size_t)f->w);
+        uint8_t boxes[3][6];
+        scantool_frame_t yuyv;
+        boxes_of(&bench_colors, boxes);
+        if (c && border && scantool_frame_from_rgb(f->rgb, f->w, f->h, FL_FMT_YUYV422, &yuyv) == 0) {
+            BENCH_TIME(peer[0], reps, n, cvpeer_chain_run(c, yuyv.data, 1, f->w, f->h, (const uint8_t(*)[6])boxes, 8, border));
+            BENCH_TIME(peer[1], reps, n, cvpeer_chain_run(c, f->rgb, 0, f->w, f->h, (const uint8_t(*)[6])boxes, 8, border));
+            scantool_frame_free(&yuyv);
+        }
+        free(border);
+        cvpeer_chain_free(c);
+    }
+#endif
+    for (fmt_i = 0; fmt_i < 2; fmt_i++) {
+        scantool_frame_t fr;
+        uint8_t *copy;
+        double t_copy;
+        if (scantool_frame_from_rgb(f->rgb, f->w, f->h, fmts[fmt_i], &fr) != 0)
+            continue;
+        for (mode = 0; mode < 2; mode++) {
+            fl_scan_params_t sp;
+            double t;
+            fl_scan_params_default(&sp);
+            if (mode == 0)
+                sp.col_step = sp.row_step = 1;
+            fl_scan_init(&bench_scanner, &sp);
+            BENCH_TIME(t, reps, n, bench_sink += fl_scan_frame(&bench_scanner, &bench_colors, &fr.view, NULL));
+            snprintf(name, sizeof name, "scan_%s_%s_%s", mode == 0 ? "full" : "default",
+                     render_format_name(fmts[fmt_i]), f->name);
+            snprintf(desc, sizeof desc, "OpenCV %s%s-> HSV, 3x inRange, first green run/column%s",
+                     fmts[fmt_i] == FL_FMT_YUYV422 ? "YUYV->RGB " : "RGB ",
+                     "", noise ? " (noise: worst case)" : "");
+            bench_row(ctx, name, t, peer[fmt_i], desc);
+        }
+        copy = malloc(fr.size);
+        if (copy) {
+            BENCH_TIME(t_copy, reps, n, memcpy(copy, fr.data, fr.size); bench_sink += copy[fr.size / 2]);
+            snprintf(name, sizeof name, "memcpy_%s_%s", render_format_name(fmts[fmt_i]), f->name);
+            snprintf(desc, sizeof desc, "memcpy of the %zu-byte frame (no peer)", fr.size);
+            bench_row(ctx, name, t_copy, 0, desc);
+            free(copy);
+        }
+        scantool_frame_free(&fr);
+    }
+}
+
+void bench_scan(bench_ctx_t *ctx)
+{
+    bench_frame_t fr[6];
+    int nf = 0, k, reps = ctx->quick ? 1 : 5;
+    fl_color_params_t cp;
+    double t;
+    fl_color_params_default(&cp);
+    fl_color_init(&bench_colors, &cp);
+#ifdef FL_HAVE_OPENCV
+    cvpeer_set_threads(1);
+#endif
+    memset(fr, 0, sizeof fr);
+    if (load_real(&fr[nf], "real320", "IntelligentRoboticsLab_Datasets_qvga_000001.ppm") == 0)
+        nf++;
+    if (load_real(&fr[nf], "real640", "physar_landmark_based_slam_dataset_black1_point1_top.ppm") == 0)
+        nf++;
+    if (nf == 0)
+        printf("# scan bench: real frames %s\n", rd_skip_message());
+    if (load_rendered(&fr[nf], "rend320", "fixtures/frames/spl2013_goal_both.scene") == 0)
+        nf++;
+    if (load_rendered(&fr[nf], "rend640", "fixtures/frames/spl2013_640_goal.scene") == 0)
+        nf++;
+    if (make_noise(&fr[nf], "noise320", 320, 240, 0) == 0)
+        nf++;
+    if (make_noise(&fr[nf], "classnoise320", 320, 240, 1) == 0)
+        nf++;
+    for (k = 0; k < nf; k++)
+        bench_frame(ctx, &fr[k], !strncmp(fr[k].name, "noise", 5) || !strncmp(fr[k].name, "class", 5));
+    /* table build (what fl_color_adapt costs when the light moved) */
+    BENCH_TIME(t, reps, ctx->quick ? 2 : 20, fl_color_init(&bench_colors, &cp));
+    bench_row(ctx, "color_tables_build", t, 0, "fl_color_init: YCbCr + RGB tables (no peer)");
+    for (k = 0; k < nf; k++)
+        free(fr[k].rgb);
+}

@@ -1,0 +1,39 @@
+#!/bin/sh
+# tools/callgrind.sh - instructions per frame of the column scanner under
+# callgrind: `fieldloc scan FRAME --repeat N` for two N, only the calls of
+# fl_scan_frame collected (--toggle-collect); per frame = difference / (N2 - N1),
+# so start-up, image loading and table building cancel out.
+# Usage: sh tools/callgrind.sh [BUILD_DIR]   (default build; needs valgrind)
+# Prints: callgrind NAME instructions_per_frame instructions_per_pixel
+B=${1:-build}
+CLI=$B/fieldloc
+RD=../shared/realdata
+command -v valgrind >/dev/null 2>&1 || { echo "callgrind: valgrind not installed, skipped"; exit 0; }
+[ -x "$CLI" ] || { echo "callgrind: $CLI not built"; exit 1; }
+TMP=${TMPDIR:-/tmp}/fl_callgrind.$$
+mkdir -p "$TMP"
+refs() {  # refs N ARGS...: instructions collected inside fl_scan_frame
+    n=$1; shift
+    valgrind --tool=callgrind --toggle-collect=fl_scan_frame --callgrind-out-file="$TMP/out" \
+        "$CLI" scan "$@" --repeat "$n" --quiet 2>&1 | sed -n 's/.*refs: *//p' | tr -d ,
+}
+run() {  # run NAME W H ARGS...
+    name=$1; w=$2; h=$3; shift 3
+    a=$(refs 2 "$@"); b=$(refs 6 "$@")
+    if [ -z "$a" ] || [ -z "$b" ]; then echo "callgrind $name failed"; return; fi
+    awk -v n="$name" -v a="$a" -v b="$b" -v px=$((w * h)) \
+        'BEGIN { f = (b - a) / 4; printf "callgrind %-28s %10.0f instr/frame %6.2f instr/pixel\n", n, f, f / px }'
+}
+REAL=$RD/IntelligentRoboticsLab_Datasets_qvga_000001.ppm
+REND=fixtures/frames/spl2013_goal_both.ppm
+for f in yuyv rgb; do
+    if [ -f "$REAL" ]; then
+        run "full_${f}_real320" 320 240 "$REAL" --format $f --full
+        run "default_${f}_real320" 320 240 "$REAL" --format $f
+    fi
+    if [ -f "$REND" ]; then
+        run "full_${f}_rend320" 320 240 "$REND" --format $f --full
+        run "default_${f}_rend320" 320 240 "$REND" --format $f
+    fi
+done
+rm -rf "$TMP"
