@@ -119,6 +119,7 @@ static int make_noise(bench_frame_t *f, const char *name, int w, int h, int clas
         (result) = best_;                                                         \
     } while (0)
 
+#ifdef FL_HAVE_OPENCV
 static void boxes_of(const fl_color_table_t *t, uint8_t boxes[3][6])
 {
     const fl_hsv_box_t *b[3];
@@ -135,6 +136,7 @@ static void boxes_of(const fl_color_table_t *t, uint8_t boxes[3][6])
         boxes[k][5] = b[k]->v_hi;
     }
 }
+#endif
 
 static void bench_frame(bench_ctx_t *ctx, const bench_frame_t *f, int noise)
 {
