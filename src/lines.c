@@ -1110,8 +1110,9 @@ static void ln_prune(fl_lines_t *l, ln_grow_t *g)
     c = fl_cos_q15(th);
     sn = fl_sin_q15(th);
     /* centroid in Q1 (moment units are Q1 >> LN_MSHIFT about the anchor) */
-    cu = ((s->sx << LN_MSHIFT) + n * ((int64_t)s->au << LN_MSHIFT)) / n;
-    cv = ((s->sy << LN_MSHIFT) + n * ((int64_t)s->av << LN_MSHIFT)) / n;
+    /* multiplications, not shifts: the sums and anchors may be negative */
+    cu = (s->sx * (1 << LN_MSHIFT) + n * ((int64_t)s->au * (1 << LN_MSHIFT))) / n;
+    cv = (s->sy * (1 << LN_MSHIFT) + n * ((int64_t)s->av * (1 << LN_MSHIFT))) / n;
     wq4 = fl_lines_width_q4(l, (int32_t)(cv / 2), false);
     k = fl_lines_width_q4(l, (int32_t)(cv / 2), true);
     if (k > 0 && (wq4 <= 0 || k < wq4))
