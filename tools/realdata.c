@@ -220,7 +220,9 @@ static int rd_num(const char *s, double *v)
     d = strtod(s, &end);
     while (*end == ' ')
         end++;
-    if (*end || errno || !isfinite(d))
+    /* |d| <= 1e9: every field of these files is far smaller, and later
+     * conversions to int must stay defined (found by fuzz_uva_csv) */
+    if (*end || errno || !isfinite(d) || d > 1e9 || d < -1e9)
         return -1;
     *v = d;
     return 0;
