@@ -12,5 +12,6 @@ T_SUITE(scan);
 T_SUITE(fuzzy);
 T_SUITE(lines);
 T_SUITE(features);
+T_SUITE(adversarial);
 T_SUITE(fuzz_regress);
 T_SUITE(rules);
