@@ -154,6 +154,7 @@ perf: $(CLI)
 # the current vision path.  Only when asked: review the diff before committing.
 golden: $(RUNNER)
 	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k features
+	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k walks
 
 # Regenerate the committed fixture set (deterministic: identical bytes on
 # every run and machine).

@@ -13,5 +13,6 @@ T_SUITE(fuzzy);
 T_SUITE(lines);
 T_SUITE(features);
 T_SUITE(adversarial);
+T_SUITE(walks);
 T_SUITE(fuzz_regress);
 T_SUITE(rules);
