@@ -522,8 +522,8 @@ static bool build_patterns(fl_color_table_t *t, int32_t q,
 
 static void build(fl_color_table_t *t)
 {
-    uint16_t base[8][256];
-    int16_t step_t[256];
+    uint16_t (*base)[256] = t->build_base;
+    int16_t *step_t = t->build_step;
     int32_t max_m[8];
     uint8_t hs_of[180];
     bool used[8];

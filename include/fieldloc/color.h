@@ -151,6 +151,10 @@ typedef struct {
     uint16_t chroma[65536];     /* (Cb << 8 | Cr) -> pattern index - ... + M */
     uint8_t pattern[FL_COLOR_PATTERN_BYTES];
     uint8_t rgb[32768];         /* (R>>3)<<10 | (G>>3)<<5 | B>>3 -> class */
+    /* scratch of a table build (dead between calls): kept here, not on
+     * the stack, so init/adapt/reset stay within the 4 KiB stack budget */
+    uint16_t build_base[8][256];
+    int16_t build_step[256];
 } fl_color_table_t;
 
 /* Validate params and build the tables.  FL_ERR_NULL, FL_ERR_RANGE (a hue
