@@ -2,6 +2,7 @@ SHELL := /bin/bash
 # fieldloc - fixed-point field localization for legged soccer robots.
 #
 #   make            library build/libfieldloc.a and the host CLI build/fieldloc
+#   make demo       the main job: a simulated walk through vision into the grid
 #   make test       host unit and fixture tests; ends with "N passed, N failed"
 #   make check      firmware rules: strict C99 warnings as errors, no FP
 #                   (-mgeneral-regs-only), no allocator symbols, fl_ prefix,
@@ -73,7 +74,7 @@ TOOL_LIB_OBJ := $(TOOL_LIB_SRC:%.c=$(BUILD)/%.o) $(TOOL_CXX_OBJ)
 CLI      := $(BUILD)/fieldloc
 RUNNER   := $(BUILD)/run_tests
 
-.PHONY: perf golden fuzz-build fuzz-smoke stack valgrind fixtures all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
+.PHONY: demo perf golden fuzz-build fuzz-smoke stack valgrind fixtures all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
 
 all: $(LIB) $(CLI)
 
@@ -145,6 +146,15 @@ sanitize:
 bench: $(CLI)
 	@$(CLI) bench --out $(BUILD)/bench.tsv
 	@sh tools/callgrind.sh $(BUILD)
+
+# The main job: a bundled simulated walk (spl2013, 130 s, head scanning, a
+# kidnap and a penalty) rendered frame by frame, run through the vision path
+# into the fuzzy grid; progress, the final error, and pictures in
+# build/demo/ (PPM, and PNG when OpenCV is present).  DEMO_ARGS="--seconds 70"
+# gives a shorter run.
+DEMO_ARGS ?=
+demo: all
+	@$(CLI) demo --out $(BUILD)/demo $(DEMO_ARGS)
 
 # Hot functions of the column scanner under perf record.
 perf: $(CLI)

@@ -4,33 +4,70 @@
  *
  *   fieldloc simulate --field spl2013|uva2013|aibo2004 --localizer fuzzy
  *                     --seed N [--features | --frames] [--steps N] [--quiet]
- *                     [--scenario FILE.walk]
+ *                     [--scenario FILE.walk] [--every N] [--param NAME=V]...
+ *                     [--obs-cache FILE] [--print-obs]
  *
  * The walk is the built-in scenario of the field (fixtures/walks/NAME.walk:
  * >= 120 s of walking with head scanning, one kidnap, one penalty), with its
- * PRNG seed replaced by --seed.  --features (default) feeds the simulator's
- * feature-level observations (fl_obs_list_t) to the localizer; --frames
- * would render every frame and run it through the vision path (issue 5),
- * which does not exist yet: it is refused with a clear message.
+ * PRNG seed replaced by --seed.  --steps N stops after N simulator steps.
  *
- * Per step the localizer does: predict(odometry); on SIM_EV_PENALIZED
- * reset to the two touchline placement spots; update(observations);
- * estimate.  It starts in total ignorance with the prior "own half" (the
+ * --features (default) feeds the simulator's feature-level observations
+ * (fl_obs_list_t) to the localizer.  Per step: predict(odometry); on
+ * SIM_EV_PENALIZED reset to the two touchline placement spots;
+ * update(observations); estimate.
+ *
+ * --frames renders the frame of the true pose (sim_render_scene +
+ * render_frame: the renderer's defaults, RGB888, cluttered room, sensor
+ * noise; camera pose = the step's head, exactly what the renderer used)
+ * and runs it through the firmware vision path (fl_vision_frame with the
+ * default colour tables) into the grid.  Rendering is the slow part (about
+ * 55 ms a frame on one core of the host; frames are rendered in batches
+ * on lr_threads_default() threads, which does not change the results:
+ * about 45 s for the 130 s spl2013 walk on 2 cores), so vision runs on
+ * every Nth simulator step only (--every N, default 3: 10 Hz for the 30 Hz
+ * walks) and the
+ * odometry of the steps between is composed (lr_odo_add) and given to one
+ * predict; per vision step: predict(accumulated odometry) ; update(vision
+ * observations) ; estimate; a penalty placement on a skipped step resets
+ * the grid at that step and drops the odometry before it.  The metrics are
+ * then computed over the vision steps only (one record per vision step,
+ * printed as "# frames: ..." at the start).  Also printed: per observation
+ * kind, how vision's observations compare with the map at the true pose
+ * ("# vision ..." lines, tools/locrun.h lr_vdiag_t) and the time spent
+ * rendering and in vision + grid.
+ *
+ * Localizer parameters: --features uses fl_fuzzy_params_default; --frames
+ * uses lr_params_frames (tools/locrun.c: narrower rings for vision's
+ * accurate ranges, measured there).  --param NAME=VALUE (repeatable)
+ * changes one field of fl_fuzzy_params_t on top (raw integer units, see
+ * fuzzy.h); every value that differs from the defaults is printed.
+ * --obs-cache FILE (frames mode, for parameter studies) stores
+ * the vision observations of the walk in FILE, or reads them from it when
+ * it holds those of the same walk, field, seed and --every: the localizer
+ * does not change what vision sees, so a study renders once (delete the
+ * file when the vision code changes: its header records the walk only).
+ *
+ * --print-obs adds after each step line one "#  obs ..." line per
+ * observation given to the localizer (kind, range, bearing, orientation,
+ * side, confidence).
+ *
+ * The localizer starts in total ignorance with the prior "own half" (the
  * half of the start pose, as the game controller tells a robot at
  * kick-off).
  *
- * Output: per step (unless --quiet)
+ * Output: per record (unless --quiet)
  *   step K T_S est X_MM Y_MM DEG REL truth X_MM Y_MM DEG err MM DEG
- * then "# ..." information lines and exactly these summary lines:
- *   pos_rmse_mm X       root mean square position error over the steps
- *                       after convergence (t >= converge_s), excluding each
+ * (K the simulator step) then "# ..." information lines and exactly these
+ * summary lines:
+ *   pos_rmse_mm X       root mean square position error over the records
+ *                       after convergence (t >= converge_s), excluding the
  *                       kidnap's window [kidnap, kidnap + kidnap_recover_s)
  *                       (to the end of the run when it never recovers);
- *                       nan if no step qualifies
+ *                       nan if no record qualifies
  *   heading_rmse_deg X  the same for the heading error (degrees)
  *   converge_s X        first time t from the start (total ignorance) such
  *                       that the error stays below 300 mm AND 15 degrees for
- *                       every step in [t, t + 1 s]; inf if never
+ *                       every record in [t, t + 1 s]; inf if never
  *   kidnap_recover_s X  time from the first kidnap to the first t after it
  *                       with the same 1 s criterion; inf if never, nan if
  *                       the run has no kidnap
@@ -47,6 +84,7 @@
  * plain error to the truth.
  */
 #include "fieldloc/fieldloc.h"
+#include "locrun.h"
 #include "registry.h"
 #include "sim.h"
 
@@ -55,85 +93,58 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define SIMC_GOOD_MM 300.0
-#define SIMC_GOOD_DEG 15.0
-#define SIMC_HOLD_S 1.0
-
-static double angle_deg(fl_angle_t a)
-{
-    return (double)a * (180.0 / 32768.0);
-}
-
-static double wrap_deg(double d)
-{
-    while (d > 180.0)
-        d -= 360.0;
-    while (d < -180.0)
-        d += 360.0;
-    return d;
-}
-
 static void usage(void)
 {
     fprintf(stderr,
             "usage: fieldloc simulate --field spl2013|uva2013|aibo2004 --localizer fuzzy\n"
             "                         --seed N [--features | --frames] [--steps N] [--quiet]\n"
-            "                         [--scenario FILE.walk]\n");
-}
-
-typedef struct {
-    double t, pos_err, head_err;   /* error used for the metrics */
-    int good, flip, excluded;
-} simc_rec_t;
-
-/* First index i >= from such that every record in [t_i, t_i + hold] is
- * good (and at least hold seconds of run remain); -1 if none. */
-static long first_hold(const simc_rec_t *r, long n, long from, double hold)
-{
-    long i = from;
-    while (i < n) {
-        long j = i;
-        if (!r[i].good) {
-            i++;
-            continue;
-        }
-        while (j < n && r[j].good && r[j].t < r[i].t + hold)
-            j++;
-        if (j < n && r[j].t >= r[i].t + hold)
-            return i;
-        if (j >= n)
-            return -1;
-        i = j + 1;
-    }
-    return -1;
+            "                         [--scenario FILE.walk] [--every N] [--param NAME=V]...\n"
+            "                         [--obs-cache FILE] [--print-obs]\n"
+            "  --frames: render each frame at the true pose and run the vision path;\n"
+            "            vision on every Nth step (--every, default 3 = 10 Hz at 30 Hz)\n");
 }
 
 int cmd_simulate(int argc, char **argv)
 {
     const char *field_name = NULL, *localizer = NULL, *scen_path = NULL;
-    long seed = -1, max_steps = -1;
-    int frames = 0, quiet = 0, k;
+    long seed = -1, max_steps = -1, every = 3;
+    int frames = 0, quiet = 0, print_obs = 0, post_sides = 1, k;
     static sim_scenario_t sc;
-    static sim_t sim;
-    static sim_step_t st;
-    static fl_fuzzy_t grid;
-    simc_rec_t *rec;
-    long n = 0, cap, i;
-    char err[256];
-    int half_known = 1, sym;
-    double t_kidnap = -1, dt;
-    long i_kidnap = -1;
-    fl_fuzzy_estimate_t est;
+    lr_walk_opts_t o;
+    lr_walk_result_t res;
+    char err[256], *end;
+    const char *obs_cache = NULL, *param[64];
+    int n_param = 0;
+    fl_fuzzy_params_t params, defaults;
 
     for (k = 0; k < argc; k++) {
         if (!strcmp(argv[k], "--field") && k + 1 < argc)
             field_name = argv[++k];
         else if (!strcmp(argv[k], "--localizer") && k + 1 < argc)
             localizer = argv[++k];
-        else if (!strcmp(argv[k], "--seed") && k + 1 < argc)
-            seed = strtol(argv[++k], NULL, 10);
-        else if (!strcmp(argv[k], "--steps") && k + 1 < argc)
-            max_steps = strtol(argv[++k], NULL, 10);
+        else if (!strcmp(argv[k], "--seed") && k + 1 < argc) {
+            seed = strtol(argv[++k], &end, 10);
+            if (*end != '\0' || seed < 0) {
+                fprintf(stderr, "simulate: --seed needs a non-negative integer\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[k], "--steps") && k + 1 < argc) {
+            max_steps = strtol(argv[++k], &end, 10);
+            if (*end != '\0' || max_steps < 0) {
+                fprintf(stderr, "simulate: --steps needs a non-negative integer\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[k], "--every") && k + 1 < argc) {
+            every = strtol(argv[++k], &end, 10);
+            if (*end != '\0' || every < 1 || every > 1000) {
+                fprintf(stderr, "simulate: --every needs an integer in 1..1000\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[k], "--param") && k + 1 < argc) {
+            if (n_param < 64)
+                param[n_param++] = argv[++k];
+        } else if (!strcmp(argv[k], "--obs-cache") && k + 1 < argc)
+            obs_cache = argv[++k];
         else if (!strcmp(argv[k], "--scenario") && k + 1 < argc)
             scen_path = argv[++k];
         else if (!strcmp(argv[k], "--frames"))
@@ -142,6 +153,10 @@ int cmd_simulate(int argc, char **argv)
             frames = 0;
         else if (!strcmp(argv[k], "--quiet"))
             quiet = 1;
+        else if (!strcmp(argv[k], "--print-obs"))
+            print_obs = 1;
+        else if (!strcmp(argv[k], "--post-sides") && k + 1 < argc)
+            post_sides = atoi(argv[++k]);
         else {
             usage();
             return 2;
@@ -155,10 +170,18 @@ int cmd_simulate(int argc, char **argv)
         fprintf(stderr, "simulate: unknown localizer '%s' (available: fuzzy)\n", localizer);
         return 2;
     }
-    if (frames) {
-        fprintf(stderr, "simulate: --frames needs the vision path (issue 5: frames -> "
-                        "features), which is not available yet; use --features\n");
-        return 2;
+    /* the localizer's parameters: the mode's base set, then --param */
+    if (frames)
+        lr_params_frames(&params);
+    else
+        fl_fuzzy_params_default(&params);
+    fl_fuzzy_params_default(&defaults);
+    for (k = 0; k < n_param; k++) {
+        if (lr_param_set(&params, param[k]) != 0) {
+            fprintf(stderr, "simulate: bad --param '%s' (NAME=INTEGER, a field of "
+                            "fl_fuzzy_params_t, in range)\n", param[k]);
+            return 2;
+        }
     }
     if (scen_path != NULL) {
         if (sim_scenario_load(&sc, scen_path, err, (int)sizeof err) != 0) {
@@ -172,108 +195,48 @@ int cmd_simulate(int argc, char **argv)
     }
     if (seed >= 0)
         sc.seed = (uint64_t)seed;
-    if (sim_init(&sim, &sc) != 0) {
-        fprintf(stderr, "simulate: invalid scenario\n");
+    memset(&o, 0, sizeof o);
+    o.frames = frames;
+    o.every = (int)every;
+    o.max_steps = max_steps;
+    o.steps = quiet ? NULL : stdout;
+    o.print_obs = print_obs;
+    o.ignore_post_sides = !post_sides;
+    o.params = &params;
+    o.obs_cache = obs_cache;
+    printf("# simulate field %s localizer fuzzy seed %llu %s, %.0f s at %.0f Hz\n",
+           sc.field->name, (unsigned long long)sc.seed, frames ? "frames" : "features",
+           sc.duration_s, sc.frame_hz);
+    if (frames)
+        printf("# frames: camera %s %dx%d rendered at the true pose, vision on every %ld%s step "
+               "(%.1f Hz), odometry accumulated between; metrics over the vision steps\n",
+               sc.camera->name, (int)sc.camera->width_px, (int)sc.camera->height_px, every,
+               every == 1 ? "st" : every == 2 ? "nd" : every == 3 ? "rd" : "th",
+               sc.frame_hz / (double)every);
+    if (memcmp(&params, &defaults, sizeof params) != 0) {
+        printf("# localizer params changed from fl_fuzzy_params_default:");
+        lr_param_print(stdout, &params, &defaults);
+        printf("\n");
+    }
+    fflush(stdout);
+    if (lr_walk_run(&sc, &o, &res, err, (int)sizeof err) != 0) {
+        fprintf(stderr, "simulate: %s\n", err);
         return 1;
     }
-    if (fl_fuzzy_init(&grid, sc.field, NULL) != FL_OK) {
-        fprintf(stderr, "simulate: cannot size the grid for field %s\n", sc.field->name);
-        return 1;
+    printf("# steps %ld (%.1f s), %ld records, rmse over %ld records\n", res.steps,
+           (double)res.steps / sc.frame_hz, res.records, res.used);
+    printf("# localizer: %u kidnaps detected, %u empty resets, %u mode switches, "
+           "%u obs used, %u deferred (contradicting the tracked mode), %u ignored, "
+           "%u odometry rejected\n",
+           res.stats.kidnaps, res.stats.empty_resets, res.stats.mode_switches,
+           res.stats.obs_used, res.stats.obs_gated, res.stats.obs_ignored,
+           res.stats.odo_rejected);
+    if (frames) {
+        lr_walk_print_vdiag(stdout, &res);
+        printf("# time: rendering %.1f s, vision + grid %.1f s (%.2f ms per frame)\n",
+               res.render_s, res.vision_grid_s,
+               res.records ? 1000.0 * res.vision_grid_s / (double)res.records : 0.0);
     }
-    fl_fuzzy_set_prior_half(&grid, sc.start_x_mm < 0 ? -1 : 1);
-    sym = sc.field->symmetric;
-    cap = (long)sim_step_count(&sim) + 1;
-    rec = calloc((size_t)cap, sizeof *rec);
-    if (rec == NULL)
-        return 1;
-    dt = 1.0 / sc.frame_hz;
-    printf("# simulate field %s localizer fuzzy seed %llu features, %.0f s at %.0f Hz\n",
-           sc.field->name, (unsigned long long)sc.seed, sc.duration_s, sc.frame_hz);
-    while (n < cap && (max_steps < 0 || n < max_steps) && sim_step(&sim, &st)) {
-        double t = st.t_ms / 1000.0, ex, ey, eh, tx, ty, th, pe, he, mpe, mhe;
-        fl_fuzzy_predict(&grid, st.odo_dx_mm, st.odo_dy_mm, st.odo_dtheta);
-        if (st.events & SIM_EV_PENALIZED) {
-            fl_fuzzy_reset_penalty(&grid, (int32_t)sc.penalty_x_mm, 300, 2730);
-            half_known = 1;
-        }
-        if ((st.events & SIM_EV_KIDNAP) && t_kidnap < 0) {
-            t_kidnap = t;
-            i_kidnap = n;
-        }
-        if (st.events & SIM_EV_KIDNAP)
-            half_known = 0;
-        fl_fuzzy_update(&grid, &st.obs);
-        fl_fuzzy_estimate(&grid, &est);
-        ex = est.x_mm;
-        ey = est.y_mm;
-        eh = angle_deg(est.heading);
-        tx = st.x_mm;
-        ty = st.y_mm;
-        th = angle_deg(st.heading);
-        pe = hypot(ex - tx, ey - ty);
-        he = fabs(wrap_deg(eh - th));
-        mpe = hypot(ex + tx, ey + ty);
-        mhe = fabs(wrap_deg(eh - th - 180.0));
-        rec[n].t = t;
-        if (sym && !half_known && mpe < pe) {
-            rec[n].pos_err = mpe;
-            rec[n].head_err = mhe;
-        } else {
-            rec[n].pos_err = pe;
-            rec[n].head_err = he;
-        }
-        rec[n].flip = sym && half_known && mpe < 500.0 && mhe < 30.0 && pe > 1000.0;
-        rec[n].good = rec[n].pos_err < SIMC_GOOD_MM && rec[n].head_err < SIMC_GOOD_DEG;
-        if (!quiet)
-            printf("step %ld %.3f est %d %d %.1f %.3f truth %d %d %.1f err %.0f %.1f\n", n, t,
-                   (int)est.x_mm, (int)est.y_mm, eh, est.reliability_q16 / 65536.0,
-                   (int)st.x_mm, (int)st.y_mm, th, rec[n].pos_err, rec[n].head_err);
-        n++;
-    }
-    {
-        long ic = first_hold(rec, n, 0, SIMC_HOLD_S), ik = -1, flips = 0, used = 0;
-        double conv = ic >= 0 ? rec[ic].t : INFINITY, krec = NAN, se_p = 0, se_h = 0;
-        if (i_kidnap >= 0) {
-            ik = first_hold(rec, n, i_kidnap, SIMC_HOLD_S);
-            krec = ik >= 0 ? rec[ik].t - t_kidnap : INFINITY;
-            for (i = i_kidnap; i < n && (ik < 0 || i < ik); i++)
-                rec[i].excluded = 1;
-        }
-        for (i = 0; i < n; i++) {
-            if (rec[i].flip && (i == 0 || !rec[i - 1].flip))
-                flips++;
-            if (ic < 0 || i < ic || rec[i].excluded)
-                continue;
-            se_p += rec[i].pos_err * rec[i].pos_err;
-            se_h += rec[i].head_err * rec[i].head_err;
-            used++;
-        }
-        printf("# steps %ld (%.1f s), rmse over %ld steps\n", n, (double)n * dt, used);
-        printf("# localizer: %u kidnaps detected, %u empty resets, %u mode switches, "
-               "%u obs used, %u deferred (contradicting the tracked mode), %u ignored, "
-               "%u odometry rejected\n",
-               grid.stats.kidnaps, grid.stats.empty_resets, grid.stats.mode_switches,
-               grid.stats.obs_used, grid.stats.obs_gated, grid.stats.obs_ignored,
-               grid.stats.odo_rejected);
-        if (used > 0) {
-            printf("pos_rmse_mm %.1f\n", sqrt(se_p / (double)used));
-            printf("heading_rmse_deg %.2f\n", sqrt(se_h / (double)used));
-        } else {
-            printf("pos_rmse_mm nan\n");
-            printf("heading_rmse_deg nan\n");
-        }
-        if (isinf(conv))
-            printf("converge_s inf\n");
-        else
-            printf("converge_s %.2f\n", conv);
-        if (isnan(krec))
-            printf("kidnap_recover_s nan\n");
-        else if (isinf(krec))
-            printf("kidnap_recover_s inf\n");
-        else
-            printf("kidnap_recover_s %.2f\n", krec);
-        printf("flips %ld\n", flips);
-    }
-    free(rec);
+    lr_walk_print_summary(stdout, &res);
     return 0;
 }
