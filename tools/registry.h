@@ -16,6 +16,7 @@
     X(fields, "list the field models")                                        \
     X(cameras, "list the camera models")                                      \
     X(project, "[--camera NAME] [--neck MM] [--head PITCH_RAD YAW_RAD] U V: pixel -> ground") \
+    X(sizes, "static memory of every firmware state struct (sizeof)")          \
     X(render, "render one frame of the synthetic world (see --help)")        \
     X(fixtures, "regenerate the fixture set (make fixtures)")                \
     X(calibrate, "fit the UvA 2013 camera to the hand labels")                \
@@ -41,7 +42,7 @@ void bench_row(bench_ctx_t *ctx, const char *name, double fl_ns, double peer_ns,
                const char *peer_desc);
 double bench_now_ns(void);
 
-#define FL_BENCHES(X) X(fixed) X(scan) X(vision) X(fuzzy)
+#define FL_BENCHES(X) X(fixed) X(scan) X(vision) X(adversarial) X(fuzzy)
 #define FL_DECL_BENCH(name) void bench_##name(bench_ctx_t *ctx) FL_WEAK;
 FL_BENCHES(FL_DECL_BENCH)
 
