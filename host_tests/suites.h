@@ -15,5 +15,6 @@ T_SUITE(features);
 T_SUITE(localize);
 T_SUITE(adversarial);
 T_SUITE(walks);
+T_SUITE(example);
 T_SUITE(fuzz_regress);
 T_SUITE(rules);

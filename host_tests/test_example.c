@@ -1,0 +1,87 @@
+/*
+ * host_tests/test_example.c - the C API example of README.md ("The C API in
+ * brief"), compiled and run on a rendered fixture, so that the README's code
+ * stays true.  Keep the two in step.
+ */
+#include "test.h"
+#include "fieldloc/fieldloc.h"
+#include "render.h"
+
+#include <stdlib.h>
+
+/* ---- the README example, verbatim from here ---- */
+typedef struct {
+    fl_color_table_t colors;   /* ~230 KiB, built once */
+    fl_vision_t vision;        /* ~120 KiB, all buffers of the vision path */
+    fl_fuzzy_t grid;           /* ~63 KiB, the belief */
+} robot_loc_t;
+
+static fl_status_t loc_init(robot_loc_t *r, const char *field_name)
+{
+    fl_color_params_t cp;
+    fl_vision_params_t vp;
+    fl_status_t s;
+    fl_color_params_default(&cp);               /* HSV boxes from the UvA 2013 images */
+    fl_vision_params_default(&vp);
+    if ((s = fl_color_init(&r->colors, &cp)) != FL_OK) return s;
+    if ((s = fl_vision_init(&r->vision, &vp)) != FL_OK) return s;
+    return fl_fuzzy_init(&r->grid, fl_field_find(field_name), NULL);   /* total ignorance */
+}
+
+/* once per camera frame: odometry since the last frame (robot frame, mm,
+ * binary angle), the frame, the head joints */
+static void loc_frame(robot_loc_t *r, int32_t odo_dx_mm, int32_t odo_dy_mm, fl_angle_t odo_dtheta,
+                      const fl_image_t *img, fl_angle_t head_pitch, fl_angle_t head_yaw,
+                      fl_fuzzy_estimate_t *est)
+{
+    const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-320");
+    fl_camera_pose_t pose = {m->default_neck_height_mm, head_pitch, head_yaw, m->default_pitch_offset};
+    fl_camera_t cam;
+    fl_obs_list_t obs;
+    fl_camera_init(&cam, m, &pose);
+    fl_vision_frame(&r->vision, &r->colors, img, &cam, r->grid.field, &obs);  /* -> observations */
+    fl_fuzzy_predict(&r->grid, odo_dx_mm, odo_dy_mm, odo_dtheta);
+    fl_fuzzy_update(&r->grid, &obs);
+    fl_fuzzy_estimate(&r->grid, est);   /* x_mm, y_mm, heading, reliability_q16 */
+}
+/* ---- end of the README example ---- */
+
+static void test_readme_example(void)
+{
+    robot_loc_t *r = malloc(sizeof *r);
+    render_scene_t sc;
+    render_frame_t fr;
+    fl_fuzzy_estimate_t est;
+    char err[128];
+    FILE *f = fopen("fixtures/frames/spl2013_t_near.scene", "r");
+    int i;
+    CHECK(r != NULL && f != NULL);
+    if (!r || !f) {
+        free(r);
+        if (f) fclose(f);
+        return;
+    }
+    CHECK_EQ(render_scene_read(f, &sc, err, sizeof err), 0);
+    fclose(f);
+    CHECK_EQ(render_frame(&sc, &fr), 0);
+    CHECK_EQ(loc_init(r, "spl2013"), FL_OK);
+    fl_fuzzy_set_prior_half(&r->grid, sc.robot_x_mm < 0 ? -1 : 1);
+    for (i = 0; i < 5; i++)   /* standing still, the same frame */
+        loc_frame(r, 0, 0, 0, &fr.view, sc.head.head_pitch, sc.head.head_yaw, &est);
+    CHECK(r->vision.crossings.n > 0);
+    /* one T seen from one spot is ambiguous, but the true pose must stay
+     * among the most possible ones */
+    CHECK_LE(32768, fl_fuzzy_possibility_q16(&r->grid, sc.robot_x_mm, sc.robot_y_mm, sc.robot_heading));
+    t_info("README example on spl2013_t_near: possibility of the true pose %.2f, estimate (%d, %d) mm "
+           "reliability %.2f (one crossing: ambiguous), truth (%d, %d) mm",
+           fl_fuzzy_possibility_q16(&r->grid, sc.robot_x_mm, sc.robot_y_mm, sc.robot_heading) / 65536.0,
+           (int)est.x_mm, (int)est.y_mm, est.reliability_q16 / 65536.0, (int)sc.robot_x_mm,
+           (int)sc.robot_y_mm);
+    render_frame_free(&fr);
+    free(r);
+}
+
+void suite_example(void)
+{
+    t_run("example.readme_api", test_readme_example);
+}
