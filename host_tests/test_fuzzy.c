@@ -489,6 +489,35 @@ static void test_resets(void)
 
 /* ---- kidnap ---------------------------------------------------------------- */
 
+/* The tracked mode's cells lost the tracked heading to two clusters (one
+ * frame's outliers): the estimate's heading is the dominant cluster's, not
+ * the mean of the two (a heading that no cell holds). */
+static void test_heading_clusters(void)
+{
+    const fl_field_t *f = fl_field_find("spl2013");
+    fl_fuzzy_estimate_t e;
+    int ix, iy, n = 0;
+    fl_fuzzy_init(&G, f, NULL);
+    fl_fuzzy_reset_pose(&G, 1000, 0, DEG(0), 300, DEG(5));
+    CHECK(G.track_valid);
+    for (iy = 0; iy < G.ny; iy++)
+        for (ix = 0; ix < G.nx; ix++) {
+            fl_fuzzy_cell_t *c = &G.cell[iy * G.nx + ix];
+            if (c->height == 0)
+                continue;
+            /* 3 of 5 cells at 100 deg, the others at -120 deg */
+            c->centre = (n++ % 5) < 3 ? DEG(100) : DEG(-120);
+            c->height = 255;
+            c->bias = 0;
+        }
+    CHECK(n >= 10);
+    CHECK(fl_fuzzy_check(&G));
+    CHECK(fl_fuzzy_estimate(&G, &e));
+    t_info("heading %.1f deg (cells: 100 and -120 deg, 3:2)", ang_deg(e.heading));
+    CHECK_LE(fabs(wrapd(ang_deg(e.heading) - 100)), 3);
+    CHECK_LE(fl_hypot(e.x_mm - 1000, e.y_mm), 100);
+}
+
 static void test_kidnap(void)
 {
     const fl_field_t *f = fl_field_find("spl2013");
@@ -706,6 +735,7 @@ void suite_fuzzy(void)
     t_run("fuzzy.converge_symmetry", test_converge_and_symmetry);
     t_run("fuzzy.predict", test_predict);
     t_run("fuzzy.resets", test_resets);
+    t_run("fuzzy.heading_clusters", test_heading_clusters);
     t_run("fuzzy.kidnap", test_kidnap);
     t_run("fuzzy.abuse", test_abuse);
     t_run("fuzzy.digest", test_digest);

@@ -39,7 +39,11 @@
  * so the mirror mode cannot leak in).  Heading: circular mean of the
  * trapezoid centres weighted by the same weight x (h - b) / h x 16 / (16 +
  * core code), trimmed to 30 degrees around the reference (the tracked
- * heading) when that keeps a quarter of the weight.  Reliability (Q0.16):
+ * heading) when that keeps 1/16 of the weight; otherwise the trimmed mean
+ * around the dominant heading cluster (16-bin histogram of the same
+ * weights, best 3 adjacent bins), never the mean of two opposite clusters
+ * (a heading no cell holds: the single-frame jumps of the frames-mode
+ * demo).  Reliability (Q0.16):
  * consistency x compactness min(1, 9 cells / cells >= peak/2) x (1 - mean
  * relative bias of the mode) x uniqueness (1 - the highest cell elsewhere
  * / the peak; the mirror of a symmetric field is not "elsewhere").  The
@@ -61,6 +65,10 @@ typedef char fz_cell_is_8_bytes[sizeof(fl_fuzzy_cell_t) == 8 ? 1 : -1];
 
 #define ANGLE_PER_RAD 10430   /* 65536 / (2 pi), rounded */
 #define TRIM_ANGLE 5461       /* 30 deg: heading estimate's trimming window */
+#define HBIN_BITS 4           /* heading histogram of the estimate: 16 bins */
+#define HBINS (1 << HBIN_BITS)
+#define HOLD_DEN 16           /* the tracked heading is kept while its
+                                 cells carry 1/HOLD_DEN of the weight */
 
 void fl_fuzzy_params_default(fl_fuzzy_params_t *p)
 {
@@ -779,6 +787,59 @@ static uint32_t uniqueness(const fl_fuzzy_t *g, int32_t px, int32_t py, uint32_t
     return c >= peak ? 0u : 65536u - (c * 65536u) / peak;
 }
 
+/* The estimate's mode window: cells within R of (px, py), height at least
+ * hp / 2, heading agreeing with rh when chk (the mirror may be inside). */
+typedef struct {
+    int ix0, ix1, iy0, iy1;
+    int32_t px, py, R;
+    uint32_t hp;
+    bool chk;
+    fl_angle_t rh;
+} win_t;
+
+/* Heading weight of a cell of the window (w = height - peak/2 > 0) x how
+ * much heading information the cell has: (h - b) / h x 16 / (16 + core
+ * code) (core 11 deg: 1/2); 0 for a cell without heading information.
+ * Scaling: w <= 255, product <= 255 x 255 x 16 < 2^21, result <= 255. */
+static int32_t heading_weight(const fl_fuzzy_cell_t *c, int32_t w)
+{
+    if (c->core >= FL_FUZZY_WFULL || c->height <= c->bias)
+        return 0;
+    return (w * (int32_t)(c->height - c->bias) * 16) /
+           ((int32_t)c->height * (16 + (int32_t)c->core));
+}
+
+static bool in_window(const fl_fuzzy_t *g, const win_t *wn, int ix, int iy,
+                      const fl_fuzzy_cell_t *c)
+{
+    int32_t ddx = centre_x(g, ix) - wn->px, ddy = centre_y(g, iy) - wn->py;
+    return c->height * 2u >= wn->hp && ddx * ddx + ddy * ddy <= wn->R * wn->R &&
+           (!wn->chk || heading_agrees(c, wn->rh));
+}
+
+/* Circular sums (cos, sin, Q15 x weight) of the window's trapezoid centres
+ * within TRIM_ANGLE of h.  Scaling: weight <= 255, window <= 41 x 41
+ * cells: |sums| < 2^15 x 255 x 1681 < 2^39 (int64). */
+static void trimmed_sums(const fl_fuzzy_t *g, const win_t *wn, fl_angle_t h,
+                         int64_t *scos, int64_t *ssin)
+{
+    int ix, iy;
+    *scos = *ssin = 0;
+    for (iy = wn->iy0; iy <= wn->iy1; iy++)
+        for (ix = wn->ix0; ix <= wn->ix1; ix++) {
+            const fl_fuzzy_cell_t *c = &g->cell[iy * g->nx + ix];
+            int32_t wh, dh;
+            if (!in_window(g, wn, ix, iy, c))
+                continue;
+            wh = heading_weight(c, (int32_t)c->height - (int32_t)(wn->hp / 2u));
+            dh = fl_angle_sub(c->centre, h);
+            if (wh <= 0 || dh > TRIM_ANGLE || dh < -TRIM_ANGLE)
+                continue;
+            *scos += (int64_t)wh * fl_cos_q15(c->centre);
+            *ssin += (int64_t)wh * fl_sin_q15(c->centre);
+        }
+}
+
 bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
 {
     const fl_fuzzy_params_t *p;
@@ -789,6 +850,8 @@ bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
     int64_t sw = 0, sb = 0;
     int64_t scos = 0, ssin = 0, tcos = 0, tsin = 0, swh = 0, twh = 0;
     ref_t ref;
+    win_t wn;
+    int32_t bin[HBINS];
     bool chk;
     uint32_t rel, area, one_minus_b;
     if (out != NULL)
@@ -849,39 +912,45 @@ bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
                                           : window_heading(g, px, py, g->cell[ci].centre);
     R = clamp32(p->mode_radius_mm, FZ_CELL, 2000);
     chk = mirror_near(g, px, py, R);
+    memset(&wn, 0, sizeof wn);
     for (it = 0; it < 3; it++) {
-        int ix0 = fl_floor_div(px - R - g->x0_mm, FZ_CELL);
-        int ix1 = fl_floor_div(px + R - g->x0_mm, FZ_CELL);
-        int iy0 = fl_floor_div(py - R - g->y0_mm, FZ_CELL);
-        int iy1 = fl_floor_div(py + R - g->y0_mm, FZ_CELL);
         int64_t sx = 0, sy = 0;
-        if (ix0 < 0)
-            ix0 = 0;
-        if (iy0 < 0)
-            iy0 = 0;
-        if (ix1 > nx - 1)
-            ix1 = nx - 1;
-        if (iy1 > ny - 1)
-            iy1 = ny - 1;
+        wn.ix0 = fl_floor_div(px - R - g->x0_mm, FZ_CELL);
+        wn.ix1 = fl_floor_div(px + R - g->x0_mm, FZ_CELL);
+        wn.iy0 = fl_floor_div(py - R - g->y0_mm, FZ_CELL);
+        wn.iy1 = fl_floor_div(py + R - g->y0_mm, FZ_CELL);
+        if (wn.ix0 < 0)
+            wn.ix0 = 0;
+        if (wn.iy0 < 0)
+            wn.iy0 = 0;
+        if (wn.ix1 > nx - 1)
+            wn.ix1 = nx - 1;
+        if (wn.iy1 > ny - 1)
+            wn.iy1 = ny - 1;
+        wn.px = px;
+        wn.py = py;
+        wn.R = R;
+        wn.chk = chk;
+        wn.rh = rh;
         hp = 0;
-        for (iy = iy0; iy <= iy1; iy++)
-            for (ix = ix0; ix <= ix1; ix++) {
+        for (iy = wn.iy0; iy <= wn.iy1; iy++)
+            for (ix = wn.ix0; ix <= wn.ix1; ix++) {
                 const fl_fuzzy_cell_t *c = &g->cell[iy * nx + ix];
                 int32_t ddx = centre_x(g, ix) - px, ddy = centre_y(g, iy) - py;
                 if (c->height > hp && ddx * ddx + ddy * ddy <= R * R &&
                     (!chk || heading_agrees(c, rh)))
                     hp = c->height;
             }
+        wn.hp = hp;
         sw = sb = scos = ssin = tcos = tsin = swh = twh = 0;
+        memset(bin, 0, sizeof bin);
         nmode = 0;
-        for (iy = iy0; iy <= iy1; iy++)
-            for (ix = ix0; ix <= ix1; ix++) {
+        for (iy = wn.iy0; iy <= wn.iy1; iy++)
+            for (ix = wn.ix0; ix <= wn.ix1; ix++) {
                 const fl_fuzzy_cell_t *c = &g->cell[iy * nx + ix];
                 int32_t cx = centre_x(g, ix), cy = centre_y(g, iy);
-                int32_t ddx = cx - px, ddy = cy - py;
-                int32_t w;
-                if (c->height * 2u < hp || ddx * ddx + ddy * ddy > R * R ||
-                    (chk && !heading_agrees(c, rh)))
+                int32_t w, wh;
+                if (!in_window(g, &wn, ix, iy, c))
                     continue;
                 nmode++;
                 w = (int32_t)c->height - (int32_t)(hp / 2u);
@@ -891,15 +960,13 @@ bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
                 sx += (int64_t)w * (cx + c->off_x_mm);
                 sy += (int64_t)w * (cy + c->off_y_mm);
                 sb += (int64_t)w * ((c->bias * 255u) / c->height);
-                if (c->core < FL_FUZZY_WFULL && c->height > c->bias) {
-                    /* weight by how much heading information the cell has:
-                     * (h - b) / h x 16 / (16 + core code) (core 11 deg: 1/2) */
-                    int32_t wh = (w * (int32_t)(c->height - c->bias) * 16) /
-                                 ((int32_t)c->height * (16 + (int32_t)c->core));
+                wh = heading_weight(c, w);
+                if (wh > 0) {
                     int32_t dh = fl_angle_sub(c->centre, rh);
                     scos += (int64_t)wh * fl_cos_q15(c->centre);
                     ssin += (int64_t)wh * fl_sin_q15(c->centre);
                     swh += wh;
+                    bin[(uint16_t)c->centre >> (16 - HBIN_BITS)] += wh;
                     if (dh <= TRIM_ANGLE && dh >= -TRIM_ANGLE) {
                         tcos += (int64_t)wh * fl_cos_q15(c->centre);
                         tsin += (int64_t)wh * fl_sin_q15(c->centre);
@@ -912,12 +979,29 @@ bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
         px = (int32_t)(sx / sw);
         py = (int32_t)(sy / sw);
     }
-    if (4 * twh >= swh && (tcos != 0 || tsin != 0)) {
+    if (HOLD_DEN * twh >= swh && (tcos != 0 || tsin != 0)) {
         /* trimmed mean: cells within TRIM_ANGLE of the reference (the
-         * tracked heading) carry at least a quarter of the weight; cells
+         * tracked heading) carry at least 1/HOLD_DEN of the weight; cells
          * whose heading an outlier replaced do not pull the estimate */
         scos = tcos;
         ssin = tsin;
+    } else if (swh > 0) {
+        /* otherwise the dominant heading cluster: the 3 adjacent bins
+         * (67.5 deg) with the most weight, then the trimmed mean around
+         * the middle bin's centre.  Never the mean of two opposite
+         * clusters (a heading that no cell holds). */
+        int k, kb = 0;
+        int32_t best = -1;
+        for (k = 0; k < HBINS; k++) {
+            int32_t v = bin[(k + HBINS - 1) % HBINS] + bin[k] + bin[(k + 1) % HBINS];
+            if (v > best) {
+                best = v;
+                kb = k;
+            }
+        }
+        trimmed_sums(g, &wn, (fl_angle_t)(int32_t)((kb << (16 - HBIN_BITS)) +
+                                                   (1 << (15 - HBIN_BITS)) - 65536 * (kb >= HBINS / 2)),
+                     &scos, &ssin);
     }
     if (scos != 0 || ssin != 0) {
         /* reduce to 31 bits keeping the ratio (window up to 41 x 41 cells) */
