@@ -46,6 +46,10 @@ void t_rng_seed(t_rng_t *r, uint64_t seed);
 uint32_t t_rng_u32(t_rng_t *r);
 int32_t t_rng_range(t_rng_t *r, int32_t lo, int32_t hi); /* inclusive */
 
+/* A whole file, NUL-terminated, malloc'd (free it); *len = its size.
+ * NULL when it cannot be read. */
+char *t_read_file(const char *path, size_t *len);
+
 /* Path of the shared real-data folder (../shared/realdata relative to the
  * repository, or $FIELDLOC_REALDATA), or NULL when absent. */
 const char *t_realdata_dir(void);

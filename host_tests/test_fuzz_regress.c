@@ -11,28 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static char *slurp(const char *path, size_t *n)
-{
-    FILE *f = fopen(path, "rb");
-    char *buf;
-    long len;
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    len = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    buf = malloc((size_t)len + 1);
-    if (buf && fread(buf, 1, (size_t)len, f) != (size_t)len) {
-        free(buf);
-        buf = NULL;
-    }
-    fclose(f);
-    if (buf) {
-        buf[len] = 0;
-        *n = (size_t)len;
-    }
-    return buf;
-}
 
 /* fuzz_uva_csv found: a number like 17777777777777777777777777777777777 in
  * an integer column was converted to int (undefined).  The parser must
@@ -44,7 +22,7 @@ static void test_uva_csv_huge_number(void)
     for (i = 0; i < sizeof files / sizeof files[0]; i++) {
         char err[256] = "";
         rd_uva_set_t set;
-        char *text = slurp(files[i], &n);
+        char *text = t_read_file(files[i], &n);
         CHECK(text != NULL);
         if (!text)
             continue;

@@ -90,6 +90,29 @@ int32_t t_rng_range(t_rng_t *r, int32_t lo, int32_t hi)
     return (int32_t)((int64_t)lo + (int64_t)(x % span));
 }
 
+char *t_read_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    char *buf;
+    long n;
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    buf = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) {
+        free(buf);
+        buf = NULL;
+    }
+    fclose(f);
+    if (buf) {
+        buf[n] = 0;
+        *len = (size_t)n;
+    }
+    return buf;
+}
+
 const char *t_realdata_dir(void)
 {
     static const char *cands[] = {"../shared/realdata", "../../shared/realdata"};

@@ -681,29 +681,6 @@ static long file_size(const char *path)
     return stat(path, &st) == 0 ? (long)st.st_size : -1;
 }
 
-static char *slurp(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    char *buf;
-    long n;
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    n = ftell(f);
-    rewind(f);
-    buf = (char *)malloc((size_t)n + 1);
-    if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) {
-        free(buf);
-        buf = NULL;
-    }
-    fclose(f);
-    if (buf) {
-        buf[n] = 0;
-        *len = (size_t)n;
-    }
-    return buf;
-}
-
 /* Table, index and sizes of the committed set. */
 static void test_fixture_set(void)
 {
@@ -742,7 +719,7 @@ static void test_fixture_set(void)
     /* README lists every fixture */
     {
         size_t len = 0;
-        char *readme = slurp("fixtures/README.md", &len);
+        char *readme = t_read_file("fixtures/README.md", &len);
         CHECK(readme != NULL);
         for (i = 0; readme && i < render_fixture_count(); i++) {
             render_scene_t sc;
@@ -765,7 +742,7 @@ static void test_fixture_set(void)
         FILE *f = tmpfile();
         CHECK_EQ(render_fixture_get(i, &sc, &name, NULL), 0);
         snprintf(path, sizeof path, FIX_DIR "/%s.scene", name);
-        committed = slurp(path, &len);
+        committed = t_read_file(path, &len);
         CHECK(committed != NULL && f != NULL);
         if (committed && f) {
             CHECK_EQ(render_scene_write(f, &sc), 0);
@@ -814,7 +791,7 @@ static void test_fixtures_rerender(void)
         /* the truth text too */
         CHECK_EQ(truth_compute(&sc, &fr, t), 0);
         snprintf(path, sizeof path, FIX_DIR "/%s.truth", names[k]);
-        text = slurp(path, &len);
+        text = t_read_file(path, &len);
         f = tmpfile();
         CHECK(text != NULL && f != NULL);
         if (text && f) {

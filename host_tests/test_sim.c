@@ -728,27 +728,6 @@ static void test_determinism(void)
 
 /* ---- committed fixtures ------------------------------------------------------ */
 
-static char *read_file(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    char *buf;
-    long n;
-    if (f == NULL)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    buf = malloc((size_t)n + 1);
-    if (buf == NULL || fread(buf, 1, (size_t)n, f) != (size_t)n) {
-        free(buf);
-        fclose(f);
-        return NULL;
-    }
-    fclose(f);
-    buf[n] = '\0';
-    *len = (size_t)n;
-    return buf;
-}
 
 static void test_fixtures(void)
 {
@@ -761,7 +740,7 @@ static void test_fixtures(void)
         sim_scenario_t sc;
         FILE *f;
         snprintf(path, sizeof path, "fixtures/walks/%s.walk", name);
-        walk = read_file(path, &wlen);
+        walk = t_read_file(path, &wlen);
         CHECK(walk != NULL);
         if (walk == NULL) {
             t_fail_msg(__FILE__, __LINE__, "missing %s (run from the repository root)", path);
@@ -770,7 +749,7 @@ static void test_fixtures(void)
         CHECK(strcmp(walk, sim_builtin_text(name)) == 0);
         CHECK_EQ(sim_scenario_load(&sc, path, err, (int)sizeof err), 0);
         snprintf(path, sizeof path, "fixtures/walks/%s.trace", name);
-        trace = read_file(path, &tlen);
+        trace = t_read_file(path, &tlen);
         CHECK(trace != NULL);
         f = open_memstream(&gen, &glen);
         CHECK(f != NULL);
