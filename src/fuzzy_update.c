@@ -48,8 +48,9 @@
  * Cost.  Per observation one region per matching landmark and orientation
  * candidate (bounding box of the ring, or of the arc); per grid row and
  * region two integer square roots give the one or two cell intervals the
- * ring crosses; only live cells there are evaluated (one isqrt, one atan2,
- * the agreement, the envelope).  Then passes over the grid: product,
+ * ring crosses; only live cells there are evaluated (a squared-distance
+ * test against the ring's bounds, then inside the ring one isqrt, one
+ * atan2, the agreement, the envelope).  Then passes over the grid: product,
  * symmetry, normalization: O(cells + cells in the rings), bounded by
  * O(cells x landmarks of the kind x orientation candidates).  The gate adds
  * the rows of the tracked window.  Measured (tools/bench_fuzzy.c): see the
@@ -79,6 +80,19 @@ static int32_t iabs(int32_t v)
 static int32_t clamp32(int32_t v, int32_t lo, int32_t hi)
 {
     return v < lo ? lo : v > hi ? hi : v;
+}
+
+/* fl_angle_wrap / fl_angle_sub of fixed.c, inlined for the per-cell loops
+ * (same arithmetic, same results). */
+static fl_angle_t wrap16(int32_t a)
+{
+    uint32_t u = (uint32_t)a & 0xFFFFu;
+    return (fl_angle_t)(u >= 0x8000u ? (int32_t)u - 65536 : (int32_t)u);
+}
+
+static fl_angle_t asub(fl_angle_t a, fl_angle_t b)
+{
+    return wrap16((int32_t)a - (int32_t)b);
 }
 
 /* Period of the orientation of a kind, binary angle units (0: none). */
@@ -233,19 +247,29 @@ static void eval_cells(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
 {
     fl_fuzzy_acc_t *acc = g->scratch.upd.acc;
     const fl_fuzzy_cell_t *row = &g->cell[(size_t)iy * g->nx];
-    int32_t cy = g->y0_mm + iy * FZ_CELL + FZ_HALF;
+    int32_t ddy0 = reg->ly_mm - (g->y0_mm + iy * FZ_CELL + FZ_HALF);
+    int32_t ddx0 = reg->lx_mm - (g->x0_mm + FZ_HALF);
+    /* d = floor(sqrt(s)) is outside the ring (|d - r| >= rw) iff s >= rout^2
+     * or s < (rin + 1)^2 (rin >= 0): tested before the root (exact) */
+    uint32_t s_out = (uint32_t)q->rout * (uint32_t)q->rout;
+    uint32_t s_in = q->rin >= 0 ? (uint32_t)(q->rin + 1) * (uint32_t)(q->rin + 1) : 0u;
     int ix;
+    if (q->rout >= 65536)
+        s_out = UINT32_MAX;
     for (ix = ix0; ix <= ix1; ix++) {
         const fl_fuzzy_cell_t *c = &row[ix];
         int32_t ddx, ddy, d, delta;
-        uint32_t m;
+        uint32_t m, s2;
         fl_angle_t head;
         fl_fuzzy_acc_t *a;
         if (c->height == 0)
             continue;
-        ddx = reg->lx_mm - (g->x0_mm + ix * FZ_CELL + FZ_HALF + c->off_x_mm);
-        ddy = reg->ly_mm - (cy + c->off_y_mm);
-        d = (int32_t)fl_isqrt32((uint32_t)(ddx * ddx) + (uint32_t)(ddy * ddy));
+        ddx = ddx0 - ix * FZ_CELL - c->off_x_mm;
+        ddy = ddy0 - c->off_y_mm;
+        s2 = (uint32_t)(ddx * ddx) + (uint32_t)(ddy * ddy);
+        if (s2 >= s_out || s2 < s_in)
+            continue;
+        d = (int32_t)fl_isqrt32(s2);
         delta = iabs(d - q->r);
         if (delta >= q->rw)
             continue;
@@ -253,9 +277,9 @@ static void eval_cells(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
         if (q->no_bearing_heading) {
             head = reg->oriented ? reg->head_o : 0;
         } else {
-            head = fl_angle_sub(fl_atan2(ddy, ddx), q->bearing);
+            head = asub(fl_atan2(ddy, ddx), q->bearing);
             if (reg->oriented) {
-                uint32_t agree = tpos(iabs(fl_angle_sub(head, reg->head_o)), q->ocore, q->oslope);
+                uint32_t agree = tpos(iabs(asub(head, reg->head_o)), q->ocore, q->oslope);
                 m = (uint32_t)(((uint64_t)m * agree) >> 16);
             }
         }
@@ -265,12 +289,12 @@ static void eval_cells(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
         if (a->r1_q16 == 0) {
             a->r1_q16 = (uint16_t)m;
             a->head1 = head;
-        } else if (iabs(fl_angle_sub(head, a->head1)) <= q->hcore) {
+        } else if (iabs(asub(head, a->head1)) <= q->hcore) {
             if (m > a->r1_q16) {      /* the same heading: no competitor */
                 a->r1_q16 = (uint16_t)m;
                 a->head1 = head;
             }
-        } else if (a->r2_q16 != 0 && iabs(fl_angle_sub(head, a->head2)) <= q->hcore) {
+        } else if (a->r2_q16 != 0 && iabs(asub(head, a->head2)) <= q->hcore) {
             if (m > a->r2_q16) {
                 a->r2_q16 = (uint16_t)m;
                 a->head2 = head;
@@ -390,12 +414,20 @@ static void obs_params(const fl_fuzzy_t *g, const fl_obs_t *o, obsp_t *q)
  * Mirror of cell (ix, iy) is (nx-1-ix, ny-1-iy) (the grid is centred);
  * offsets negate (clamped into [-CELL/2, CELL/2)).  (The centre cell of a
  * grid with odd nx and ny maps onto itself and is left alone.) */
+static int8_t mirror_off(int8_t o)
+{
+    return (int8_t)(o <= -FZ_HALF ? FZ_HALF - 1 : -o);
+}
+
 static void mirror_cell(const fl_fuzzy_cell_t *c, fl_fuzzy_cell_t *m)
 {
-    *m = *c;
-    m->centre = fl_angle_add(c->centre, (fl_angle_t)FL_ANGLE_180);
-    m->off_x_mm = (int8_t)(c->off_x_mm <= -FZ_HALF ? FZ_HALF - 1 : -c->off_x_mm);
-    m->off_y_mm = (int8_t)(c->off_y_mm <= -FZ_HALF ? FZ_HALF - 1 : -c->off_y_mm);
+    m->centre = wrap16((int32_t)c->centre + FL_ANGLE_180);
+    m->height = c->height;
+    m->bias = c->bias;
+    m->core = c->core;
+    m->slope = c->slope;
+    m->off_x_mm = mirror_off(c->off_x_mm);
+    m->off_y_mm = mirror_off(c->off_y_mm);
 }
 
 static void sym_merge(fl_fuzzy_cell_t *dst, const fl_fuzzy_cell_t *src)
@@ -432,11 +464,19 @@ static void symmetrize(fl_fuzzy_t *g)
             i += (size_t)g->nx - 1;    /* both rows dead: skip the row */
             continue;
         }
-        fl_fuzzy_cell_t mb;
         if (a->height == 0 && b->height == 0)
             continue;
-        mirror_cell(b, &mb);
-        sym_merge(a, &mb);
+        if (b->height != 0) {
+            if (a->height == 0 ||
+                (b->height == a->height && b->bias == a->bias && b->core == a->core &&
+                 b->slope == a->slope && wrap16((int32_t)b->centre + FL_ANGLE_180) == a->centre)) {
+                mirror_cell(b, a);     /* sym_merge's copy case, in place */
+            } else {
+                fl_fuzzy_cell_t mb;
+                mirror_cell(b, &mb);
+                sym_merge(a, &mb);
+            }
+        }
         mirror_cell(a, b);
     }
 }

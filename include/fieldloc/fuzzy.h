@@ -41,7 +41,7 @@
  *     No heap; stack at most about 1 KB per call (make stack).
  * Cost (tools/bench_fuzzy.c, x86-64 host, gcc -O2): one predict + 5
  * observation updates on the SPL grid: about 0.20 ms with a tracked mode,
- * about 1.25 ms from total ignorance (every cell possible: the worst case,
+ * about 1.1 ms from total ignorance (every cell possible: the worst case,
  * for a fraction of a second after a reset).  callgrind: about 2.0 M
  * instructions per 30 Hz frame of the spl2013 walk once tracked (predict,
  * the frame's ~3 observations, estimate).
