@@ -728,18 +728,9 @@ static fl_angle_t window_heading(const fl_fuzzy_t *g, int32_t px, int32_t py,
                                  fl_angle_t fallback)
 {
     int32_t R = clamp32(g->params.mode_radius_mm, FZ_CELL, 2000);
-    int ix0 = fl_floor_div(px - R - g->x0_mm, FZ_CELL), ix1 = fl_floor_div(px + R - g->x0_mm, FZ_CELL);
-    int iy0 = fl_floor_div(py - R - g->y0_mm, FZ_CELL), iy1 = fl_floor_div(py + R - g->y0_mm, FZ_CELL);
-    int ix, iy;
+    int ix0, ix1, iy0, iy1, ix, iy;
     int64_t sc = 0, ss = 0;
-    if (ix0 < 0)
-        ix0 = 0;
-    if (iy0 < 0)
-        iy0 = 0;
-    if (ix1 > g->nx - 1)
-        ix1 = g->nx - 1;
-    if (iy1 > g->ny - 1)
-        iy1 = g->ny - 1;
+    fz_window(g, px, py, R, &ix0, &ix1, &iy0, &iy1);
     for (iy = iy0; iy <= iy1; iy++)
         for (ix = ix0; ix <= ix1; ix++) {
             const fl_fuzzy_cell_t *c = &g->cell[iy * g->nx + ix];
@@ -915,18 +906,7 @@ bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
     memset(&wn, 0, sizeof wn);
     for (it = 0; it < 3; it++) {
         int64_t sx = 0, sy = 0;
-        wn.ix0 = fl_floor_div(px - R - g->x0_mm, FZ_CELL);
-        wn.ix1 = fl_floor_div(px + R - g->x0_mm, FZ_CELL);
-        wn.iy0 = fl_floor_div(py - R - g->y0_mm, FZ_CELL);
-        wn.iy1 = fl_floor_div(py + R - g->y0_mm, FZ_CELL);
-        if (wn.ix0 < 0)
-            wn.ix0 = 0;
-        if (wn.iy0 < 0)
-            wn.iy0 = 0;
-        if (wn.ix1 > nx - 1)
-            wn.ix1 = nx - 1;
-        if (wn.iy1 > ny - 1)
-            wn.iy1 = ny - 1;
+        fz_window(g, px, py, R, &wn.ix0, &wn.ix1, &wn.iy0, &wn.iy1);
         wn.px = px;
         wn.py = py;
         wn.R = R;

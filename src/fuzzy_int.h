@@ -30,4 +30,24 @@ static inline uint8_t fz_mul8_ceil(uint32_t a, uint32_t b)
     return (uint8_t)((a * b + 254u) / 255u);
 }
 
+/* Cells of the square window of half-side r_mm around field point (x, y),
+ * clipped to the grid: columns ix0..ix1, rows iy0..iy1 (floor division, so
+ * no double-width cell at the grid origin). */
+static inline void fz_window(const fl_fuzzy_t *g, int32_t x_mm, int32_t y_mm, int32_t r_mm,
+                             int *ix0, int *ix1, int *iy0, int *iy1)
+{
+    *ix0 = fl_floor_div(x_mm - r_mm - g->x0_mm, FZ_CELL);
+    *ix1 = fl_floor_div(x_mm + r_mm - g->x0_mm, FZ_CELL);
+    *iy0 = fl_floor_div(y_mm - r_mm - g->y0_mm, FZ_CELL);
+    *iy1 = fl_floor_div(y_mm + r_mm - g->y0_mm, FZ_CELL);
+    if (*ix0 < 0)
+        *ix0 = 0;
+    if (*iy0 < 0)
+        *iy0 = 0;
+    if (*ix1 > g->nx - 1)
+        *ix1 = g->nx - 1;
+    if (*iy1 > g->ny - 1)
+        *iy1 = g->ny - 1;
+}
+
 #endif /* FIELDLOC_FUZZY_INT_H */

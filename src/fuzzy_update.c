@@ -599,18 +599,7 @@ static uint32_t mode_fit(fl_fuzzy_t *g, const obsp_t *q, int nreg, bool any_orie
     x.g = g;
     x.q = q;
     x.any_oriented = any_oriented;
-    ix0 = fl_floor_div(g->track_x_mm - R - g->x0_mm, FZ_CELL);
-    ix1 = fl_floor_div(g->track_x_mm + R - g->x0_mm, FZ_CELL);
-    iy0 = fl_floor_div(g->track_y_mm - R - g->y0_mm, FZ_CELL);
-    iy1 = fl_floor_div(g->track_y_mm + R - g->y0_mm, FZ_CELL);
-    if (ix0 < 0)
-        ix0 = 0;
-    if (iy0 < 0)
-        iy0 = 0;
-    if (ix1 > g->nx - 1)
-        ix1 = g->nx - 1;
-    if (iy1 > g->ny - 1)
-        iy1 = g->ny - 1;
+    fz_window(g, g->track_x_mm, g->track_y_mm, R, &ix0, &ix1, &iy0, &iy1);
     for (iy = iy0; iy <= iy1; iy++)
         for (ix = ix0; ix <= ix1; ix++)
             if (g->cell[(size_t)iy * g->nx + (size_t)ix].height > top)

@@ -933,6 +933,30 @@ static bool ln_try_merge(fl_lines_t *l, const fl_scan_t *scan, fl_segment_t *a,
 
 /* ---- refit ------------------------------------------------------------------ */
 
+/* Principal direction of a segment's point moments: the centred second
+ * moments times n (A, B, C; out), and half the angle of (A - B, 2C),
+ * scaled below 2^30 for atan2, as (cos, sin) in Q15.  n > 0. */
+static void ln_principal_dir(const fl_segment_t *s, int64_t *pA, int64_t *pB, int64_t *pC,
+                             int32_t *c, int32_t *sn)
+{
+    int64_t n = s->n;
+    int64_t A = n * s->sxx - s->sx * s->sx;
+    int64_t B = n * s->syy - s->sy * s->sy;
+    int64_t C = n * s->sxy - s->sx * s->sy;
+    int64_t x2 = A - B, y2 = 2 * C;
+    fl_angle_t th;
+    *pA = A;
+    *pB = B;
+    *pC = C;
+    while (ln_abs64(x2) >= (1LL << 30) || ln_abs64(y2) >= (1LL << 30)) {
+        x2 >>= 1;
+        y2 >>= 1;
+    }
+    th = (fl_angle_t)(fl_atan2((int32_t)y2, (int32_t)x2) / 2);
+    *c = fl_cos_q15(th);
+    *sn = fl_sin_q15(th);
+}
+
 /* Total least squares: direction from the n-scaled central moments, end
  * points = extreme points projected on the line through the centroid.
  * Scaling: A = n sxx - sx^2 etc. exact in int64 (< 2^45); for atan2 they
@@ -941,23 +965,11 @@ static bool ln_try_merge(fl_lines_t *l, const fl_scan_t *scan, fl_segment_t *a,
  * Q4 pixels with 64-bit products. */
 static void ln_refit(fl_segment_t *s)
 {
-    int64_t n = s->n, A, B, C, x2, y2;
+    int64_t n = s->n, A, B, C;
     int32_t cu_q4, cv_q4, c, sn, t0, t1, u0, v0, u1, v1;
-    fl_angle_t th;
     if (n <= 0)
         return;
-    A = n * s->sxx - s->sx * s->sx;
-    B = n * s->syy - s->sy * s->sy;
-    C = n * s->sxy - s->sx * s->sy;
-    x2 = A - B;
-    y2 = 2 * C;
-    while (ln_abs64(x2) >= (1LL << 30) || ln_abs64(y2) >= (1LL << 30)) {
-        x2 >>= 1;
-        y2 >>= 1;
-    }
-    th = (fl_angle_t)(fl_atan2((int32_t)y2, (int32_t)x2) / 2);
-    c = fl_cos_q15(th);
-    sn = fl_sin_q15(th);
+    ln_principal_dir(s, &A, &B, &C, &c, &sn);
     /* centroid, Q4 px */
     cu_q4 = (int32_t)fl_div_round((s->sx + n * s->au) * 8 * (1 << LN_MSHIFT), n);
     cv_q4 = (int32_t)fl_div_round((s->sy + n * s->av) * 8 * (1 << LN_MSHIFT), n);
@@ -1090,25 +1102,13 @@ int32_t fl_segment_distance_q4(const fl_segment_t *s, int32_t u_q4, int32_t v_q4
 static void ln_prune(fl_lines_t *l, ln_grow_t *g)
 {
     fl_segment_t *s = &g->s;
-    int64_t n = s->n, A, B, C, x2, y2, cu, cv;
+    int64_t n = s->n, A, B, C, cu, cv;
     int32_t c, sn, k, kept = 0, tol, wq4;
     int64_t tmin = 0, tmax = 0;
-    fl_angle_t th;
     ln_mom_t m;
     if (n < 3)
         return;
-    A = n * s->sxx - s->sx * s->sx;
-    B = n * s->syy - s->sy * s->sy;
-    C = n * s->sxy - s->sx * s->sy;
-    x2 = A - B;
-    y2 = 2 * C;
-    while (ln_abs64(x2) >= (1LL << 30) || ln_abs64(y2) >= (1LL << 30)) {
-        x2 >>= 1;
-        y2 >>= 1;
-    }
-    th = (fl_angle_t)(fl_atan2((int32_t)y2, (int32_t)x2) / 2);
-    c = fl_cos_q15(th);
-    sn = fl_sin_q15(th);
+    ln_principal_dir(s, &A, &B, &C, &c, &sn);
     /* centroid in Q1 (moment units are Q1 >> LN_MSHIFT about the anchor) */
     /* multiplications, not shifts: the sums and anchors may be negative */
     cu = (s->sx * (1 << LN_MSHIFT) + n * ((int64_t)s->au * (1 << LN_MSHIFT))) / n;
