@@ -255,6 +255,8 @@ static void t_sequence_run(void)
             n_lines++;
         }
         fclose(out);
+        out = NULL;
+        o.out = NULL; /* the stream is closed: later runs must not write to it */
     }
     CHECK_EQ(n_lines, 8);
     /* the last frame (step 21) against the walk's truth */
