@@ -165,6 +165,7 @@ perf: $(CLI)
 golden: $(RUNNER)
 	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k features
 	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k walks
+	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k adversarial
 
 # Regenerate the committed fixture set (deterministic: identical bytes on
 # every run and machine).

@@ -15,6 +15,7 @@
 #include "render.h"
 #include "adversarial.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -34,7 +35,7 @@ static int adv_init(adv_state_t *s)
 
 /* One frame; checks the outputs; returns a hash of them. */
 static uint32_t adv_run(adv_state_t *s, const fl_image_t *img, const fl_camera_t *cam,
-                        const fl_field_t *field, uint32_t h)
+                        const fl_field_t *field, uint32_t h, int *n_obs)
 {
     fl_obs_list_t obs;
     int32_t n = fl_vision_frame(&s->vis, &s->colors, img, cam, field, &obs), i;
@@ -54,27 +55,86 @@ static uint32_t adv_run(adv_state_t *s, const fl_image_t *img, const fl_camera_t
     }
     h = t_hash_i32(h, n);
     h = t_hash_i32(h, (int32_t)s->vis.status);
+    if (n_obs)
+        *n_obs = n;
     return h;
 }
 
 static adv_state_t *g_state;   /* big: allocated once */
+
+/* The golden outputs of the hostile frames: fixtures/golden/adversarial.txt,
+ * one line per frame, "NAME STATUS N_OBS POINTS SEGMENTS CROSSINGS POSTS
+ * 0xHASH" (integers only, so identical on every architecture).  Rewritten
+ * by FIELDLOC_WRITE_GOLDEN=1 build/run_tests -k adversarial (full mode). */
+#define ADV_GOLDEN "fixtures/golden/adversarial.txt"
+#define ADV_LINE_MAX 160
+
+typedef struct {
+    char (*line)[ADV_LINE_MAX];
+    int n, cap;
+} adv_golden_t;
+
+static void adv_golden_load(adv_golden_t *g)
+{
+    FILE *f = fopen(ADV_GOLDEN, "r");
+    char buf[ADV_LINE_MAX];
+    g->n = 0;
+    g->cap = 512;
+    g->line = calloc((size_t)g->cap, sizeof *g->line);
+    if (!f || !g->line) {
+        if (f)
+            fclose(f);
+        return;
+    }
+    while (fgets(buf, sizeof buf, f) && g->n < g->cap) {
+        buf[strcspn(buf, "\n")] = 0;
+        if (buf[0] != '#' && buf[0] != 0)
+            memcpy(g->line[g->n++], buf, sizeof buf);
+    }
+    fclose(f);
+}
+
+/* the golden line whose first word is name, or NULL */
+static const char *adv_golden_find(const adv_golden_t *g, const char *name)
+{
+    size_t len = strlen(name);
+    int i;
+    for (i = 0; i < g->n; i++)
+        if (!strncmp(g->line[i], name, len) && g->line[i][len] == ' ')
+            return g->line[i];
+    return NULL;
+}
 
 static void test_hostile_frames(void)
 {
     static const int sizes[][2] = {{320, 240}, {640, 480}, {1, 1}, {1, 240}, {320, 1},
                                    {2, 2}, {33, 17}, {321, 239}, {208, 160}};
     static const fl_pixel_format_t fmts[3] = {FL_FMT_RGB888, FL_FMT_YUYV422, FL_FMT_YCBCR_PLANAR};
+    static const char *fmt_names[3] = {"rgb", "yuyv", "planar"};
     const fl_field_t *field = fl_field_find("spl2013");
+    const char *write = getenv("FIELDLOC_WRITE_GOLDEN");
+    FILE *out = NULL;
+    adv_golden_t gold;
     fl_camera_t cam;
     fl_camera_pose_t pose;
     const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-320");
     uint32_t h = t_hash_init();
-    int k, si, fi, frames = 0, rejected = 0, nsizes = t_quick ? 4 : (int)(sizeof sizes / sizeof sizes[0]);
+    int k, si, fi, frames = 0, rejected = 0, same = 0, missing = 0;
+    int nsizes = t_quick ? 4 : (int)(sizeof sizes / sizeof sizes[0]);
     pose.neck_height_mm = m->default_neck_height_mm;
     pose.pitch_offset = m->default_pitch_offset;
     pose.head_pitch = 0;
     pose.head_yaw = 0;
     CHECK_EQ(fl_camera_init(&cam, m, &pose), FL_OK);
+    adv_golden_load(&gold);
+    if (write && *write && !t_quick) {
+        out = fopen(ADV_GOLDEN, "w");
+        CHECK(out != NULL);
+        if (out)
+            fprintf(out, "# golden outputs of the hostile frames of tools/adversarial.c through "
+                         "fl_vision_frame\n# (host_tests/test_adversarial.c): NAME STATUS N_OBS "
+                         "POINTS SEGMENTS CROSSINGS POSTS 0xHASH\n# NAME = KIND_WxH_FORMAT_padPAD\n");
+    }
     for (k = 0; k < ADV_COUNT; k++)
         for (si = 0; si < nsizes; si++)
             for (fi = 0; fi < 3; fi++) {
@@ -82,6 +142,10 @@ static void test_hostile_frames(void)
                 fl_status_t st;
                 int pad = (k + si + fi) % 3 == 0 ? 0 : 7 * (fi + 1);  /* stride > width */
                 uint8_t *buf;
+                uint32_t fh;
+                int n_obs = 0;
+                char name[64], got[ADV_LINE_MAX];
+                const char *want;
                 if (t_quick && sizes[si][0] * sizes[si][1] > 320 * 240)
                     continue;
                 buf = adv_frame((adv_kind_t)k, sizes[si][0], sizes[si][1], fmts[fi], pad, &img, &st);
@@ -94,13 +158,42 @@ static void test_hostile_frames(void)
                 } else {
                     CHECK_EQ(st, FL_OK);
                 }
-                h = adv_run(g_state, &img, &cam, field, h);
+                fh = adv_run(g_state, &img, &cam, field, t_hash_init(), &n_obs);
+                h = t_hash_i32(h, (int32_t)fh);
                 if (st != FL_OK)
                     CHECK_EQ(g_state->vis.lines.n_points + g_state->vis.crossings.n, 0);
+                snprintf(name, sizeof name, "%s_%dx%d_%s_pad%d", adv_name((adv_kind_t)k),
+                         sizes[si][0], sizes[si][1], fmt_names[fi], pad);
+                snprintf(got, sizeof got, "%s %d %d %d %d %d %d 0x%08lx", name,
+                         (int)g_state->vis.status, n_obs,
+                         (int)g_state->vis.lines.n_points, (int)g_state->vis.lines.n_segments,
+                         (int)g_state->vis.crossings.n, (int)g_state->vis.posts.n,
+                         (unsigned long)fh);
+                if (out)
+                    fprintf(out, "%s\n", got);
+                want = adv_golden_find(&gold, name);
+                if (!want)
+                    missing++;
+                else if (!strcmp(want, got))
+                    same++;
+                else if (!out) {
+                    t_fail_msg(__FILE__, __LINE__, "hostile frame golden differs (rewrite with "
+                               "FIELDLOC_WRITE_GOLDEN=1 build/run_tests -k adversarial)");
+                    t_info("want %s", want);
+                    t_info("got  %s", got);
+                }
                 frames++;
                 free(buf);
             }
-    t_info("%d hostile frames (%d rejected views), outputs within capacity", frames, rejected);
+    if (out) {
+        fclose(out);
+        t_info("wrote %d hostile-frame goldens to %s", frames, ADV_GOLDEN);
+    } else {
+        CHECK_EQ(missing, 0);   /* every hostile frame has its golden line */
+        t_info("%d hostile frames (%d rejected views), outputs within capacity; %d of %d "
+               "identical to %s", frames, rejected, same, frames, ADV_GOLDEN);
+    }
+    free(gold.line);
     t_digest("adversarial.frames", h);
 }
 
@@ -125,8 +218,8 @@ static void test_state_survives(void)
     CHECK_EQ(render_frame(&sc, &fr), 0);
     CHECK(adv_init(fresh));
     CHECK_EQ(fl_camera_init(&cam, sc.camera, &sc.head), FL_OK);
-    a = adv_run(fresh, &fr.view, &cam, sc.field, t_hash_init());
-    b = adv_run(g_state, &fr.view, &cam, sc.field, t_hash_init());
+    a = adv_run(fresh, &fr.view, &cam, sc.field, t_hash_init(), NULL);
+    b = adv_run(g_state, &fr.view, &cam, sc.field, t_hash_init(), NULL);
     CHECK_EQ(a, b);
     CHECK(fresh->vis.crossings.n > 0);   /* the fixture does show a crossing */
     render_frame_free(&fr);
