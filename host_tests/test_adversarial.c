@@ -226,6 +226,63 @@ static void test_state_survives(void)
     free(fresh);
 }
 
+/* Localizer abuse (issue 7.4), end to end through the public API: a robot
+ * tracked at a known pose gets contradicting observations (a centre mark at
+ * 200 mm when it stands 2.5 m from it, every frame) and absurd odometry.
+ * The grid stays valid, the estimate stays on the carpet, reliability drops
+ * below its tracked level, and the events are counted. */
+static void test_localizer_contradiction(void)
+{
+    const fl_field_t *f = fl_field_find("spl2013");
+    fl_fuzzy_t *g = malloc(sizeof *g);
+    fl_fuzzy_estimate_t e0, e;
+    fl_obs_t o;
+    uint16_t lowest;
+    int k;
+    CHECK(g != NULL);
+    if (!g)
+        return;
+    CHECK_EQ(fl_fuzzy_init(g, f, NULL), FL_OK);
+    fl_fuzzy_reset_pose(g, -2500, 0, 0, 150, fl_angle_from_mdeg(5000));
+    CHECK(fl_fuzzy_estimate(g, &e0));
+    CHECK_LE(32768, e0.reliability_q16);   /* a known pose is reliable */
+    memset(&o, 0, sizeof o);
+    o.kind = FL_LM_CENTRE_MARK;
+    o.range_mm = 200;
+    o.bearing = 0;
+    o.confidence = 255;
+    lowest = e0.reliability_q16;
+    for (k = 0; k < 40; k++) {
+        fl_obs_list_t list;
+        fl_fuzzy_predict(g, 0, 0, 0);
+        list.n = 1;
+        list.obs[0] = o;
+        fl_fuzzy_update(g, &list);
+        CHECK(fl_fuzzy_check(g));
+        CHECK(fl_fuzzy_estimate(g, &e));
+        CHECK(e.x_mm >= -g->half_x_mm && e.x_mm <= g->half_x_mm);
+        CHECK(e.y_mm >= -g->half_y_mm && e.y_mm <= g->half_y_mm);
+        if (e.reliability_q16 < lowest)
+            lowest = e.reliability_q16;
+    }
+    t_info("contradicting observations: reliability %.2f tracked, lowest %.2f; kidnaps %u, "
+           "gated %u, empty resets %u",
+           e0.reliability_q16 / 65536.0, lowest / 65536.0, (unsigned)g->stats.kidnaps,
+           (unsigned)g->stats.obs_gated, (unsigned)g->stats.empty_resets);
+    CHECK(lowest < e0.reliability_q16 / 2);   /* reliability drops */
+    CHECK(g->stats.kidnaps + g->stats.obs_gated + g->stats.empty_resets > 0);   /* counted */
+    /* absurd odometry: ignored and counted, the state valid */
+    fl_fuzzy_reset_pose(g, 1000, 500, 0, 150, fl_angle_from_mdeg(5000));
+    fl_fuzzy_predict(g, 10000, 0, 0);
+    fl_fuzzy_predict(g, INT32_MIN, INT32_MAX, (fl_angle_t)-32768);
+    CHECK_EQ(g->stats.odo_rejected, 2);
+    CHECK(fl_fuzzy_check(g));
+    CHECK(fl_fuzzy_estimate(g, &e));
+    CHECK(e.x_mm >= -g->half_x_mm && e.x_mm <= g->half_x_mm);
+    CHECK(e.y_mm >= -g->half_y_mm && e.y_mm <= g->half_y_mm);
+    free(g);
+}
+
 void suite_adversarial(void)
 {
     g_state = malloc(sizeof *g_state);
@@ -236,5 +293,6 @@ void suite_adversarial(void)
     }
     t_run("adversarial.hostile_frames", test_hostile_frames);
     t_run("adversarial.state_survives", test_state_survives);
+    t_run("adversarial.localizer_contradiction", test_localizer_contradiction);
     free(g_state);
 }
