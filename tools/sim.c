@@ -1322,6 +1322,9 @@ int sim_write_sequence(const sim_scenario_t *sc, const char *seq_path,
         if (max_frames > 0 && frames >= max_frames)
             break;
         sim_render_scene(sc, &st, &scene);
+        /* what `localize` will assume (lr_camera_pose): the camera's defaults */
+        scene.head.neck_height_mm = sc->camera->default_neck_height_mm;
+        scene.head.pitch_offset = sc->camera->default_pitch_offset;
         snprintf(path, sizeof path, "%s/%s%05lu.ppm", dir, image_prefix,
                  (unsigned long)st.index);
         if (render_frame(&scene, &fr) != 0) {

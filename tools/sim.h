@@ -307,7 +307,10 @@ void sim_render_scene(const sim_scenario_t *sc, const sim_step_t *st,
  * rounding remainders carried), head angles to 1e-6 rad (they round back
  * to the same binary angles).  The first frame is step 0 (odometry 0).
  * Events are not part of the format (a penalty placement shows only as a
- * jump).  with_prior writes the start pose as prior.  0 on success. */
+ * jump).  with_prior writes the start pose as prior.  The format carries
+ * no neck height or pitch offset: `localize` takes the camera model's
+ * defaults, so the frames are rendered with those too (the walk itself,
+ * truth and odometry, is the scenario's).  0 on success. */
 int sim_write_sequence(const sim_scenario_t *sc, const char *seq_path,
                        const char *image_prefix, int every, int max_frames,
                        int with_prior);
