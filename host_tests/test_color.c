@@ -276,6 +276,11 @@ static void test_params(void)
     fl_color_params_default(&p);
     p.white_contrast_pct = 201;
     CHECK_EQ(fl_color_init(&tab, &p), FL_ERR_RANGE);
+    fl_color_params_default(&p);
+    p.white_line_pct = 99;
+    CHECK_EQ(fl_color_init(&tab, &p), FL_ERR_RANGE);
+    p.white_line_pct = 0;
+    CHECK_EQ(fl_color_init(&tab, &p), FL_OK);
     CHECK_EQ(fl_color_class_hsv(NULL, fl_hsv_from_rgb(1, 2, 3)), FL_CLASS_OTHER);
     CHECK_EQ(fl_color_adapt(NULL, NULL), FL_ERR_NULL);
     CHECK_EQ(fl_color_reset(NULL), FL_ERR_NULL);
@@ -335,6 +340,72 @@ static void test_adapt(void)
     }
     CHECK_EQ(fl_color_reset(&tab), FL_OK);
     CHECK_EQ(tab.hue_shift, 0);
+    CHECK_EQ(tab.green.s_lo, p.green.s_lo);
+}
+
+/* The per-frame white level: against a double model of the mix, nominal
+ * light leaves white alone, 1.6x light (lines clip) caps it and the blurred
+ * line edge of that light becomes carpet. */
+static void test_white_cap(void)
+{
+    fl_field_colour_t f;
+    fl_color_params_t p;
+    int32_t val, sat, worst = 0;
+    fl_color_params_default(&p);
+    memset(&f, 0, sizeof f);
+    CHECK_EQ(fl_color_white_cap(NULL, &f), 0);
+    CHECK_EQ(fl_color_white_cap(&p, NULL), p.white.s_hi);
+    CHECK_EQ(fl_color_white_cap(&p, &f), p.white.s_hi);   /* empty estimate */
+    f.n = 100;
+    for (val = 0; val <= 255; val++)
+        for (sat = 0; sat <= 255; sat += 5) {
+            double mn = val - sat * val / 255.0, line = val * p.white_line_pct / 100.0;
+            double cap = 255.0 - (5.0 * mn + 3.0 * line) / 8.0;
+            int32_t got, err;
+            f.val = (uint8_t)val;
+            f.sat = (uint8_t)sat;
+            got = fl_color_white_cap(&p, &f);
+            if (cap > p.white.s_hi)
+                cap = p.white.s_hi;
+            if (cap < p.white.s_lo)
+                cap = p.white.s_lo;
+            err = got - (int32_t)floor(cap);
+            CHECK(got >= p.white.s_lo && got <= p.white.s_hi);
+            if (abs(err) > worst)
+                worst = abs(err);
+        }
+    t_info("white cap vs double: max %d LSB", worst);
+    CHECK_LE(worst, 2);
+    f.val = 141;   /* the rendered carpet at nominal light: lines do not clip */
+    f.sat = 106;
+    f.hue = 62;
+    CHECK_EQ(fl_color_white_cap(&p, &f), p.white.s_hi);
+    f.val = 148;   /* a UvA 2013 frame (lines clip slightly): unchanged */
+    f.sat = 103;
+    CHECK_EQ(fl_color_white_cap(&p, &f), p.white.s_hi);
+    p.white_line_pct = 0;
+    f.val = 225;
+    f.sat = 105;
+    CHECK_EQ(fl_color_white_cap(&p, &f), p.white.s_hi);
+    fl_color_params_default(&p);
+    CHECK_EQ(fl_color_init(&tab, &p), FL_OK);
+    /* carpet at 1.6x: (131, 226, 136); a line edge a third covered clips to
+     * (225, 255, 222), S 33: white before, carpet after adapting */
+    CHECK_EQ(fl_color_class_rgb_exact(&tab, 225, 255, 222), FL_CLASS_WHITE);
+    CHECK_EQ(fl_color_adapt(&tab, &f), 1);
+    t_info("white cap at field V 225 S 105: s_hi %d, green s_lo %d", tab.white.s_hi, tab.green.s_lo);
+    CHECK(tab.white.s_hi >= 16 && tab.white.s_hi <= 24);
+    CHECK_EQ(tab.green.s_lo, tab.white.s_hi + 1);
+    CHECK_EQ(fl_color_class_rgb_exact(&tab, 225, 255, 222), FL_CLASS_GREEN);
+    CHECK_EQ(fl_color_class_ycbcr(&tab, 242, 120, 113), fl_color_class_ycbcr_exact(&tab, 242, 120, 113));
+    CHECK_EQ(fl_color_class_rgb_exact(&tab, 252, 255, 251), FL_CLASS_WHITE);   /* the line */
+    CHECK_EQ(fl_color_class_rgb_exact(&tab, 131, 226, 136), FL_CLASS_GREEN);   /* the carpet */
+    CHECK_EQ(tab.exact, 1);
+    CHECK_EQ(fl_color_adapt(&tab, &f), 0);   /* nothing moved */
+    f.val = 141;
+    f.sat = 106;
+    CHECK_EQ(fl_color_adapt(&tab, &f), 1);   /* back to nominal light */
+    CHECK_EQ(tab.white.s_hi, p.white.s_hi);
     CHECK_EQ(tab.green.s_lo, p.green.s_lo);
 }
 
@@ -498,5 +569,6 @@ void suite_color(void)
     t_run("color.rgb_table", test_rgb_table);
     t_run("color.params", test_params);
     t_run("color.adapt", test_adapt);
+    t_run("color.white_cap", test_white_cap);
     t_run("color.realdata_defaults", test_realdata_defaults);
 }

@@ -597,17 +597,22 @@ static void test_lighting(void)
     report("lighting gain 50..160 %, hue -8/0/+8, before re-centring", &before, 1);
     report("lighting gain 50..160 %, hue -8/0/+8, after re-centring", &after, 1);
     check_border(&after);
-    /* Issue 4 asks white precision >= 0.95 under every lighting; measured
-     * 0.83 over the set (0.58 at gain 160 %: blurred line edges clip to
-     * white and lines come out about 1 px wider).  That target is NOT met:
-     * this check is a regression floor at the measured level, the gap is
-     * printed, and README/issue say so.  Recall and yellow keep the target. */
+    /* Issue 4 asks white precision >= 0.95 under every lighting.  At gain
+     * 160 % the lines clip and their blurred edges (a third covered) clip
+     * to near-white: 0.58 there and 0.83 over the set until the per-frame
+     * white level (fl_color_white_cap) came; now 0.934 over the set (0.934
+     * at 160 %).  The rest is mostly the RGB table's 8-level cells at the
+     * white/green boundary and YUYV's shared chroma at vertical line
+     * edges.  That target is NOT met: this check is a regression floor at
+     * the measured level, the gap is printed, and README/issue say so.
+     * Recall and yellow keep the target. */
     if (!t_quick) {
         const scantool_eval_t *e = &after.e;
         double wp = scantool_precision(e->white_tp, e->white_fp);
         CHECK(e->white_tp > 1000);
         CHECK(e->yellow_tp > 100);
-        CHECK_LE(0.80, wp);                                   /* floor, not target */
+        CHECK_LE(0.93, wp);                                   /* floor, not target */
+        CHECK_LE(0.93, scantool_precision(per_gain[4].e.white_tp, per_gain[4].e.white_fp));
         CHECK_LE(0.95, scantool_recall(e->white_tp, e->white_fn));
         CHECK_LE(0.95, scantool_precision(e->yellow_tp, e->yellow_fp));
         CHECK_LE(0.95, scantool_recall(e->yellow_tp, e->yellow_fn));

@@ -223,6 +223,7 @@ void fl_color_params_default(fl_color_params_t *p)
     p->green_sat_ref = 106;
     p->white = white;
     p->white_contrast_pct = 25;
+    p->white_line_pct = 180;
     p->yellow = yellow;
     p->adapt_max_hue = 16;
 }
@@ -607,8 +608,9 @@ static void build(fl_color_table_t *t)
     }
 }
 
-/* Effective boxes from params, hue shift and green s_lo. */
-static void apply(fl_color_table_t *t, int32_t shift, int32_t green_s_lo)
+/* Effective boxes from params, hue shift, green s_lo and white s_hi. */
+static void apply(fl_color_table_t *t, int32_t shift, int32_t green_s_lo,
+                  int32_t white_s_hi)
 {
     fl_hsv_box_t *bx[2];
     int32_t i;
@@ -617,6 +619,7 @@ static void apply(fl_color_table_t *t, int32_t shift, int32_t green_s_lo)
     t->yellow = t->params.yellow;
     t->hue_shift = (int8_t)shift;
     t->green.s_lo = (uint8_t)green_s_lo;
+    t->white.s_hi = (uint8_t)white_s_hi;
     bx[0] = &t->green;
     bx[1] = &t->yellow;
     for (i = 0; i < 2; i++) {
@@ -636,10 +639,11 @@ fl_status_t fl_color_init(fl_color_table_t *t, const fl_color_params_t *p)
         return FL_ERR_NULL;
     if (!box_valid(&p->green) || !box_valid(&p->white) ||
         !box_valid(&p->yellow) || p->white_contrast_pct > 200 ||
-        p->adapt_max_hue > 30 || p->green_sat_ref == 0)
+        p->adapt_max_hue > 30 || p->green_sat_ref == 0 ||
+        (p->white_line_pct > 0 && p->white_line_pct < 100))
         return FL_ERR_RANGE;
     t->params = *p;
-    apply(t, 0, p->green.s_lo);
+    apply(t, 0, p->green.s_lo, p->white.s_hi);
     build(t);
     return FL_OK;
 }
@@ -648,7 +652,7 @@ fl_status_t fl_color_reset(fl_color_table_t *t)
 {
     if (t == NULL)
         return FL_ERR_NULL;
-    apply(t, 0, t->params.green.s_lo);
+    apply(t, 0, t->params.green.s_lo, t->params.white.s_hi);
     build(t);
     return FL_OK;
 }
@@ -669,9 +673,25 @@ static int32_t hue_diff(int32_t a, int32_t b)
     return d;
 }
 
+int32_t fl_color_white_cap(const fl_color_params_t *p, const fl_field_colour_t *field)
+{
+    int32_t val, mn, line, cap;
+    if (p == NULL)
+        return 0;
+    if (field == NULL || field->n < 16 || p->white_line_pct == 0)
+        return p->white.s_hi;
+    val = field->val;
+    mn = val - field->sat * val / 255;      /* the field's min channel */
+    line = val * p->white_line_pct / 100;   /* unclipped line level */
+    cap = 255 - (5 * mn + 3 * line) / 8;    /* min channel of the 3/8 mix */
+    if (cap < p->white.s_lo)
+        cap = p->white.s_lo;
+    return cap < p->white.s_hi ? cap : p->white.s_hi;
+}
+
 int fl_color_adapt(fl_color_table_t *t, const fl_field_colour_t *field)
 {
-    int32_t ref, shift, lim, s_lo, s_nom;
+    int32_t ref, shift, lim, s_lo, s_nom, w_hi;
     if (t == NULL || field == NULL)
         return FL_ERR_NULL;
     if (field->n < 16 || field->hue > 179)
@@ -692,9 +712,17 @@ int fl_color_adapt(fl_color_table_t *t, const fl_field_colour_t *field)
         s_lo = s_nom;
     if (s_lo < s_nom / 2)
         s_lo = s_nom / 2;
-    if (iabs(shift - t->hue_shift) < 2 && iabs(s_lo - t->green.s_lo) < 6)
+    w_hi = fl_color_white_cap(&t->params, field);
+    /* a capped white leaves no gap: the boxes still meet, so the edge
+     * pixels the cap takes from white are carpet (as they mostly are), not
+     * other (which would cut lines off the border and posts off their
+     * feet) */
+    if (w_hi < t->params.white.s_hi && s_lo > w_hi + 1)
+        s_lo = w_hi + 1;
+    if (iabs(shift - t->hue_shift) < 2 && iabs(s_lo - t->green.s_lo) < 6 &&
+        iabs(w_hi - t->white.s_hi) < 3)
         return 0;
-    apply(t, shift, s_lo);
+    apply(t, shift, s_lo, w_hi);
     build(t);
     return 1;
 }

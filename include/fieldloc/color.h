@@ -38,7 +38,10 @@
  *   white  hue 0..179, S 0..47 (the boxes meet: S >= 48 is green), V
  *          60..255 (lines at gain 0.5 have V ~ 100); contrast 25 %: a white
  *          run must be 1.25x as bright (luma) as the green next to it
- *          (nominal lines are ~2x; pale carpet and grey clutter much less)
+ *          (nominal lines are ~2x; pale carpet and grey clutter much less);
+ *          line level 180 %: the UvA line cores clip at 255 over carpet of
+ *          V 122..164 (ratio >= 1.6..2.1), rendered lines are 1.8x the
+ *          carpet (fl_color_white_cap)
  *   yellow hue 15..40 (posts 26..32 +- 8 of hue drift, clear of green at
  *          46), S 90..255, V 50..255 (posts at half light: V ~ 85)
  *
@@ -117,6 +120,10 @@ typedef struct {
     fl_hsv_box_t white;
     uint8_t white_contrast_pct; /* white run luma >= green luma *
                                    (100 + pct) / 100; 0..200 */
+    uint8_t white_line_pct;     /* line brightness / field brightness, %
+                                   (the lines' per-frame white level:
+                                   fl_color_adapt caps white.s_hi where
+                                   lines clip); 0 (off) or 100..255 */
     fl_hsv_box_t yellow;
     uint8_t adapt_max_hue;      /* largest hue re-centring, 0..30 units
                                    (0: fl_color_adapt never moves hues) */
@@ -159,16 +166,34 @@ typedef struct {
 
 /* Validate params and build the tables.  FL_ERR_NULL, FL_ERR_RANGE (a hue
  * above 179, lo > hi for S or V, contrast > 200, adapt_max_hue > 30,
- * green_sat_ref 0); on error *t is left classifying everything as other. */
+ * green_sat_ref 0, white_line_pct 1..99); on error *t is left classifying
+ * everything as other. */
 fl_status_t fl_color_init(fl_color_table_t *t, const fl_color_params_t *p);
 
 /* Re-centre on a field-colour estimate (at least 16 samples): hue shift =
  * estimate hue - centre of params.green's hue range, limited to
  * +-adapt_max_hue, applied to green and yellow; green.s_lo scaled down by
- * sat / green_sat_ref (never up, never below half).  Rebuilds when the
- * shift moved by >= 2 or s_lo by >= 6 and returns 1; 0 when nothing
- * changed or the estimate is empty; FL_ERR_NULL. */
+ * sat / green_sat_ref (never up, never below half); white.s_hi capped by
+ * the per-frame white level (fl_color_white_cap).  Rebuilds when the shift
+ * moved by >= 2, s_lo by >= 6 or the white cap by >= 3 and returns 1; 0
+ * when nothing changed or the estimate is empty; FL_ERR_NULL. */
 int fl_color_adapt(fl_color_table_t *t, const fl_field_colour_t *field);
+
+/* Per-frame white level.  Where the field is bright the lines clip at 255
+ * and the blurred pixel at a line's edge, a mix of carpet and a line
+ * brighter than the sensor can show, clips to a near-grey: a pixel only a
+ * third covered by the line looks white (S ~ 30 at 1.6x the nominal light)
+ * and lines come out a pixel wider on each side.  The cap is the
+ * saturation of a pixel 3/8 covered by a line white_line_pct % as bright as
+ * the field, after the clip: 255 - min channel of that mix, where the
+ * field's min channel is val - sat * val / 255.  While the lines do not
+ * clip that number is above any sensible s_hi (the real mix saturation is
+ * lower), so the cap only acts on bright frames.  Returns the effective
+ * white s_hi: min(params.white.s_hi, max(cap, params.white.s_lo)); the
+ * unchanged s_hi when white_line_pct is 0 or the estimate is empty.
+ * Scaling: val, sat <= 255; val * white_line_pct <= 65025; the mix sum
+ * 5 * 255 + 3 * 650 < 2^12; integer floor divisions. */
+int32_t fl_color_white_cap(const fl_color_params_t *p, const fl_field_colour_t *field);
 
 /* Back to params (shift 0) and rebuild.  FL_OK or FL_ERR_NULL. */
 fl_status_t fl_color_reset(fl_color_table_t *t);
