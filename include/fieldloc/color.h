@@ -111,7 +111,8 @@ typedef struct {
     uint8_t v_lo, v_hi;
 } fl_hsv_box_t;
 
-/* At most 8 parameters per class: a box plus one class-specific number. */
+/* At most 8 parameters per class: a box (6) plus class-specific numbers
+ * (green 1, white 2, yellow 0; adapt_max_hue is shared). */
 typedef struct {
     fl_hsv_box_t green;
     uint8_t green_sat_ref;      /* carpet saturation the box was made for;
