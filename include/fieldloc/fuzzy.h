@@ -41,9 +41,10 @@
  *     < 64 KiB (printed by the fuzzy suite).
  *     No heap; stack at most about 1 KB per call (make stack).
  * Cost (tools/bench_fuzzy.c, x86-64 host, gcc -O2): one predict + 5
- * observation updates on the SPL grid: about 0.20 ms with a tracked mode,
- * about 1.1 ms from total ignorance (every cell possible: the worst case,
- * for a fraction of a second after a reset).  callgrind: about 2.0 M
+ * observation updates on the SPL grid: about 0.18 ms (2.8 M instructions)
+ * with a tracked mode, about 0.9 ms (14.5 M instructions) from total
+ * ignorance (every cell possible: the worst case, for a fraction of a
+ * second after a reset; goal 0.5 ms).  callgrind: about 2.0 M
  * instructions per 30 Hz frame of the spl2013 walk once tracked (predict,
  * the frame's ~3 observations, estimate).
  */
