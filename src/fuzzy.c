@@ -251,6 +251,31 @@ void fl_fuzzy_internal_normalize(fl_fuzzy_t *g, uint32_t max_q8)
         return;
     }
     gain = max_q8 >= 255 ? 65536u : (255u << 16) / max_q8;
+    if (gain == 65536u) {
+        /* peak already 1 (the usual case after an update: some cell kept
+         * its full support): heights and biases are unchanged, only the
+         * floor and the live ranges (same results as the general loop) */
+        for (iy = 0; iy < g->ny; iy++) {
+            fl_fuzzy_cell_t *row = &g->cell[(size_t)iy * g->nx];
+            int lo = -1, hi = -1;
+            for (ix = 0; ix < g->nx; ix++) {
+                fl_fuzzy_cell_t *c = &row[ix];
+                if (c->height == 0)
+                    continue;
+                if (c->height < minh) {
+                    c->height = 0;
+                    c->bias = 0;
+                    continue;
+                }
+                if (lo < 0)
+                    lo = ix;
+                hi = ix;
+            }
+            g->row_lo[iy] = (uint8_t)(lo < 0 ? 1 : lo);
+            g->row_hi[iy] = (uint8_t)(lo < 0 ? 0 : hi);
+        }
+        return;
+    }
     for (iy = 0; iy < g->ny; iy++) {
         fl_fuzzy_cell_t *row = &g->cell[(size_t)iy * g->nx];
         int lo = -1, hi = -1;

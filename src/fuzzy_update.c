@@ -46,7 +46,10 @@
  * prior dropped, counted.
  *
  * Cost.  Per observation one region per matching landmark and orientation
- * candidate (bounding box of the ring, or of the arc); per grid row and
+ * candidate (bounding box of the ring, or of the arc: the annular sector
+ * of directions within the orientation tolerance + 1 degree, where cells
+ * outside the sector are skipped by a dot-product test before the atan2;
+ * both only skip cells whose agreement is exactly 0); per grid row and
  * region two integer square roots give the one or two cell intervals the
  * ring crosses; only live cells there are evaluated (a squared-distance
  * test against the ring's bounds, then inside the ring one isqrt, one
@@ -66,6 +69,12 @@
 #include <string.h>
 
 #define HT 32768
+/* The sector pre-test and the sector boxes of oriented regions use the
+ * orientation tolerance plus this margin (1 deg): far more than the
+ * 0.02-degree atan2 error and the Q15 rounding of the unit vectors, so
+ * every cell they skip has an orientation agreement of exactly 0 (the
+ * results are those of the full evaluation, bit for bit). */
+#define SECTOR_MARGIN 182
 
 static bool ready(const fl_fuzzy_t *g)
 {
@@ -132,6 +141,10 @@ typedef struct {
     int32_t hcore, hslope;       /* heading trapezoid of the observation */
     int32_t ocore, oslope;       /* orientation agreement */
     bool no_bearing_heading;     /* the robot may stand on the landmark */
+    int32_t sector_cos_q15;      /* cos(tol + SECTOR_MARGIN), Q15; 0 when
+                                    that angle is 90 deg or more (no sector
+                                    pre-test) */
+    fl_angle_t sector_half;      /* tol + SECTOR_MARGIN (binary angle) */
     uint32_t bias_q16;           /* bP: possibility of an outlier */
     uint8_t bias_q8;
     uint32_t head_bias_q16;      /* relative heading bias of the trapezoid */
@@ -163,6 +176,58 @@ static void add_region(fl_fuzzy_t *g, int *n, const fl_fuzzy_region_t *r)
     }
     g->scratch.upd.region[*n] = *r;
     (*n)++;
+}
+
+/* Shrink the box [x0, x1] x [y0, y1] (already a valid bound) to the
+ * bounding box of the annular sector of the ring around (lx, ly):
+ * distances max(rin, 0)..rout, directions phi +- q->sector_half (< 90
+ * deg).  Every cell with a non-zero orientation agreement lies in that
+ * sector (see SECTOR_MARGIN), so the box stays a valid bound.
+ * Scaling and overflow: R <= rout <= 3 x 30000 mm, R x Q15 < 2^32 in
+ * int64; each point rounded to the nearest mm, the box widened by 4 mm
+ * for the rounding and the table error (R x 2^-15 < 3 mm). */
+static void sector_box(int32_t lx, int32_t ly, fl_angle_t phi, const obsp_t *q,
+                       int32_t *x0, int32_t *x1, int32_t *y0, int32_t *y1)
+{
+    int32_t rad[2], ax0 = INT32_MAX, ax1 = INT32_MIN, ay0 = INT32_MAX, ay1 = INT32_MIN;
+    fl_angle_t ang[2];
+    int i, j, k;
+    rad[0] = q->rin > 0 ? q->rin : 0;
+    rad[1] = q->rout;
+    ang[0] = fl_angle_wrap((int32_t)phi - q->sector_half);
+    ang[1] = fl_angle_wrap((int32_t)phi + q->sector_half);
+    for (i = 0; i < 2; i++)
+        for (j = 0; j < 2; j++) {
+            int32_t px = lx + (int32_t)(((int64_t)rad[i] * fl_cos_q15(ang[j]) + 16384) >> 15);
+            int32_t py = ly + (int32_t)(((int64_t)rad[i] * fl_sin_q15(ang[j]) + 16384) >> 15);
+            ax0 = px < ax0 ? px : ax0;
+            ax1 = px > ax1 ? px : ax1;
+            ay0 = py < ay0 ? py : ay0;
+            ay1 = py > ay1 ? py : ay1;
+        }
+    /* the outer arc's extreme points along the axes inside the sector */
+    for (k = 0; k < 4; k++) {
+        fl_angle_t a = fl_angle_wrap(k * 16384);
+        int32_t dd = iabs(fl_angle_sub(a, phi));
+        if (dd > q->sector_half)
+            continue;
+        if (k == 0)
+            ax1 = lx + q->rout > ax1 ? lx + q->rout : ax1;
+        else if (k == 1)
+            ay1 = ly + q->rout > ay1 ? ly + q->rout : ay1;
+        else if (k == 2)
+            ax0 = lx - q->rout < ax0 ? lx - q->rout : ax0;
+        else
+            ay0 = ly - q->rout < ay0 ? ly - q->rout : ay0;
+    }
+    if (ax0 - 4 > *x0)
+        *x0 = ax0 - 4;
+    if (ax1 + 4 < *x1)
+        *x1 = ax1 + 4;
+    if (ay0 - 4 > *y0)
+        *y0 = ay0 - 4;
+    if (ay1 + 4 < *y1)
+        *y1 = ay1 + 4;
 }
 
 /* Regions of an observation: one per matching landmark and orientation
@@ -203,11 +268,14 @@ static int build_regions(fl_fuzzy_t *g, const fl_obs_t *o, const obsp_t *q)
                 int32_t x1 = px + arc < bx1 ? px + arc : bx1;
                 int32_t y0 = py - arc > by0 ? py - arc : by0;
                 int32_t y1 = py + arc < by1 ? py + arc : by1;
+                bool sector = !q->no_bearing_heading && q->sector_cos_q15 > 0;
                 if (q->no_bearing_heading) {   /* no arc: the whole disc */
                     x0 = bx0;
                     x1 = bx1;
                     y0 = by0;
                     y1 = by1;
+                } else if (sector) {
+                    sector_box(lm->x_mm, lm->y_mm, phi, q, &x0, &x1, &y0, &y1);
                 }
                 if (x0 <= x1 && y0 <= y1) {
                     fl_fuzzy_region_t r;
@@ -218,7 +286,10 @@ static int build_regions(fl_fuzzy_t *g, const fl_obs_t *o, const obsp_t *q)
                     r.y0_mm = y0;
                     r.y1_mm = y1;
                     r.head_o = ho;
+                    r.ux_q15 = fl_cos_q15(phi);
+                    r.uy_q15 = fl_sin_q15(phi);
                     r.oriented = true;
+                    r.sector = sector;
                     add_region(g, &n, &r);
                 }
             }
@@ -231,7 +302,10 @@ static int build_regions(fl_fuzzy_t *g, const fl_obs_t *o, const obsp_t *q)
             r.y0_mm = by0;
             r.y1_mm = by1;
             r.head_o = 0;
+            r.ux_q15 = 0;
+            r.uy_q15 = 0;
             r.oriented = false;
+            r.sector = false;
             add_region(g, &n, &r);
         }
     }
@@ -276,6 +350,9 @@ static void eval_cells(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
         m = delta <= q->rc ? 65535u : ((uint32_t)(q->rw - delta) * q->inv_rs) >> 16;
         if (q->no_bearing_heading) {
             head = reg->oriented ? reg->head_o : 0;
+        } else if (reg->sector &&
+                   -ddx * (int32_t)reg->ux_q15 - ddy * (int32_t)reg->uy_q15 < d * q->sector_cos_q15) {
+            continue;                 /* outside the sector: agreement 0 */
         } else {
             head = asub(fl_atan2(ddy, ddx), q->bearing);
             if (reg->oriented) {
@@ -401,6 +478,11 @@ static void obs_params(const fl_fuzzy_t *g, const fl_obs_t *o, obsp_t *q)
     q->ocore = clamp32(p->orient_core, 0, HT);
     q->oslope = clamp32(p->orient_slope, 1, HT);
     q->no_bearing_heading = q->rin < FZ_CELL;
+    {
+        int32_t tol = q->ocore + q->oslope + SECTOR_MARGIN;
+        q->sector_half = (fl_angle_t)(tol < 16384 ? tol : 16384);
+        q->sector_cos_q15 = tol < 16384 ? fl_cos_q15(q->sector_half) : 0;
+    }
     q->bias_q8 = (uint8_t)(255u - (conf * (255u - bmin)) / 255u);
     q->bias_q16 = (uint32_t)q->bias_q8 * 257u + (uint32_t)(q->bias_q8 >> 7);
     q->head_bias_q16 = (uint32_t)p->head_bias_q8 * 257u + (uint32_t)(p->head_bias_q8 >> 7);

@@ -32,17 +32,19 @@
  *
  * Memory (defaults, SPL 2013 grid 104 x 74 = 7,696 cells):
  *     cells    8 B x 7,696          = 61,568 B (layout: fl_fuzzy_cell_t)
- *     scratch  3 rows x 104 x 8 B   =  2,496 B (predict's row ring buffer,
- *              shared with the update's row accumulator and region list)
+ *     scratch  the larger of predict's row ring buffer (3 rows x 104 x
+ *              8 B = 2,496 B) and the update's row accumulator with its
+ *              region list (104 x 10 B + 48 x 32 B = 2,576 B): 2,576 B
  *     live column range per row    2 x 74 B =    148 B
  *     the rest (params, prior, track, counters)   204 B (200 on 32-bit)
- *     sizeof(fl_fuzzy_t) = 64,416 B on x86-64 (64,412 on 32-bit targets),
+ *     sizeof(fl_fuzzy_t) = 64,496 B on x86-64 (64,492 on 32-bit targets),
  *     < 64 KiB (printed by the fuzzy suite).
  *     No heap; stack at most about 1 KB per call (make stack).
  * Cost (tools/bench_fuzzy.c, x86-64 host, gcc -O2): one predict + 5
- * observation updates on the SPL grid: about 0.20 ms with a tracked mode,
- * about 1.1 ms from total ignorance (every cell possible: the worst case,
- * for a fraction of a second after a reset).  callgrind: about 2.0 M
+ * observation updates on the SPL grid: about 0.18 ms (2.8 M instructions)
+ * with a tracked mode, about 0.9 ms (14.5 M instructions) from total
+ * ignorance (every cell possible: the worst case, for a fraction of a
+ * second after a reset; goal 0.5 ms).  callgrind: about 2.0 M
  * instructions per 30 Hz frame of the spl2013 walk once tracked (predict,
  * the frame's ~3 observations, estimate).
  */
@@ -225,7 +227,12 @@ typedef struct {
     int32_t lx_mm, ly_mm;        /* map landmark */
     int32_t x0_mm, x1_mm, y0_mm, y1_mm;  /* bounding box of the cells to visit */
     fl_angle_t head_o;           /* heading implied by the orientation */
+    int16_t ux_q15, uy_q15;      /* oriented: unit vector landmark -> the
+                                    arc's centre (cos, sin Q15) */
     bool oriented;
+    bool sector;                 /* oriented with a narrow sector: cells
+                                    whose direction from the landmark is
+                                    outside it are skipped before atan2 */
 } fl_fuzzy_region_t;
 
 typedef struct {
