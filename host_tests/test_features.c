@@ -481,6 +481,52 @@ static int golden_text(const fl_vision_t *v, char *buf, size_t cap)
     return n < cap ? 0 : -1;
 }
 
+/* A T at the field border from one segment (crossings.h, "Border"): in
+ * spl2013_circle_side the halfway line runs up to the far side line, which
+ * is too thin there to give a segment; the T must be found at the truth
+ * (within 8 px) as a border T, and with the border search disabled (no
+ * camera for the crossing stage) it is not. */
+static void test_border_t(void)
+{
+    static truth_t tr;
+    render_frame_t fr;
+    fl_camera_t fc;
+    fl_obs_list_t obs;
+    det_ctx_t dc;
+    char err[256];
+    int32_t i, found = 0, k;
+    const fl_field_t *field = fl_field_find("spl2013");
+    if (truth_load("fixtures/frames/spl2013_circle_side.truth", &tr, err, sizeof err) != 0 ||
+        render_read_frame("fixtures/frames/spl2013_circle_side.raw", &fr, err, sizeof err) != 0) {
+        t_info("skipped: fixture spl2013_circle_side not found (run from the repository root)");
+        return;
+    }
+    CHECK_EQ(fl_camera_init(&fc, fl_camera_model_find("nao4-top-320"), &tr.head), FL_OK);
+    CHECK_EQ(det_ctx_init(&dc), 0);
+    fl_vision_frame(dc.vis, dc.colors, &fr.view, &fc, field, &obs);
+    render_frame_free(&fr);
+    CHECK(dc.vis->crossings.border_t >= 1);
+    for (k = 0; k < tr.n; k++) {
+        if (tr.f[k].kind != TRUTH_T || tr.f[k].occluded || tr.f[k].range_mm > 6000)
+            continue;
+        for (i = 0; i < dc.vis->crossings.n; i++) {
+            const fl_crossing_t *x = &dc.vis->crossings.c[i];
+            if (x->kind == FL_LM_T && x->seg_b < 0 &&
+                hypot(x->u_q4 / 16.0 - tr.f[k].u, x->v_q4 / 16.0 - tr.f[k].v) <= 8.0) {
+                found++;
+                CHECK(x->n_arms == 3 && x->has_orientation);
+                CHECK(x->range_mm > 3000 && fabs(x->range_mm - tr.f[k].range_mm) <
+                                                0.05 * tr.f[k].range_mm);
+            }
+        }
+    }
+    CHECK_EQ(found, 1);
+    /* the same segments without a camera: no border T */
+    fl_crossings_find(&dc.vis->crossings, &dc.vis->lines, &dc.vis->scan, NULL, field);
+    CHECK_EQ(dc.vis->crossings.border_t, 0);
+    det_ctx_free(&dc);
+}
+
 static void test_goldens(void)
 {
     const char *write = getenv("FIELDLOC_WRITE_GOLDEN");
@@ -605,7 +651,7 @@ static void test_eval_fixtures(void)
     floor_target("rendered crossings precision (<= 6 m)",
                  ratio(s.cross_tp, s.cross_tp + s.cross_fp), 0.94, 0.95);
     floor_target("rendered crossings recall (<= 6 m)",
-                 ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.63, 0.90);
+                 ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.66, 0.90);
     for (k = 0; k < 3; k++)   /* bins 0-1, 1-2, 2-3 m */
         if (s.rng_n[k] > 0 && s.rng_max[k] > worst3)
             worst3 = s.rng_max[k];
@@ -653,6 +699,7 @@ void suite_features(void)
     t_run("features.goal_painted", test_goal_painted);
     t_run("features.vision_bad_input", test_vision_bad_input);
     t_run("features.vision_noise", test_vision_noise);
+    t_run("features.border_t", test_border_t);
     t_run("features.goldens", test_goldens);
     t_run("features.eval_fixtures", test_eval_fixtures);
     t_run("features.eval_realdata", test_eval_realdata);

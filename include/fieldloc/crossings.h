@@ -25,6 +25,21 @@
  * merged by the union of their arms: two opposite T's become an X, an L
  * and its continuation a T.
  *
+ * Border T's.  Far away the boundary lines are a pixel or less tall: their
+ * paint blends into the carpet or lies above the field border found by the
+ * scanner, so a line running up to one (the halfway line, a goal-area side
+ * line) pairs with nothing.  A segment at least 3 line steps long whose
+ * upper end runs up (at least 10 degrees from horizontal) toward the
+ * border gives a T when: its paint, followed past that end (at most the
+ * reach), stops, the crossing being half a line width (on the ground)
+ * before that; the field border lies within 1000 mm (ground) beyond it
+ * with only field colours between and runs square to the segment on the
+ * ground (ground_tol); the segment's continuation past the crossing is not
+ * white (probe_green_pct); and no crossing from a pair is already within
+ * the merge distance.  Arms: the segment and the boundary line both ways;
+ * confidence as a pair's length factor times 160/256 (counted in
+ * border_t).  Field corners seen this way are called T as well.
+ *
  * Marks.  The penalty and centre marks (a 100 mm cross) are too small to
  * make long segments.  Points off long segments are clustered within 0.75
  * of the projected mark size; a cluster of at least 2 points with no other
@@ -45,8 +60,9 @@
  * which flags its chords: chord pairs are skipped), then
  * fl_crossings_add_circle.  Work: O(segments^2) pair tests (at most
  * FL_LINES_MAX_SEGMENTS^2 / 2), each surviving pair 4 probes of at most 64
- * samples and 3-5 camera projections; marks O(points) with bounded bucket
- * searches.
+ * samples and 3-5 camera projections; border T's one test per segment (a
+ * walk, a border search and a probe of at most 64 samples each, 4-8 camera
+ * projections); marks O(points) with bounded bucket searches.
  */
 #ifndef FIELDLOC_CROSSINGS_H
 #define FIELDLOC_CROSSINGS_H
@@ -101,6 +117,7 @@ typedef struct {
     int32_t rejected_arms;    /* arm set that is no crossing */
     int32_t merged;           /* crossings merged into others */
     int32_t marks_capped;     /* mark search stopped after 256 clusters */
+    int32_t border_t;         /* T's of one segment at the field border */
     /* ---- private ---- */
     fl_angle_t garm[FL_CROSSINGS_MAX][4]; /* ground arms (robot frame) */
 } fl_crossings_t;
