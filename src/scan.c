@@ -124,7 +124,8 @@ static inline int32_t col_class(const col_t *c, const fl_color_table_t *ct, int3
     size_t vv = (size_t)v;
     if (c->rgb) {
         const uint8_t *q = c->y + vv * c->sy;
-        return ct->rgb[ct->rgb_r[q[0]] | ct->rgb_g[q[1]] | ct->rgb_b[q[2]]];
+        return ct->pattern[(size_t)ct->rgb_chroma[ct->rgb_dr[q[0] + 255 - q[1]] +
+                                                  ct->rgb_db[q[2] + 255 - q[1]]] + q[1]];
     }
     return ct->pattern[(size_t)ct->chroma[((unsigned)c->cb[vv * c->scb] << 8) |
                                           c->cr[vv * c->scr]] +
@@ -186,14 +187,17 @@ static uint64_t word_yuyv_pairs(const uint8_t *q, const uint16_t *chroma,
 
 /* RGB, 32 cells D bytes apart from q.  D is a literal in the common
  * cases so that every address is a constant offset. */
-#define FL_RGB(k) acc = (acc << 2) + tab[tr[q[(k) * D]] | tg[q[(k) * D + 1]] | tb[q[(k) * D + 2]]];
+#define FL_RGB(k) acc = (acc << 2) + pat[(size_t)rc[tr[q[(k) * D] - q[(k) * D + 1]] + \
+                                                  tb[q[(k) * D + 2] - q[(k) * D + 1]]] + \
+                                               q[(k) * D + 1]];
 #define FL_RGB8(k) FL_RGB(k) FL_RGB(k + 1) FL_RGB(k + 2) FL_RGB(k + 3) \
     FL_RGB(k + 4) FL_RGB(k + 5) FL_RGB(k + 6) FL_RGB(k + 7)
 #define FL_RGB_WORD(name)                                                     \
     static uint64_t name(const uint8_t *q, size_t d, const fl_color_table_t *ct) \
     {                                                                         \
-        const uint16_t *tr = ct->rgb_r, *tg = ct->rgb_g, *tb = ct->rgb_b;     \
-        const uint8_t *tab = ct->rgb;                                         \
+        const uint16_t *tr = ct->rgb_dr + 255, *tb = ct->rgb_db + 255;       \
+        const uint16_t *rc = ct->rgb_chroma;                                  \
+        const uint8_t *pat = ct->pattern;                                     \
         uint64_t acc = 0;                                                     \
         (void)d;                                                              \
         FL_RGB8(0) FL_RGB8(8) FL_RGB8(16) FL_RGB8(24)                         \
@@ -313,6 +317,8 @@ static void add_foot(fl_scan_t *s, int32_t i, int32_t u, int32_t v)
     s->n_feet++;
 }
 
+#define WHITE_CLIP 250
+
 /* Contrast check of a white run starting at cell (i, j), k = i % 32 in its
  * word; g1, g2: green of the two rows above in this word (words left of it
  * and this word are final in the map for row j).  True: keep. */
@@ -360,8 +366,11 @@ static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
             return true;
         lg = s->field.luma;   /* the previous frame's field */
     }
-    /* Scaling: luma <= 255, products <= 255 * 300 */
-    return lw * 100 >= lg * (100 + (int32_t)f->ct->params.white_contrast_pct);
+    /* Scaling: luma <= 255, products <= 255 * 300.  A clipped white
+     * (luma >= WHITE_CLIP) passes: over carpet brighter than ~200 the
+     * contrast asked for lies beyond what the sensor can show. */
+    return lw >= WHITE_CLIP ||
+           lw * 100 >= lg * (100 + (int32_t)f->ct->params.white_contrast_pct);
 }
 
 static void count_yellow(uint64_t *planes, uint64_t x)
@@ -393,6 +402,29 @@ static void border_found(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
     s->n_border++;
 }
 
+/* Green in the top grid row within 32 px of column i (left or right): a
+ * white stretch from the border up to the top of an all-ground image is a
+ * line cut by the top when carpet shows beside it there; the floor beyond a
+ * field whose far edge is in view is white-ish (S ~ 30) across the width. */
+static bool green_near_top(const fl_scan_t *s, const frame_t *f, int32_t i)
+{
+    int32_t reach = 32 / f->cs > 1 ? 32 / f->cs : 1, d;
+    for (d = 1; d <= reach; d++) {
+        col_t col;
+        if (i - d >= 0) {
+            col_init(&col, f, (i - d) * f->cs);
+            if (col_class(&col, f->ct, 0) == FL_CLASS_GREEN)
+                return true;
+        }
+        if (i + d < s->cols) {
+            col_init(&col, f, (i + d) * f->cs);
+            if (col_class(&col, f->ct, 0) == FL_CLASS_GREEN)
+                return true;
+        }
+    }
+    return false;
+}
+
 /* Above the border.  Far away the carpet beyond the boundary line is a
  * strip thinner than N: the first run of N is then below the line.  From
  * the border up: a white stretch of at most 2 N px (a line) with green
@@ -415,7 +447,8 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
         while (jw >= lo && jb - jw <= max_white &&
                col_class(&col, ct, jw * rs) == FL_CLASS_WHITE)
             jw--;
-        if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1) {
+        if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1 &&
+            green_near_top(s, f, i)) {
             /* a line cut by the top of an image that is all ground */
             for (j = 0; j < jb; j++)
                 s->map[j][i >> 5] |= (uint64_t)col_class(&col, ct, j * rs) << shift;
