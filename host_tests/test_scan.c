@@ -289,6 +289,23 @@ static void test_contrast(void)
         CHECK_EQ(fl_scan_class_at(&scan, 10, 41), FL_CLASS_WHITE);
         CHECK_EQ(scan.white_rejected, 0);
     }
+    /* bright light: carpet of luma ~215 (1.6x, G clipped), a clipped line
+     * (255) is only 1.19x as bright but kept; a grey stripe of luma 240
+     * (1.12x, not clipped) is still rejected */
+    {
+        static const uint8_t bright[3] = {150, 250, 155}, grey240[3] = {238, 241, 240};
+        static const uint8_t white255[3] = {255, 255, 255};
+        colors_default();
+        CHECK_EQ(fl_color_class_rgb(&colors, bright[0], bright[1], bright[2]), FL_CLASS_GREEN);
+        CHECK_EQ(fl_color_class_rgb(&colors, grey240[0], grey240[1], grey240[2]), FL_CLASS_WHITE);
+        fill(rgb, PW, 0, 20, PW, PH, bright);
+        fill(rgb, PW, 0, 40, 64, 44, grey240);
+        fill(rgb, PW, 64, 40, PW, 44, white255);
+        fl_scan_frame(&scan, &colors, &img, NULL);
+        for (i = 0; i < PW; i += 7)
+            CHECK_EQ(fl_scan_class_at(&scan, i, 42), i < 64 ? FL_CLASS_OTHER : FL_CLASS_WHITE);
+        CHECK_EQ(scan.white_rejected, 64);
+    }
 }
 
 /* Noise: every cap holds and the frame still ends in a valid state. */
@@ -600,19 +617,25 @@ static void test_lighting(void)
     /* Issue 4 asks white precision >= 0.95 under every lighting.  At gain
      * 160 % the lines clip and their blurred edges (a third covered) clip
      * to near-white: 0.58 there and 0.83 over the set until the per-frame
-     * white level (fl_color_white_cap) came; now 0.934 over the set (0.934
-     * at 160 %).  The rest is mostly the RGB table's 8-level cells at the
-     * white/green boundary and YUYV's shared chroma at vertical line
-     * edges.  That target is NOT met: this check is a regression floor at
-     * the measured level, the gap is printed, and README/issue say so.
-     * Recall and yellow keep the target. */
+     * white level (fl_color_white_cap) came, 0.934 then; with the exact RGB
+     * path (no 8-level cells at the white/green boundary) and clipped lines
+     * passing the contrast check 0.945 (0.941 at 160 %), recall 0.960.
+     * With white s_hi 47 the exact path gives 0.955 / 0.955 and 48 gives
+     * 0.950 / 0.957, but the UvA crossings lose their far line pixels
+     * (features.eval_realdata recall 0.553 -> 0.515 resp. 0.534): the
+     * default stays 49.  The rest is thin far lines (spl2013_x_far, P ~0.88
+     * R ~0.82) and YUYV's shared chroma at vertical line edges.  The target
+     * is NOT met: this check is a regression floor at the measured level,
+     * the gap is printed, and README/issue say so.  Recall and yellow keep
+     * the target. */
     if (!t_quick) {
         const scantool_eval_t *e = &after.e;
         double wp = scantool_precision(e->white_tp, e->white_fp);
         CHECK(e->white_tp > 1000);
         CHECK(e->yellow_tp > 100);
-        CHECK_LE(0.93, wp);                                   /* floor, not target */
-        CHECK_LE(0.93, scantool_precision(per_gain[4].e.white_tp, per_gain[4].e.white_fp));
+        CHECK_LE(0.945, wp);                                  /* floor, not target */
+        CHECK_LE(0.94, scantool_precision(per_gain[4].e.white_tp, per_gain[4].e.white_fp));
+        CHECK_LE(0.96, scantool_recall(e->white_tp, e->white_fn));   /* floor */
         CHECK_LE(0.95, scantool_recall(e->white_tp, e->white_fn));
         CHECK_LE(0.95, scantool_precision(e->yellow_tp, e->yellow_fp));
         CHECK_LE(0.95, scantool_recall(e->yellow_tp, e->yellow_fn));

@@ -22,14 +22,17 @@
  *  interval signature (the k-ranges where each box's S and V tests pass,
  *  found with two-pointer sweeps over D: S(D, k) = round(D * 255 / k)
  *  grows with D and falls with k).
- *  RGB table: 32x32x32 cells, each the exact class of its centre colour.
+ *  RGB table: offsets (R - G, 0, B - G) from G, the same patterns: class =
+ *  pattern[rgb_chroma[rgb_dr[R - G] + rgb_db[B - G]] + G]; exact cells for
+ *  |R - G|, |B - G| <= 52 (every colour with S <= 52), coarse beyond.
  * Invariant: for every (Y, Cb, Cr) whose BT.601 RGB does not clip,
  *  fl_color_class_ycbcr == fl_color_class_ycbcr_exact when `exact` is 1
- *  (host test color.ycbcr_table, all 2^24 colours).
- * Memory: fl_color_table_t, 230 KiB (chroma 128 KiB, patterns 64 KiB, RGB
- *  32 KiB); building uses 4.8 KiB of stack (pattern bases, 8 x 256 x 2).
+ *  (host test color.ycbcr_table, all 2^24 colours); the same for RGB
+ *  colours with |R - G|, |B - G| <= FL_COLOR_RGB_EXACT (color.rgb_table).
+ * Memory: fl_color_table_t, 254 KiB (chroma 128 KiB, patterns 64 KiB, RGB
+ *  cells 56 KiB + 2 KiB index parts, build scratch 4.5 KiB).
  * Cost: build ~0.45 ms on the host (bench_scan "color_tables_build"); a class
- *  lookup is 2 loads (YCbCr) or 4 loads + 2 ors (RGB).
+ *  lookup is 2 loads (YCbCr) or 5 loads + 2 subtractions + 2 adds (RGB).
  */
 #include "fieldloc/color.h"
 #include "fieldloc/fixed.h"
@@ -213,8 +216,8 @@ static bool box_has_sv(const fl_hsv_box_t *b, int32_t s, int32_t v)
 
 void fl_color_params_default(fl_color_params_t *p)
 {
-    static const fl_hsv_box_t green = {46, 78, 48, 255, 25, 255};
-    static const fl_hsv_box_t white = {0, 179, 0, 47, 60, 255};
+    static const fl_hsv_box_t green = {46, 78, 50, 255, 25, 255};
+    static const fl_hsv_box_t white = {0, 179, 0, 49, 60, 255};
     static const fl_hsv_box_t yellow = {15, 40, 90, 255, 50, 255};
     if (p == NULL)
         return;
@@ -284,7 +287,8 @@ fl_color_class_t fl_color_class_rgb(const fl_color_table_t *t, uint8_t r,
 {
     if (t == NULL)
         return FL_CLASS_OTHER;
-    return (fl_color_class_t)t->rgb[t->rgb_r[r] | t->rgb_g[g] | t->rgb_b[b]];
+    return (fl_color_class_t)t->pattern[(size_t)t->rgb_chroma[t->rgb_dr[r + 255 - g] +
+                                                              t->rgb_db[b + 255 - g]] + g];
 }
 
 fl_color_class_t fl_color_class_ycbcr(const fl_color_table_t *t, uint8_t y,
@@ -521,6 +525,39 @@ static bool build_patterns(fl_color_table_t *t, int32_t q,
     return true;
 }
 
+/* RGB difference buckets: |d| = 0..FL_COLOR_RGB_EXACT one value each,
+ * then widths 4 (to 100), 6 (to 166) and 10 (to 255): 84 buckets a side,
+ * FL_COLOR_RGB_SIDE = 169 in all.  Bucket of |d| (0..255) -> 0..84. */
+#define RGB_HALF ((FL_COLOR_RGB_SIDE - 1) / 2)
+
+static int32_t rgb_bucket(int32_t m)
+{
+    if (m <= FL_COLOR_RGB_EXACT)
+        return m;
+    if (m <= 100)
+        return FL_COLOR_RGB_EXACT + 1 + (m - FL_COLOR_RGB_EXACT - 1) / 4;
+    if (m <= 166)
+        return 65 + (m - 101) / 6;
+    return 76 + (m - 167) / 10;
+}
+
+#if FL_COLOR_RGB_EXACT != 52 || FL_COLOR_RGB_SIDE != 169
+#error "rgb_bucket's segments are laid out for 52 exact values and 169 cells"
+#endif
+
+/* Difference range [lo, hi] of signed bucket index c (-85..85). */
+static void rgb_cell_range(int32_t c, int32_t *lo, int32_t *hi)
+{
+    int32_t m = c < 0 ? -c : c, a = 0, b;
+    while (rgb_bucket(a) < m)   /* first |d| of the bucket (<= 255 steps) */
+        a++;
+    b = a;
+    while (b < 255 && rgb_bucket(b + 1) == m)
+        b++;
+    *lo = c < 0 ? -b : a;
+    *hi = c < 0 ? -a : b;
+}
+
 static void build(fl_color_table_t *t)
 {
     uint16_t (*base)[256] = t->build_base;
@@ -558,11 +595,36 @@ static void build(fl_color_table_t *t)
             t->chroma[(cb << 8) | cr] = (uint16_t)((hs << 8) | d);
         }
     }
+    /* the same for the RGB cells, offsets (dr, 0, db) of the cell's centre;
+     * rgb_dr / rgb_db hold each bucket's range meanwhile */
+    for (i = 0; i < FL_COLOR_RGB_SIDE; i++) {
+        int32_t lo, hi;
+        rgb_cell_range(i - RGB_HALF, &lo, &hi);
+        t->rgb_dr[i] = (uint16_t)(lo + 255);
+        t->rgb_db[i] = (uint16_t)(hi + 255);
+    }
+    for (cb = 0; cb < FL_COLOR_RGB_SIDE; cb++) {
+        for (cr = 0; cr < FL_COLOR_RGB_SIDE; cr++) {
+            int32_t dr = (t->rgb_dr[cb] + t->rgb_db[cb] - 510) / 2;
+            int32_t db = (t->rgb_dr[cr] + t->rgb_db[cr] - 510) / 2;
+            int32_t mx = offsets_max(dr, 0, db), d = mx - offsets_min(dr, 0, db), hs;
+            if (d > 255) {   /* no colour: R - G and B - G too far apart */
+                t->rgb_chroma[cb * FL_COLOR_RGB_SIDE + cr] = 0xffff;
+                continue;
+            }
+            hs = hs_of[offsets_hue(dr, 0, db, mx, d)];
+            used[hs] = true;   /* (RGB needs k <= 255 only: max_m stays) */
+            t->rgb_chroma[cb * FL_COLOR_RGB_SIDE + cr] = (uint16_t)((hs << 8) | d);
+        }
+    }
     for (q = 1; q <= 256; q *= 2)
         if (build_patterns(t, q, max_m, used, base, step_t))
             break;
     if (q > 256) {  /* cannot happen with 64 KiB; stay safe */
         memset(t->chroma, 0, sizeof t->chroma);
+        memset(t->rgb_chroma, 0, sizeof t->rgb_chroma);
+        memset(t->rgb_dr, 0, sizeof t->rgb_dr);
+        memset(t->rgb_db, 0, sizeof t->rgb_db);
         t->exact = 0;
         return;
     }
@@ -594,17 +656,30 @@ static void build(fl_color_table_t *t)
             t->chroma[(cb << 8) | cr] = (uint16_t)off;
         }
     }
-    /* RGB: centre of each 8x8x8 cell */
-    for (i = 0; i < 256; i++) {
-        t->rgb_r[i] = (uint16_t)((i >> 3) << 10);
-        t->rgb_g[i] = (uint16_t)((i >> 3) << 5);
-        t->rgb_b[i] = (uint16_t)(i >> 3);
+    /* RGB cells: pattern of the centre's (hue set, D) + the smallest M of
+     * the cell (so that G + M never passes V = G + M_true <= 255; exact
+     * cells have M = M_true) */
+    for (cb = 0; cb < FL_COLOR_RGB_SIDE; cb++) {
+        for (cr = 0; cr < FL_COLOR_RGB_SIDE; cr++) {
+            uint16_t e = t->rgb_chroma[cb * FL_COLOR_RGB_SIDE + cr];
+            int32_t hs = e >> 8, d = e & 0xff, off;
+            int32_t mx = offsets_max(t->rgb_dr[cb] - 255, 0, t->rgb_dr[cr] - 255);
+            if (e == 0xffff)
+                off = 0;
+            else if (hs == HS_W && step)
+                off = step_t[d] > 255 ? 0 : ZERO_LEN + STEP_ZERO - step_t[d] + mx;
+            else if (base[hs][d] == NO_PATTERN)
+                off = 0;
+            else
+                off = base[hs][d] + mx;
+            t->rgb_chroma[cb * FL_COLOR_RGB_SIDE + cr] = (uint16_t)off;
+        }
     }
-    for (i = 0; i < 32768; i++) {
-        int32_t h, s, v;
-        hsv_core(((i >> 10) << 3) | 4, (((i >> 5) & 31) << 3) | 4,
-                 ((i & 31) << 3) | 4, &h, &s, &v);
-        t->rgb[i] = (uint8_t)class_in_set(t, hs_of[h], s, v);
+    for (i = -255; i <= 255; i++) {
+        int32_t c = rgb_bucket(i < 0 ? -i : i);
+        c = RGB_HALF + (i < 0 ? -c : c);
+        t->rgb_dr[i + 255] = (uint16_t)(c * FL_COLOR_RGB_SIDE);
+        t->rgb_db[i + 255] = (uint16_t)c;
     }
 }
 

@@ -124,7 +124,9 @@ static inline int32_t col_class(const col_t *c, const fl_color_table_t *ct, int3
     size_t vv = (size_t)v;
     if (c->rgb) {
         const uint8_t *q = c->y + vv * c->sy;
-        return ct->rgb[ct->rgb_r[q[0]] | ct->rgb_g[q[1]] | ct->rgb_b[q[2]]];
+        unsigned g = q[1];
+        return ct->pattern[(unsigned)ct->rgb_chroma[(unsigned)ct->rgb_dr[q[0] + 255u - g] +
+                                                    ct->rgb_db[q[2] + 255u - g]] + g];
     }
     return ct->pattern[(size_t)ct->chroma[((unsigned)c->cb[vv * c->scb] << 8) |
                                           c->cr[vv * c->scr]] +
@@ -186,14 +188,21 @@ static uint64_t word_yuyv_pairs(const uint8_t *q, const uint16_t *chroma,
 
 /* RGB, 32 cells D bytes apart from q.  D is a literal in the common
  * cases so that every address is a constant offset. */
-#define FL_RGB(k) acc = (acc << 2) + tab[tr[q[(k) * D]] | tg[q[(k) * D + 1]] | tb[q[(k) * D + 2]]];
+/* Index arithmetic in ptrdiff_t / unsigned so that no result needs a sign
+ * extension (tr, tb point at the difference 0 of their tables). */
+#define FL_RGB(k)                                                             \
+    g_ = q[(k) * D + 1];                                                      \
+    acc = (acc << 2) + pat[(ptrdiff_t)rc[(unsigned)tr[(ptrdiff_t)q[(k) * D] - g_] + \
+                                         tb[(ptrdiff_t)q[(k) * D + 2] - g_]] + g_];
 #define FL_RGB8(k) FL_RGB(k) FL_RGB(k + 1) FL_RGB(k + 2) FL_RGB(k + 3) \
     FL_RGB(k + 4) FL_RGB(k + 5) FL_RGB(k + 6) FL_RGB(k + 7)
 #define FL_RGB_WORD(name)                                                     \
     static uint64_t name(const uint8_t *q, size_t d, const fl_color_table_t *ct) \
     {                                                                         \
-        const uint16_t *tr = ct->rgb_r, *tg = ct->rgb_g, *tb = ct->rgb_b;     \
-        const uint8_t *tab = ct->rgb;                                         \
+        const uint16_t *tr = ct->rgb_dr + 255, *tb = ct->rgb_db + 255;       \
+        const uint16_t *rc = ct->rgb_chroma;                                  \
+        const uint8_t *pat = ct->pattern;                                     \
+        ptrdiff_t g_;                                                         \
         uint64_t acc = 0;                                                     \
         (void)d;                                                              \
         FL_RGB8(0) FL_RGB8(8) FL_RGB8(16) FL_RGB8(24)                         \
@@ -313,6 +322,8 @@ static void add_foot(fl_scan_t *s, int32_t i, int32_t u, int32_t v)
     s->n_feet++;
 }
 
+#define WHITE_CLIP 250
+
 /* Contrast check of a white run starting at cell (i, j), k = i % 32 in its
  * word; g1, g2: green of the two rows above in this word (words left of it
  * and this word are final in the map for row j).  True: keep. */
@@ -360,8 +371,11 @@ static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
             return true;
         lg = s->field.luma;   /* the previous frame's field */
     }
-    /* Scaling: luma <= 255, products <= 255 * 300 */
-    return lw * 100 >= lg * (100 + (int32_t)f->ct->params.white_contrast_pct);
+    /* Scaling: luma <= 255, products <= 255 * 300.  A clipped white
+     * (luma >= WHITE_CLIP) passes: over carpet brighter than ~200 the
+     * contrast asked for lies beyond what the sensor can show. */
+    return lw >= WHITE_CLIP ||
+           lw * 100 >= lg * (100 + (int32_t)f->ct->params.white_contrast_pct);
 }
 
 static void count_yellow(uint64_t *planes, uint64_t x)
@@ -393,6 +407,29 @@ static void border_found(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
     s->n_border++;
 }
 
+/* Green in the top grid row within 32 px of column i (left or right): a
+ * white stretch from the border up to the top of an all-ground image is a
+ * line cut by the top when carpet shows beside it there; the floor beyond a
+ * field whose far edge is in view is white-ish (S ~ 30) across the width. */
+static bool green_near_top(const fl_scan_t *s, const frame_t *f, int32_t i)
+{
+    int32_t reach = 32 / f->cs > 1 ? 32 / f->cs : 1, d;
+    for (d = 1; d <= reach; d++) {
+        col_t col;
+        if (i - d >= 0) {
+            col_init(&col, f, (i - d) * f->cs);
+            if (col_class(&col, f->ct, 0) == FL_CLASS_GREEN)
+                return true;
+        }
+        if (i + d < s->cols) {
+            col_init(&col, f, (i + d) * f->cs);
+            if (col_class(&col, f->ct, 0) == FL_CLASS_GREEN)
+                return true;
+        }
+    }
+    return false;
+}
+
 /* Above the border.  Far away the carpet beyond the boundary line is a
  * strip thinner than N: the first run of N is then below the line.  From
  * the border up: a white stretch of at most 2 N px (a line) with green
@@ -415,7 +452,8 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
         while (jw >= lo && jb - jw <= max_white &&
                col_class(&col, ct, jw * rs) == FL_CLASS_WHITE)
             jw--;
-        if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1) {
+        if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1 &&
+            green_near_top(s, f, i)) {
             /* a line cut by the top of an image that is all ground */
             for (j = 0; j < jb; j++)
                 s->map[j][i >> 5] |= (uint64_t)col_class(&col, ct, j * rs) << shift;
@@ -659,63 +697,61 @@ static int32_t level_at(int32_t x0, int32_t y0, int32_t x1, int32_t y1, int32_t 
 
 #define BUMP_WIN 8
 
+/* The window wx (BUMP_WIN bordered columns, oldest at wh) is flat: every
+ * border within t of the band between its end values (a line, or a gentle
+ * curve; a dip breaks it). */
+static bool window_flat(const int16_t *b, const int32_t *wx, int32_t wh, int32_t t)
+{
+    int32_t first = b[wx[wh]], last = b[wx[(wh + BUMP_WIN - 1) % BUMP_WIN]], k;
+    int32_t lo_b = (first < last ? first : last) - t, hi_b = (first < last ? last : first) + t;
+    for (k = 0; k < BUMP_WIN; k++)
+        if (b[wx[k]] < lo_b || b[wx[k]] > hi_b)
+            return false;
+    return true;
+}
+
+/* The level of a flat window is only needed where a column steps up from
+ * it, so the flatness is checked lazily there (same result as checking it
+ * at every column: the window does not change in between). */
 static void reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns, int32_t dir)
 {
     const int16_t *b = s->first_row;
     int32_t t = ns / 2 > 2 ? ns / 2 : 2, rows = s->rows, cols = s->cols;
     int32_t wx[BUMP_WIN], wn = 0, wh = 0, i;
-    bool ref = false;
-    int32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
     for (i = dir > 0 ? 0 : cols - 1; i >= 0 && i < cols; i += dir) {
         int32_t k, last, r;
         if (b[i] >= rows)
             continue;
-        if (ref && b[i] < level_at(x0, y0, x1, y1, i) - t) {
-            /* a bump: up to where the border comes back to the level */
-            last = i;
-            for (r = i; r >= 0 && r < cols && (r - i) * dir < cols / 2; r += dir) {
-                if (b[r] >= rows)
-                    continue;
-                if (b[r] >= level_at(x0, y0, x1, y1, r) - t)
-                    break;
-                last = r;
+        if (wn == BUMP_WIN) {
+            int32_t x0 = wx[wh], x1 = wx[(wh + BUMP_WIN - 1) % BUMP_WIN];
+            int32_t y0 = b[x0], y1 = b[x1];
+            if (b[i] < level_at(x0, y0, x1, y1, i) - t && window_flat(b, wx, wh, t)) {
+                /* a bump: up to where the border comes back to the level */
+                last = i;
+                for (r = i; r >= 0 && r < cols && (r - i) * dir < cols / 2; r += dir) {
+                    if (b[r] >= rows)
+                        continue;
+                    if (b[r] >= level_at(x0, y0, x1, y1, r) - t)
+                        break;
+                    last = r;
+                }
+                for (k = i; k != last + dir; k += dir)
+                    if (b[k] < rows)
+                        (void)rerun_column(s, f, k, ns, t, level_at(x0, y0, x1, y1, k));
+                i = last;
+                continue;
             }
-            for (k = i; k != last + dir; k += dir)
-                if (b[k] < rows)
-                    (void)rerun_column(s, f, k, ns, t, level_at(x0, y0, x1, y1, k));
-            i = last;
-            continue;
         }
-        /* the window of the last BUMP_WIN bordered columns; a level only
-         * while they are flat: dips of robots rarely make one, post feet
-         * (yellow right above) never */
+        /* the window of the last BUMP_WIN bordered columns; post feet
+         * (yellow right above) never make a level */
         if (s->post_top[i >> 5] & (1ULL << (62 - 2 * (i & 31)))) {
             wn = 0;
-            ref = false;
             continue;
         }
         wx[wh] = i;
         wh = (wh + 1) % BUMP_WIN;
         if (wn < BUMP_WIN)
             wn++;
-        ref = false;
-        if (wn == BUMP_WIN) {
-            /* flat: the window stays within t of the band between its end
-             * values (a line, or a gentle curve; a dip breaks it) */
-            int32_t first = wx[wh], lastx = wx[(wh + BUMP_WIN - 1) % BUMP_WIN];
-            int32_t lo_b = b[first] < b[lastx] ? b[first] : b[lastx];
-            int32_t hi_b = b[first] < b[lastx] ? b[lastx] : b[first];
-            bool flat = true;
-            for (k = 0; k < BUMP_WIN; k++)
-                flat = flat && b[wx[k]] >= lo_b - t && b[wx[k]] <= hi_b + t;
-            if (flat) {
-                ref = true;
-                x0 = first;
-                y0 = b[first];
-                x1 = lastx;
-                y1 = b[lastx];
-            }
-        }
     }
 }
 

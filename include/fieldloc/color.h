@@ -32,10 +32,13 @@
  * printed finds 0.55 % of the carpet green, the swapped rows 98.9 %).
  * The defaults are
  *   green  hue 46..78 (carpet p0.5..p99 +- 4 of drift; re-centred per
- *          frame by fl_color_adapt), S 48..255 (the pale far carpet; a line
+ *          frame by fl_color_adapt), S 50..255 (the pale far carpet; a line
  *          pixel half covered by near carpet has S ~ 40-57), V 25..255 (the
  *          carpet at half the light: V p1 57 -> 28)
- *   white  hue 0..179, S 0..47 (the boxes meet: S >= 48 is green), V
+ *   white  hue 0..179, S 0..49 (the boxes meet: S >= 50 is green; with
+ *          the exact RGB path 47 cost the UvA frames far line pixels that
+ *          the old 8-level RGB cells had rounded to white: crossing recall
+ *          0.553 -> 0.515 in features.eval_realdata; 49 gives 0.563), V
  *          60..255 (lines at gain 0.5 have V ~ 100); contrast 25 %: a white
  *          run must be 1.25x as bright (luma) as the green next to it
  *          (nominal lines are ~2x; pale carpet and grey clutter much less);
@@ -46,7 +49,7 @@
  *          46), S 90..255, V 50..255 (posts at half light: V ~ 85)
  *
  * Tables (fl_color_table_t, built by fl_color_init / rebuilt by
- * fl_color_adapt, no heap, 230 KiB, build < 1 ms on the host):
+ * fl_color_adapt, no heap, 254 KiB, build < 1 ms on the host):
  *   YCbCr (YUYV and planar frames): BT.601 full range as src/image.c,
  *   R = Y + a, G = Y + b, B = Y + c with integer offsets a, b, c that
  *   depend on (Cb, Cr) only.  So for one chroma, hue H and D = max - min
@@ -60,8 +63,16 @@
  *   pattern is extrapolated (hue frozen, S and V from the clipped formula,
  *   chroma with D > 255 -> other).  `exact` is 0 when the patterns did not
  *   fit and D had to be quantized (never with the default boxes).
- *   RGB: a 32x32x32 table over (R >> 3, G >> 3, B >> 3), each cell the
- *   exact class of its centre colour.
+ *   RGB: the same idea with offsets (R - G, 0, B - G) from G: for one
+ *   (R - G, B - G) hue and D are fixed and V = G + M, so class =
+ *   pattern[rgb_chroma[cell(R - G, B - G)] + G] through the same pattern
+ *   store.  The cell table is 169 x 169: each difference in one bucket per
+ *   value for |R - G|, |B - G| <= FL_COLOR_RGB_EXACT (52), wider buckets
+ *   (4, 6, 10) beyond.  Exact (equal to fl_color_class_rgb_exact) for
+ *   every colour in the exact cells when `exact` is 1: all colours with
+ *   S <= 52, i.e. white and the white/green boundary; 99.6 % of the cube
+ *   overall (coarse cells use the centre's hue and D and the cell's
+ *   smallest M).
  *
  * Lifecycle: fl_color_init(&t, &params) -> per frame fl_scan_frame(.., &t,
  * ..) (scan.h) -> fl_color_adapt(&t, &scan.field) re-centres the green and
@@ -144,6 +155,10 @@ typedef struct {
 
 /* Capacity of the YCbCr pattern store, bytes (the defaults use ~62 KiB). */
 #define FL_COLOR_PATTERN_BYTES 65536
+/* Cells per axis of the RGB chroma table: R - G and B - G each in 169
+ * buckets, exact (one value) for |difference| <= FL_COLOR_RGB_EXACT. */
+#define FL_COLOR_RGB_SIDE 169
+#define FL_COLOR_RGB_EXACT 52
 
 typedef struct {
     fl_color_params_t params;   /* as given to fl_color_init */
@@ -155,10 +170,12 @@ typedef struct {
     uint8_t d_quant;            /* D bucket size used for the patterns */
     uint8_t reserved[3];
     /* private */
-    uint16_t rgb_r[256], rgb_g[256], rgb_b[256]; /* RGB table index parts */
     uint16_t chroma[65536];     /* (Cb << 8 | Cr) -> pattern index - ... + M */
     uint8_t pattern[FL_COLOR_PATTERN_BYTES];
-    uint8_t rgb[32768];         /* (R>>3)<<10 | (G>>3)<<5 | B>>3 -> class */
+    /* RGB: (R - G, B - G) -> cell (rgb_dr[R - G + 255] + rgb_db[B - G +
+     * 255]) -> pattern index + M, class = pattern[rgb_chroma[cell] + G] */
+    uint16_t rgb_dr[511], rgb_db[511];
+    uint16_t rgb_chroma[FL_COLOR_RGB_SIDE * FL_COLOR_RGB_SIDE];
     /* scratch of a table build (dead between calls): kept here, not on
      * the stack, so init/adapt/reset stay within the 4 KiB stack budget */
     uint16_t build_base[8][256];

@@ -18,7 +18,9 @@
  * local: (1) a thin white stretch (<= 2 N px, a line) with carpet above it
  * moves the border up to the top of that carpet (far away the carpet beyond
  * the boundary line is thinner than N); with a post above it, to the top of
- * the line; (2) green clutter beyond the carpet (a couch, a bin, a green
+ * the line; in an image that sees only ground, to the top row when the
+ * white reaches it and carpet shows in the top row within 32 px (a line
+ * cut by the image edge, not the white-ish floor beyond the field); (2) green clutter beyond the carpet (a couch, a bin, a green
  * shirt), seen as a bump above the border of the flat stretch of columns
  * next to it, is skipped: the border is the next run below it when a
  * floor-like gap separates them and it comes back to the level; (3) a
@@ -38,6 +40,8 @@
  * (100 + white_contrast_pct) % of the green next to it: the darkest green
  * of the 1 to 3 samples above, else a green sample up to 2 columns left or
  * right, else the previous frame's field luma (no reference at all: kept).
+ * A run whose brightest pixel clips (luma >= 250) is kept: over carpet
+ * brighter than ~200 the contrast asked for is beyond the sensor.
  * Adjacent starts in a row share one check.  Failing runs become OTHER down
  * to their end.  Checks per column are capped (checks_per_column; further
  * runs are kept unchecked and counted in checks_skipped).
