@@ -127,7 +127,8 @@ fl_status_t fl_fuzzy_params_check(const fl_fuzzy_params_t *p)
         p->max_range_mm < 100 || p->max_range_mm > 30000 ||
         p->mode_radius_mm < FL_FUZZY_CELL_MM || p->mode_radius_mm > 2000 ||
         p->track_radius_mm < FL_FUZZY_CELL_MM || p->track_radius_mm > 5000 ||
-        p->track_min_q16 == 0 || p->cons_shift > 8 || p->min_height_q8 < 1)
+        p->track_min_q16 == 0 || p->cons_shift > 8 || p->min_height_q8 < 1 ||
+        p->head_bias_outlier > 1)
         return FL_ERR_RANGE;
     return FL_OK;
 }

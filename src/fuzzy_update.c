@@ -12,7 +12,8 @@
  *     (centre + sub-cell offset);
  *   - the heading it implies there: direction(cell -> L_k) - b, a
  *     trapezoid of the bearing accuracy plus the angle half a cell
- *     subtends, with a relative bias head_bias (right ring, wrong heading);
+ *     subtends, with a relative bias head_bias (right ring, wrong heading;
+ *     with head_bias_outlier at least the outlier bias bP below);
  *   - when the observation has an orientation and the kind one (L, T: mod
  *     360; X, marks: mod 90; centre circle: mod 180), the agreement between
  *     the heading the orientation implies, o_map(L_k) - o (one candidate
@@ -154,6 +155,23 @@ typedef struct {
 static uint32_t rho(const obsp_t *q, uint32_t r_q16)
 {
     return q->bias_q16 + (uint32_t)(((uint64_t)(65536u - q->bias_q16) * r_q16) >> 16);
+}
+
+/* Bias of the observation's heading trapezoid at ring value r (Q16):
+ * "real, but its heading is not" rho(r) x head_bias; with
+ * params.head_bias_outlier the union with "the observation is an outlier"
+ * (bP, any pose): max(bP, rho(r) hb), so a pose on the ring with another
+ * heading is never less possible than a pose off every ring.  (With rho hb
+ * alone, a low-confidence false positive (bP > rho hb) made the cell's own
+ * heading less possible than no ring at all and, the cell's relative bias
+ * being about hb too, tied the two plateaus of the product: the envelope
+ * flattened the cell and the next false ring imposed its heading, the
+ * 70-degree single-frame errors of the spl2013 vision walks at 64 s.)
+ * Scaling: rho hb < 2^33 in uint64, result <= rho(r). */
+static uint32_t rho_head(const fl_fuzzy_t *g, const obsp_t *q, uint32_t r_q16)
+{
+    uint32_t rh = (uint32_t)(((uint64_t)rho(q, r_q16) * q->head_bias_q16) >> 16);
+    return g->params.head_bias_outlier && rh < q->bias_q16 ? q->bias_q16 : rh;
 }
 
 static bool post_matches(const fl_landmark_t *lm, const fl_obs_t *o)
@@ -602,14 +620,14 @@ static void cell_product(const prodctx_t *x, const fl_fuzzy_acc_t *a,
     /* position factor rho = bP + (1 - bP) r (outlier bias bP), heading
      * trapezoid with relative bias head_bias */
     st.height_q16 = rho(q, a->r1_q16);
-    st.bias_q16 = (uint32_t)(((uint64_t)st.height_q16 * q->head_bias_q16) >> 16);
+    st.bias_q16 = rho_head(g, q, a->r1_q16);
     fl_fuzzy_trap_isect(&ct, &st, &et);
     if (a->r2_q16 != 0) {
         /* a second heading: C x (S1 u S2) = (C x S1) u (C x S2) */
         fl_fuzzy_trap_t s2 = st, e2, e1 = et;
         s2.centre = a->head2;
         s2.height_q16 = rho(q, a->r2_q16);
-        s2.bias_q16 = (uint32_t)(((uint64_t)s2.height_q16 * q->head_bias_q16) >> 16);
+        s2.bias_q16 = rho_head(g, q, a->r2_q16);
         fl_fuzzy_trap_isect(&ct, &s2, &e2);
         fl_fuzzy_trap_union(&e1, &e2, &et);
     }

@@ -155,6 +155,14 @@ typedef struct {
     uint8_t head_bias_q8;        /* relative bias of an observation's
                                     heading trapezoid (0.25): right ring,
                                     heading unreliable */
+    uint8_t head_bias_outlier;   /* 1: that bias is at least the outlier
+                                    bias bP (a pose on the ring with another
+                                    heading is never less possible than one
+                                    off every ring: a false positive can
+                                    no longer flatten a cell's heading);
+                                    0: head_bias alone (the default; 1 with
+                                    head_bias 0 for the vision path,
+                                    tools/locrun.c) */
     int32_t max_range_mm;        /* observations farther are ignored (12000) */
     /* normalization */
     uint8_t min_height_q8;       /* heights below this after normalization
