@@ -772,6 +772,26 @@ static void test_sim_walk(void)
         n++;
     }
     CHECK(used > 0);
+    /* the half-grid update keeps the belief exactly symmetric: every cell
+     * is its mirror's mirror (heading + 180, offsets negated, -CELL/2
+     * mapped to CELL/2 - 1) */
+    CHECK(G.sym_exact);
+    {
+        int i, nc = G.nx * G.ny, bad = 0;
+        for (i = 0; i < nc; i++) {
+            const fl_fuzzy_cell_t *a = &G.cell[i], *b = &G.cell[nc - 1 - i];
+            int mx = a->off_x_mm <= -FL_FUZZY_CELL_MM / 2 ? FL_FUZZY_CELL_MM / 2 - 1 : -a->off_x_mm;
+            int my = a->off_y_mm <= -FL_FUZZY_CELL_MM / 2 ? FL_FUZZY_CELL_MM / 2 - 1 : -a->off_y_mm;
+            if (a->height != b->height)
+                bad++;
+            else if (a->height != 0 && i < nc / 2 &&
+                     (a->bias != b->bias || a->core != b->core || a->slope != b->slope ||
+                      fl_angle_add(a->centre, (fl_angle_t)FL_ANGLE_180) != b->centre ||
+                      mx != b->off_x_mm || my != b->off_y_mm))
+                bad++;
+        }
+        CHECK_EQ(bad, 0);
+    }
     if (used > 0) {
         CHECK_LE(sqrt(se / used), 150);
         CHECK_LE(sqrt(sh / used), 4);

@@ -30,9 +30,14 @@
  * it never widens nor flattens the cell.  Cells outside every ring are
  * multiplied by bP.  Heading cores and slopes are kept at least
  * head_min_core / head_min_slope (widening: still an envelope).  Then, on
- * a symmetric field, each cell and its 180-degree mirror get their union
- * (nothing an observation says tells them apart; rounding would otherwise
- * let one mode die at random); then the grid is normalized to a peak of 1
+ * a symmetric field, the belief is made exactly symmetric (nothing an
+ * observation says tells a pose from its mirror; rounding would otherwise
+ * let one mode die at random): when it already is on entry (g->sym_exact:
+ * after ignorance, after any update, and kept by predict, which copies
+ * its first half mirrored onto the second), only the first half of the
+ * rows is updated and copied, mirrored, onto the second (half the cost);
+ * otherwise (after a pose or penalty reset, painted without the mirror)
+ * each cell and its mirror get their union; then the grid is normalized to a peak of 1
  * (heights below min_height become 0; an empty grid becomes ignorance,
  * counted).  No data association: every hypothesis stays in the grid.
  *
@@ -54,7 +59,8 @@
  * region two integer square roots give the one or two cell intervals the
  * ring crosses; only live cells there are evaluated (a squared-distance
  * test against the ring's bounds, then inside the ring one isqrt, one
- * atan2, the agreement, the envelope).  Then passes over the grid: product,
+ * atan2, the agreement, the envelope), on half the rows when the belief
+ * is exactly symmetric.  Then passes over the grid: product,
  * symmetry, normalization: O(cells + cells in the rings), bounded by
  * O(cells x landmarks of the kind x orientation candidates).  The gate adds
  * the rows of the tracked window.  Measured (tools/bench_fuzzy.c): see the
@@ -581,6 +587,25 @@ static void symmetrize(fl_fuzzy_t *g)
     }
 }
 
+void fl_fuzzy_internal_mirror_copy(fl_fuzzy_t *g)
+{
+    size_t n = (size_t)g->nx * g->ny, i;
+    for (i = 0; i < n / 2; i++) {
+        fl_fuzzy_cell_t *a = &g->cell[i], *b = &g->cell[n - 1 - i];
+        size_t iy = i / g->nx, my = (size_t)g->ny - 1 - iy;
+        if (i % g->nx == 0 && g->row_lo[iy] > g->row_hi[iy] && g->row_lo[my] > g->row_hi[my]) {
+            i += (size_t)g->nx - 1;    /* both rows dead: skip the row */
+            continue;
+        }
+        if (a->height == 0) {
+            if (b->height != 0)
+                memset(b, 0, sizeof *b);
+            continue;
+        }
+        mirror_cell(a, b);
+    }
+}
+
 /* The observation applied to one live cell c (acc: what the rings said
  * there), result in *out (may be c).  Cells outside every ring: product
  * with the outlier bias bP (same shape).  Ring cells: product with the
@@ -730,7 +755,7 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
 {
     const fl_fuzzy_params_t *p;
     obsp_t q;
-    int nreg, ir, iy, ix, nx;
+    int nreg, ir, iy, ix, nx, ny_upd;
     uint32_t maxh = 0, fit;
     bool any_oriented = false;
     prodctx_t x;
@@ -777,7 +802,11 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
             g->contra_run = 0;
         }
     }
-    for (iy = 0; iy < g->ny; iy++) {
+    /* an exactly symmetric belief on a symmetric field: the first half of
+     * the rows (and the middle row of an odd grid) is updated, the rest is
+     * its mirror (symmetrize below would make it so anyway) */
+    ny_upd = g->sym_exact ? (g->ny + 1) / 2 : g->ny;
+    for (iy = 0; iy < ny_upd; iy++) {
         fl_fuzzy_acc_t *acc = g->scratch.upd.acc;
         fl_fuzzy_cell_t *row = &g->cell[(size_t)iy * (size_t)nx];
         int lo = g->row_lo[iy], hi = g->row_hi[iy];
@@ -795,10 +824,12 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
                 maxh = c->height;
         }
     }
-#ifndef NO_SYM
-    if (g->field->symmetric)
+    if (g->sym_exact) {
+        fl_fuzzy_internal_mirror_copy(g);
+    } else if (g->field->symmetric) {
         symmetrize(g);
-#endif
+        g->sym_exact = true;
+    }
     g->stats.obs_used = fz_sat_inc(g->stats.obs_used);
     if (!g->track_valid)
         update_consistency(g, maxh);
