@@ -396,6 +396,63 @@ static void test_converge_and_symmetry(void)
     CHECK_LE(fabs(wrapd(ang_deg(e.heading) - ang_deg(h) - 180)), 5);
 }
 
+/* False positives through a converged mode (the vision path's false
+ * penalty marks, confidence 185): two rings that pass through the true
+ * pose and imply a heading 75 degrees off.  With head_bias_outlier (the
+ * vision-path setting) the heading trapezoid's bias is at least the
+ * outlier bias, the cells keep their own heading: the estimate stays
+ * within 3 degrees.  The error without it is reported (t_info). */
+static double false_rings_error(const fl_fuzzy_params_t *p, double *h_before)
+{
+    const fl_field_t *f = fl_field_find("spl2013");
+    int32_t x = -2300, y = 1100;
+    fl_angle_t h = DEG(-35);
+    fl_fuzzy_estimate_t e;
+    int k;
+    fl_fuzzy_init(&G, f, p);
+    fl_fuzzy_set_prior_half(&G, -1);
+    frames_from(f, x, y, h, 12);
+    /* no tracked mode yet (as after a kidnap): nothing is gated */
+    memcpy(&G2, &G, sizeof G);
+    CHECK(fl_fuzzy_estimate(&G2, &e));
+    *h_before = fabs(wrapd(ang_deg(e.heading) - ang_deg(h)));
+    for (k = 0; k < 2; k++) {
+        const fl_landmark_t *pm = fl_field_nth_kind(f, FL_LM_PENALTY_MARK, (uint16_t)k);
+        fl_obs_t o;
+        CHECK(pm != NULL);
+        if (pm == NULL)
+            return 180;
+        o = make_obs(pm, x, y, h);
+        o.bearing = fl_angle_add(o.bearing, DEG(75 + 15 * k));
+        o.confidence = 185;
+        fl_fuzzy_predict(&G, 0, 0, 0);
+        CHECK(fl_fuzzy_update_one(&G, &o));
+    }
+    CHECK(fl_fuzzy_check(&G));
+    CHECK(fl_fuzzy_estimate(&G, &e));
+    CHECK_LE(fl_hypot(e.x_mm - x, e.y_mm - y), 300);
+    return fabs(wrapd(ang_deg(e.heading) - ang_deg(h)));
+}
+
+static void test_false_rings(void)
+{
+    fl_fuzzy_params_t p;
+    double before, err_on, err_off, before_off;
+    fl_fuzzy_params_default(&p);
+    p.head_bias_q8 = 0;
+    p.head_bias_outlier = 1;
+    err_on = false_rings_error(&p, &before);
+    CHECK_LE(before, 3);
+    CHECK_LE(err_on, 3);
+    fl_fuzzy_params_default(&p);
+    err_off = false_rings_error(&p, &before_off);
+    p.head_bias_outlier = 2;
+    CHECK_EQ(fl_fuzzy_params_check(&p), FL_ERR_RANGE);
+    t_info("fuzzy false rings (2 x conf 185, heading 75/90 deg off, through the mode): heading "
+           "error %.1f -> %.1f deg with head_bias_outlier, %.1f -> %.1f deg without",
+           before, err_on, before_off, err_off);
+}
+
 /* ---- predict ------------------------------------------------------------- */
 
 static void test_predict(void)
@@ -715,6 +772,26 @@ static void test_sim_walk(void)
         n++;
     }
     CHECK(used > 0);
+    /* the half-grid update keeps the belief exactly symmetric: every cell
+     * is its mirror's mirror (heading + 180, offsets negated, -CELL/2
+     * mapped to CELL/2 - 1) */
+    CHECK(G.sym_exact);
+    {
+        int i, nc = G.nx * G.ny, bad = 0;
+        for (i = 0; i < nc; i++) {
+            const fl_fuzzy_cell_t *a = &G.cell[i], *b = &G.cell[nc - 1 - i];
+            int mx = a->off_x_mm <= -FL_FUZZY_CELL_MM / 2 ? FL_FUZZY_CELL_MM / 2 - 1 : -a->off_x_mm;
+            int my = a->off_y_mm <= -FL_FUZZY_CELL_MM / 2 ? FL_FUZZY_CELL_MM / 2 - 1 : -a->off_y_mm;
+            if (a->height != b->height)
+                bad++;
+            else if (a->height != 0 && i < nc / 2 &&
+                     (a->bias != b->bias || a->core != b->core || a->slope != b->slope ||
+                      fl_angle_add(a->centre, (fl_angle_t)FL_ANGLE_180) != b->centre ||
+                      mx != b->off_x_mm || my != b->off_y_mm))
+                bad++;
+        }
+        CHECK_EQ(bad, 0);
+    }
     if (used > 0) {
         CHECK_LE(sqrt(se / used), 150);
         CHECK_LE(sqrt(sh / used), 4);
@@ -733,6 +810,7 @@ void suite_fuzzy(void)
     t_run("fuzzy.trap_true_heading", test_trap_true_heading);
     t_run("fuzzy.obs_pull", test_obs_pull);
     t_run("fuzzy.converge_symmetry", test_converge_and_symmetry);
+    t_run("fuzzy.false_rings", test_false_rings);
     t_run("fuzzy.predict", test_predict);
     t_run("fuzzy.resets", test_resets);
     t_run("fuzzy.heading_clusters", test_heading_clusters);

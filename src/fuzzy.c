@@ -20,7 +20,11 @@
  * growing with this call's position uncertainty (keeps the neighbours of
  * a mode possible so that observations can move it), plus one crisp
  * dilation (kappa 1) per params.blur_step_mm of accumulated uncertainty
- * (the support grows with the motion).
+ * (the support grows with the motion).  An exactly symmetric belief (symmetric
+ * field, g->sym_exact) is kept exactly symmetric: the first half of the
+ * cells, mirrored, replaces the second (the two differ by rounding only:
+ * offsets clamped differently at the cell border, ties of the rotation),
+ * so that the update may work on half the grid.
  * No aliasing: the translation scatters input row r into output rows
  * r-1..r+1 held in a ring of 3 row buffers (scratch.ring); output row r-1 is
  * written back after input row r is read, so no input row is overwritten
@@ -127,7 +131,8 @@ fl_status_t fl_fuzzy_params_check(const fl_fuzzy_params_t *p)
         p->max_range_mm < 100 || p->max_range_mm > 30000 ||
         p->mode_radius_mm < FL_FUZZY_CELL_MM || p->mode_radius_mm > 2000 ||
         p->track_radius_mm < FL_FUZZY_CELL_MM || p->track_radius_mm > 5000 ||
-        p->track_min_q16 == 0 || p->cons_shift > 8 || p->min_height_q8 < 1)
+        p->track_min_q16 == 0 || p->cons_shift > 8 || p->min_height_q8 < 1 ||
+        p->head_bias_outlier > 1)
         return FL_ERR_RANGE;
     return FL_OK;
 }
@@ -196,6 +201,7 @@ void fl_fuzzy_internal_ignorance(fl_fuzzy_t *g)
     g->contra_run = 0;
     g->contra_rate_q8 = 0;
     g->track_valid = false;
+    g->sym_exact = g->field->symmetric;
 }
 
 fl_status_t fl_fuzzy_init(fl_fuzzy_t *g, const fl_field_t *field,
@@ -329,6 +335,7 @@ static void clear_cells(fl_fuzzy_t *g)
     g->contra_run = 0;
     g->contra_rate_q8 = 0;
     g->track_valid = false;
+    g->sym_exact = false;        /* a pose is painted without its mirror */
 }
 
 /* Union of the cone "at (x, y) within unc, heading trapezoid" into the grid.
@@ -686,6 +693,15 @@ void fl_fuzzy_predict(fl_fuzzy_t *g, int32_t dx_mm, int32_t dy_mm,
             g->blur_acc_mm = (int32_t)p->blur_step_mm;
         if (kappa > 0)
             dilate(g, kappa);
+    }
+    /* an exactly symmetric belief stays exactly symmetric: the motion of
+     * a cell and of its mirror differ by rounding only (offsets clamped
+     * differently at the cell border, ties of the Q15 rotation), so the
+     * first half, mirrored, is the second (the update then needs only
+     * half the grid) */
+    if (g->sym_exact) {
+        fl_fuzzy_internal_mirror_copy(g);
+        maxh = grid_max(g);
     }
     if (maxh < 255)
         fl_fuzzy_internal_normalize(g, grid_max(g));

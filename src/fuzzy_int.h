@@ -16,6 +16,9 @@
 void fl_fuzzy_internal_normalize(fl_fuzzy_t *g, uint32_t max_q8);
 /* Recompute row_lo / row_hi from the cells (one pass). */
 void fl_fuzzy_internal_rows(fl_fuzzy_t *g);
+/* Symmetric field: every cell i of the first half (row-major order) is
+ * copied, mirrored, onto its mirror cell n-1-i (fuzzy_update.c). */
+void fl_fuzzy_internal_mirror_copy(fl_fuzzy_t *g);
 /* Total ignorance without counting an explicit reset; clears the track. */
 void fl_fuzzy_internal_ignorance(fl_fuzzy_t *g);
 

@@ -12,7 +12,8 @@
  *     (centre + sub-cell offset);
  *   - the heading it implies there: direction(cell -> L_k) - b, a
  *     trapezoid of the bearing accuracy plus the angle half a cell
- *     subtends, with a relative bias head_bias (right ring, wrong heading);
+ *     subtends, with a relative bias head_bias (right ring, wrong heading;
+ *     with head_bias_outlier at least the outlier bias bP below);
  *   - when the observation has an orientation and the kind one (L, T: mod
  *     360; X, marks: mod 90; centre circle: mod 180), the agreement between
  *     the heading the orientation implies, o_map(L_k) - o (one candidate
@@ -29,9 +30,14 @@
  * it never widens nor flattens the cell.  Cells outside every ring are
  * multiplied by bP.  Heading cores and slopes are kept at least
  * head_min_core / head_min_slope (widening: still an envelope).  Then, on
- * a symmetric field, each cell and its 180-degree mirror get their union
- * (nothing an observation says tells them apart; rounding would otherwise
- * let one mode die at random); then the grid is normalized to a peak of 1
+ * a symmetric field, the belief is made exactly symmetric (nothing an
+ * observation says tells a pose from its mirror; rounding would otherwise
+ * let one mode die at random): when it already is on entry (g->sym_exact:
+ * after ignorance, after any update, and kept by predict, which copies
+ * its first half mirrored onto the second), only the first half of the
+ * rows is updated and copied, mirrored, onto the second (half the cost);
+ * otherwise (after a pose or penalty reset, painted without the mirror)
+ * each cell and its mirror get their union; then the grid is normalized to a peak of 1
  * (heights below min_height become 0; an empty grid becomes ignorance,
  * counted).  No data association: every hypothesis stays in the grid.
  *
@@ -53,7 +59,8 @@
  * region two integer square roots give the one or two cell intervals the
  * ring crosses; only live cells there are evaluated (a squared-distance
  * test against the ring's bounds, then inside the ring one isqrt, one
- * atan2, the agreement, the envelope).  Then passes over the grid: product,
+ * atan2, the agreement, the envelope), on half the rows when the belief
+ * is exactly symmetric.  Then passes over the grid: product,
  * symmetry, normalization: O(cells + cells in the rings), bounded by
  * O(cells x landmarks of the kind x orientation candidates).  The gate adds
  * the rows of the tracked window.  Measured (tools/bench_fuzzy.c): see the
@@ -154,6 +161,23 @@ typedef struct {
 static uint32_t rho(const obsp_t *q, uint32_t r_q16)
 {
     return q->bias_q16 + (uint32_t)(((uint64_t)(65536u - q->bias_q16) * r_q16) >> 16);
+}
+
+/* Bias of the observation's heading trapezoid at ring value r (Q16):
+ * "real, but its heading is not" rho(r) x head_bias; with
+ * params.head_bias_outlier the union with "the observation is an outlier"
+ * (bP, any pose): max(bP, rho(r) hb), so a pose on the ring with another
+ * heading is never less possible than a pose off every ring.  (With rho hb
+ * alone, a low-confidence false positive (bP > rho hb) made the cell's own
+ * heading less possible than no ring at all and, the cell's relative bias
+ * being about hb too, tied the two plateaus of the product: the envelope
+ * flattened the cell and the next false ring imposed its heading, the
+ * 70-degree single-frame errors of the spl2013 vision walks at 64 s.)
+ * Scaling: rho hb < 2^33 in uint64, result <= rho(r). */
+static uint32_t rho_head(const fl_fuzzy_t *g, const obsp_t *q, uint32_t r_q16)
+{
+    uint32_t rh = (uint32_t)(((uint64_t)rho(q, r_q16) * q->head_bias_q16) >> 16);
+    return g->params.head_bias_outlier && rh < q->bias_q16 ? q->bias_q16 : rh;
 }
 
 static bool post_matches(const fl_landmark_t *lm, const fl_obs_t *o)
@@ -563,6 +587,25 @@ static void symmetrize(fl_fuzzy_t *g)
     }
 }
 
+void fl_fuzzy_internal_mirror_copy(fl_fuzzy_t *g)
+{
+    size_t n = (size_t)g->nx * g->ny, i;
+    for (i = 0; i < n / 2; i++) {
+        fl_fuzzy_cell_t *a = &g->cell[i], *b = &g->cell[n - 1 - i];
+        size_t iy = i / g->nx, my = (size_t)g->ny - 1 - iy;
+        if (i % g->nx == 0 && g->row_lo[iy] > g->row_hi[iy] && g->row_lo[my] > g->row_hi[my]) {
+            i += (size_t)g->nx - 1;    /* both rows dead: skip the row */
+            continue;
+        }
+        if (a->height == 0) {
+            if (b->height != 0)
+                memset(b, 0, sizeof *b);
+            continue;
+        }
+        mirror_cell(a, b);
+    }
+}
+
 /* The observation applied to one live cell c (acc: what the rings said
  * there), result in *out (may be c).  Cells outside every ring: product
  * with the outlier bias bP (same shape).  Ring cells: product with the
@@ -602,14 +645,14 @@ static void cell_product(const prodctx_t *x, const fl_fuzzy_acc_t *a,
     /* position factor rho = bP + (1 - bP) r (outlier bias bP), heading
      * trapezoid with relative bias head_bias */
     st.height_q16 = rho(q, a->r1_q16);
-    st.bias_q16 = (uint32_t)(((uint64_t)st.height_q16 * q->head_bias_q16) >> 16);
+    st.bias_q16 = rho_head(g, q, a->r1_q16);
     fl_fuzzy_trap_isect(&ct, &st, &et);
     if (a->r2_q16 != 0) {
         /* a second heading: C x (S1 u S2) = (C x S1) u (C x S2) */
         fl_fuzzy_trap_t s2 = st, e2, e1 = et;
         s2.centre = a->head2;
         s2.height_q16 = rho(q, a->r2_q16);
-        s2.bias_q16 = (uint32_t)(((uint64_t)s2.height_q16 * q->head_bias_q16) >> 16);
+        s2.bias_q16 = rho_head(g, q, a->r2_q16);
         fl_fuzzy_trap_isect(&ct, &s2, &e2);
         fl_fuzzy_trap_union(&e1, &e2, &et);
     }
@@ -712,7 +755,7 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
 {
     const fl_fuzzy_params_t *p;
     obsp_t q;
-    int nreg, ir, iy, ix, nx;
+    int nreg, ir, iy, ix, nx, ny_upd;
     uint32_t maxh = 0, fit;
     bool any_oriented = false;
     prodctx_t x;
@@ -759,7 +802,11 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
             g->contra_run = 0;
         }
     }
-    for (iy = 0; iy < g->ny; iy++) {
+    /* an exactly symmetric belief on a symmetric field: the first half of
+     * the rows (and the middle row of an odd grid) is updated, the rest is
+     * its mirror (symmetrize below would make it so anyway) */
+    ny_upd = g->sym_exact ? (g->ny + 1) / 2 : g->ny;
+    for (iy = 0; iy < ny_upd; iy++) {
         fl_fuzzy_acc_t *acc = g->scratch.upd.acc;
         fl_fuzzy_cell_t *row = &g->cell[(size_t)iy * (size_t)nx];
         int lo = g->row_lo[iy], hi = g->row_hi[iy];
@@ -777,10 +824,12 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
                 maxh = c->height;
         }
     }
-#ifndef NO_SYM
-    if (g->field->symmetric)
+    if (g->sym_exact) {
+        fl_fuzzy_internal_mirror_copy(g);
+    } else if (g->field->symmetric) {
         symmetrize(g);
-#endif
+        g->sym_exact = true;
+    }
     g->stats.obs_used = fz_sat_inc(g->stats.obs_used);
     if (!g->track_valid)
         update_consistency(g, maxh);

@@ -36,15 +36,16 @@
  *              8 B = 2,496 B) and the update's row accumulator with its
  *              region list (104 x 10 B + 48 x 32 B = 2,576 B): 2,576 B
  *     live column range per row    2 x 74 B =    148 B
- *     the rest (params, prior, track, counters)   204 B (200 on 32-bit)
- *     sizeof(fl_fuzzy_t) = 64,496 B on x86-64 (64,492 on 32-bit targets),
+ *     the rest (params, prior, track, counters)   212 B (204 on 32-bit)
+ *     sizeof(fl_fuzzy_t) = 64,504 B on x86-64 (64,496 on 32-bit targets),
  *     < 64 KiB (printed by the fuzzy suite).
  *     No heap; stack at most about 1 KB per call (make stack).
  * Cost (tools/bench_fuzzy.c, x86-64 host, gcc -O2): one predict + 5
- * observation updates on the SPL grid: about 0.18 ms (2.8 M instructions)
- * with a tracked mode, about 0.9 ms (14.5 M instructions) from total
+ * observation updates on the SPL grid: about 0.14 ms (2.2 M instructions)
+ * with a tracked mode, about 0.47 ms (8.1 M instructions) from total
  * ignorance (every cell possible: the worst case, for a fraction of a
- * second after a reset; goal 0.5 ms).  callgrind: about 2.0 M
+ * second after a reset; goal 0.5 ms); on a symmetric field (SPL 2013)
+ * the update works on half the grid (fuzzy_update.c).  callgrind: about 2.0 M
  * instructions per 30 Hz frame of the spl2013 walk once tracked (predict,
  * the frame's ~3 observations, estimate).
  */
@@ -155,6 +156,14 @@ typedef struct {
     uint8_t head_bias_q8;        /* relative bias of an observation's
                                     heading trapezoid (0.25): right ring,
                                     heading unreliable */
+    uint8_t head_bias_outlier;   /* 1: that bias is at least the outlier
+                                    bias bP (a pose on the ring with another
+                                    heading is never less possible than one
+                                    off every ring: a false positive can
+                                    no longer flatten a cell's heading);
+                                    0: head_bias alone (the default; 1 with
+                                    head_bias 0 for the vision path,
+                                    tools/locrun.c) */
     int32_t max_range_mm;        /* observations farther are ignored (12000) */
     /* normalization */
     uint8_t min_height_q8;       /* heights below this after normalization
@@ -268,6 +277,11 @@ typedef struct {
                                     low-passed over about 8 calls */
     fl_fuzzy_prior_t prior;
     bool track_valid;            /* a mode is tracked (converged) */
+    bool sym_exact;              /* symmetric field: every cell is exactly
+                                    the mirror of its mirror cell (after
+                                    ignorance, an update, and predicts
+                                    since; not after a pose or penalty
+                                    reset until the next update) */
     int32_t track_x_mm, track_y_mm;
     fl_angle_t track_heading;
     fl_fuzzy_stats_t stats;
