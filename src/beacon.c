@@ -6,8 +6,8 @@
  * sample's colour by the HSV boxes; vertical runs of one colour (one
  * missing sample bridged), ends refined to the pixel; runs overlapping a
  * run of the same colour in the previous sampled column join its blob
- * (union-find).  (2) Blob boxes from the runs.  (3) Sky-blue blobs that
- * stand on the carpet: two posts from their edges.  (4) Pink blobs stacked
+ * (union-find).  (2) Blob boxes from the runs.  (3) Sky-blue (and
+ * yellow) blobs that stand on the carpet: two posts from their edges.  (4) Pink blobs stacked
  * with a yellow or sky-blue blob and a white base: beacons; then single
  * lower bands cut by the image top.  (5) Foot, range and bearing per
  * result through the camera model.
@@ -49,6 +49,7 @@ void fl_beacon_params_default(fl_beacon_params_t *p)
     p->row_step = 0;
     p->below_border_px = 4;
     p->min_confidence = 40;
+    p->yellow_goals = 1;
 }
 
 static bool bc_box_ok(const fl_hsv_box_t *b)
@@ -66,7 +67,8 @@ fl_status_t fl_beacon_init(fl_beacon_t *b, const fl_beacon_params_t *p)
     if (!bc_box_ok(&p->skyblue) || !bc_box_ok(&p->pink) || !bc_box_ok(&p->yellow) || p->col_step < 0 ||
         p->col_step > 16 || p->row_step < 0 || p->row_step > 16 ||
         p->below_border_px < 0 || p->below_border_px > 64 ||
-        p->min_confidence < 0 || p->min_confidence > 255)
+        p->min_confidence < 0 || p->min_confidence > 255 ||
+        p->yellow_goals < 0 || p->yellow_goals > 1)
         return FL_ERR_RANGE;
     b->params = *p;
     return FL_OK;
@@ -407,13 +409,32 @@ static void bc_post(const bc_ctx_t *c, int32_t k, int32_t dir, int32_t top_v)
     /* the edge to the pixel, along a row just above the bottom */
     vr = bot - 2 >= top_v ? bot - 2 : bot;
     u_e = ue;
-    for (step = 1; step < c->cs + 1 && bc_colour(c, u_e + dir, vr) == FL_COLOUR_SKYBLUE; step++)
+    for (step = 1; step < c->cs + 1 && bc_colour(c, u_e + dir, vr) == (fl_colour_t)bl->colour;
+         step++)
         u_e += dir;
     if (u_e + dir < 0 || u_e + dir >= c->W)
         return;     /* cut by the image edge: the post may be outside */
+    /* beside a post the carpet ends at the wall, behind the foot: the
+     * border there is at or above the foot.  Much lower: an object (a
+     * robot) stands in front and its edge is not the post's. */
+    {
+        int32_t k2, seen = 0, ok = 0;
+        for (k2 = 1; k2 <= 3; k2++) {
+            int32_t uu = u_e + dir * 2 * k2;
+            if (uu < 0 || uu >= c->W)
+                continue;
+            seen++;
+            if (bc_border(c, uu) <= bot + c->rs + 3)
+                ok++;
+        }
+        if (seen > 0 && ok == 0) {
+            c->b->rejected_goal++;
+            return;
+        }
+    }
     memset(&f, 0, sizeof f);
     f.kind = FL_LM_POST;
-    f.colour = FL_COLOUR_SKYBLUE;
+    f.colour = (fl_colour_t)bl->colour;
     f.colour2 = FL_COLOUR_NONE;
     f.side = dir < 0 ? FL_SIDE_LEFT : FL_SIDE_RIGHT;
     f.top_v_q4 = top_v * 16;
@@ -439,7 +460,7 @@ static void bc_post(const bc_ctx_t *c, int32_t k, int32_t dir, int32_t top_v)
     bc_push(c->b, &f);
 }
 
-/* Sky-blue blob k: a goal standing on the carpet?  Then its posts. */
+/* Goal-coloured blob k: a goal standing on the carpet?  Then its posts. */
 static void bc_goal(const bc_ctx_t *c, int32_t k)
 {
     fl_beacon_t *b = c->b;
@@ -690,6 +711,7 @@ int32_t fl_beacon_find(fl_beacon_t *b, const fl_scan_t *scan,
 {
     bc_ctx_t c;
     int32_t u, i, prev0 = 0, prev1 = 0;
+    bool yellow_goal;
     if (!b)
         return 0;
     b->n = b->n_runs = b->n_blobs = 0;
@@ -733,8 +755,12 @@ int32_t fl_beacon_find(fl_beacon_t *b, const fl_scan_t *scan,
         prev1 = b->n_runs;
     }
     bc_blob_boxes(b);
+    yellow_goal = b->params.yellow_goals &&
+                  (!field || field->goal_colour[0] == FL_COLOUR_YELLOW ||
+                   field->goal_colour[1] == FL_COLOUR_YELLOW);
     for (i = 0; i < b->n_blobs; i++)
-        if (bc_is_root(b, i) && b->blob[i].colour == FL_COLOUR_SKYBLUE)
+        if (bc_is_root(b, i) && (b->blob[i].colour == FL_COLOUR_SKYBLUE ||
+                                 (yellow_goal && b->blob[i].colour == FL_COLOUR_YELLOW)))
             bc_goal(&c, i);
     bc_beacons(&c);
     return b->n;

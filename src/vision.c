@@ -218,7 +218,16 @@ int32_t fl_vision_frame(fl_vision_t *v, const fl_color_table_t *colors,
         fl_beacon_find(&v->beacons, &v->scan, img, colors, camera, field);
         for (i = 0; i < v->beacons.n; i++) {
             const fl_beacon_found_t *f = &v->beacons.found[i];
+            bool dup = false;
             if (!camera || f->range_mm <= 0)
+                continue;
+            /* a yellow post goal.c found already (within its width + 4 px) */
+            for (k = 0; k < v->posts.n && f->kind == FL_LM_POST; k++) {
+                int32_t d = v->posts.post[k].foot_u_q4 - f->u_q4;
+                if ((d < 0 ? -d : d) <= v->posts.post[k].width_q4 + f->width_q4 + 64)
+                    dup = true;
+            }
+            if (dup)
                 continue;
             memset(&o, 0, sizeof o);
             o.kind = f->kind;

@@ -15,7 +15,8 @@
  * gap bridged), their top and bottom refined to the pixel.  Runs of the
  * same colour that overlap vertically in neighbouring sampled columns are
  * joined into blobs (union-find over a fixed table).  Then:
- *  - sky-blue goal: a sky-blue blob at least 3 sampled columns wide whose
+ *  - sky-blue goal (and yellow with yellow_goals; the post colour is the
+ *    blob's): a blob at least 3 sampled columns wide whose
  *    bottom meets the field border (border within 1 row step + 3 px under
  *    the bottom and carpet within 3 px under it, in half of its columns:
  *    a sky-blue thing beyond the carpet stands on the wall top, with the
@@ -24,7 +25,9 @@
  *    Each edge that is not the image edge is a post: the outermost column
  *    whose bottom is within 2 px of the lowest bottom of that half, its
  *    edge refined to the pixel along a row 2 px above the bottom, the post
- *    centre half a (predicted) post width inside.  Left edge in the image =
+ *    centre half a (predicted) post width inside; not when the border
+ *    beside the edge (2, 4, 6 px out) is all more than a row step + 3 px
+ *    below the foot (a robot in front cuts the goal).  Left edge =
  *    FL_SIDE_LEFT (goal.h: sides as seen facing the goal).
  *  - beacon: a pink blob stacked on a yellow or sky-blue blob or under one
  *    (the gap between them at most one row step + 2 px + a third of a
@@ -126,6 +129,11 @@ typedef struct {
                                  col_step with the height / 80), 1..16 */
     int32_t below_border_px;  /* rows sampled under the border, 0..64 */
     int32_t min_confidence;   /* results below are not reported, 0..255 */
+    int32_t yellow_goals;     /* 1: yellow goals too, by the same blob
+                                 method, when the field has a yellow goal
+                                 (the AIBO goal is a box with side and back
+                                 panels, which goal.c's post-and-crossbar
+                                 model rejects); 0: sky-blue only */
 } fl_beacon_params_t;
 
 /* One vertical run of a colour in a sampled column. */
@@ -149,7 +157,7 @@ typedef struct {
 typedef struct {
     fl_landmark_kind_t kind;  /* FL_LM_BEACON or FL_LM_POST */
     fl_colour_t colour;       /* beacon: upper band (NONE when cut off);
-                                 post: the goal's colour */
+                                 post: the goal's colour (SKYBLUE, YELLOW) */
     fl_colour_t colour2;      /* beacon: lower band; post: NONE */
     fl_side_t side;           /* posts: LEFT / RIGHT; beacons: UNKNOWN */
     int32_t u_q4, v_q4;       /* foot: base centre (Q4 px); for a beacon
@@ -180,13 +188,14 @@ typedef struct {
     int32_t runs_dropped;      /* runs beyond FL_BEACON_MAX_RUNS */
     int32_t blobs_dropped;     /* runs that found no blob slot */
     int32_t found_dropped;     /* results beyond FL_BEACON_MAX_FOUND */
-    int32_t rejected_goal;     /* sky-blue blobs failing the goal checks */
+    int32_t rejected_goal;     /* goal-coloured blobs failing the goal checks */
     int32_t rejected_beacon;   /* stacked band pairs failing the checks */
     /* private: union-find parents of the blobs while joining */
     uint8_t parent[FL_BEACON_MAX_BLOBS];
 } fl_beacon_t;
 
-/* The boxes above, automatic grid, 4 px under the border, confidence 40. */
+/* The boxes above, automatic grid, 4 px under the border, confidence 40,
+ * yellow goals on. */
 void fl_beacon_params_default(fl_beacon_params_t *p);
 
 /* Validate (FL_ERR_RANGE: hue > 179, lo > hi for S or V, a step, the

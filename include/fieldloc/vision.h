@@ -22,8 +22,9 @@
  * then crossings and marks by falling confidence (FL_LM_L, T, X,
  * PENALTY_MARK, CENTRE_MARK).  Image positions are kept in u_q4 / v_q4.
  * Then, on fields with beacons or a sky-blue or pink goal (fl_vision_
- * wants_beacons), the coloured landmarks of beacon.h: sky-blue posts
- * (FL_LM_POST, colour SKYBLUE, side LEFT/RIGHT) and beacons
+ * wants_beacons), the coloured landmarks of beacon.h: sky-blue and yellow
+ * posts (FL_LM_POST, colour SKYBLUE / YELLOW, side LEFT/RIGHT; a post
+ * fl_goal_find already reported is not repeated) and beacons
  * (FL_LM_BEACON, colour = upper band, colour2 = lower band), in the order
  * found.  Other fields never run that stage, so their outputs do not
  * depend on it.  Those below min_confidence are left out.
