@@ -98,6 +98,64 @@ static void test_params(void)
     CHECK(fl_vision_wants_beacons(fl_field_find("aibo2004")));
 }
 
+/* fl_beacon_pixel_colour (the stage's classification, with its grey
+ * pre-rejection) against the plain definition: HSV, then the boxes in the
+ * order yellow, sky-blue, pink; a grid of colours (every 3rd level, every
+ * 7th in quick mode), in RGB and through YCbCr planes. */
+static int bt_in(const fl_hsv_box_t *b, fl_hsv_t x)
+{
+    return fl_hsv_box_has_hue(b, x.h) && x.s >= b->s_lo && x.s <= b->s_hi && x.v >= b->v_lo &&
+           x.v <= b->v_hi;
+}
+
+static void test_classes(void)
+{
+    fl_beacon_params_t p;
+    int r, g, b, step = t_quick ? 7 : 3, n = 0, bad = 0, counts[5] = {0, 0, 0, 0, 0};
+    uint32_t h = t_hash_init();
+    fl_beacon_params_default(&p);
+    for (r = 0; r < 256; r += step)
+        for (g = 0; g < 256; g += step)
+            for (b = 0; b < 256; b += step) {
+                uint8_t px[3] = {(uint8_t)r, (uint8_t)g, (uint8_t)b}, y, cb, cr;
+                fl_image_t img;
+                fl_hsv_t x = fl_hsv_from_rgb(px[0], px[1], px[2]);
+                fl_colour_t want = bt_in(&p.yellow, x)    ? FL_COLOUR_YELLOW
+                                   : bt_in(&p.skyblue, x) ? FL_COLOUR_SKYBLUE
+                                   : bt_in(&p.pink, x)    ? FL_COLOUR_PINK
+                                                          : FL_COLOUR_NONE, got;
+                fl_image_init_packed(&img, FL_FMT_RGB888, px, 1, 1, 3);
+                got = fl_beacon_pixel_colour(&p, &img, 0, 0);
+                bad += got != want;
+                counts[got]++;
+                n++;
+                /* planar: the same through the integer BT.601 */
+                {
+                    uint8_t ycc[3], rgb2[3];
+                    fl_image_get_ycbcr(&img, 0, 0, ycc);
+                    y = ycc[0];
+                    cb = ycc[1];
+                    cr = ycc[2];
+                    fl_image_init_planar(&img, &y, 1, &cb, 1, &cr, 1, 1, 1);
+                    fl_rgb_from_ycbcr(y, cb, cr, rgb2);
+                    x = fl_hsv_from_rgb(rgb2[0], rgb2[1], rgb2[2]);
+                    want = bt_in(&p.yellow, x)    ? FL_COLOUR_YELLOW
+                           : bt_in(&p.skyblue, x) ? FL_COLOUR_SKYBLUE
+                           : bt_in(&p.pink, x)    ? FL_COLOUR_PINK
+                                                  : FL_COLOUR_NONE;
+                    got = fl_beacon_pixel_colour(&p, &img, 0, 0);
+                    bad += got != want;
+                    h = t_hash_i32(h, (int32_t)got);
+                }
+            }
+    CHECK_EQ(bad, 0);
+    CHECK(counts[FL_COLOUR_YELLOW] > 0 && counts[FL_COLOUR_SKYBLUE] > 0 &&
+          counts[FL_COLOUR_PINK] > 0);
+    t_info("%d colours x 2 formats: classification = HSV boxes; yellow %d sky-blue %d pink %d",
+           n, counts[FL_COLOUR_YELLOW], counts[FL_COLOUR_SKYBLUE], counts[FL_COLOUR_PINK]);
+    t_digest("beacon.classes", h);
+}
+
 static void test_bad_input(void)
 {
     uint8_t px[208 * 160 * 3];
@@ -412,6 +470,7 @@ static void test_adversarial(void)
 void suite_beacon(void)
 {
     t_run("beacon.params", test_params);
+    t_run("beacon.classes", test_classes);
     t_run("beacon.bad_input", test_bad_input);
     t_run("beacon.aibo_fixtures", test_aibo_fixtures);
     t_run("beacon.spl2013_none", test_spl_none);

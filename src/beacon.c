@@ -7,7 +7,8 @@
  * missing sample bridged), ends refined to the pixel; runs overlapping a
  * run of the same colour in the previous sampled column join its blob
  * (union-find).  (2) Blob boxes from the runs.  (3) Sky-blue (and
- * yellow) blobs that stand on the carpet: two posts from their edges.  (4) Pink blobs stacked
+ * yellow) blobs that stand on the carpet: two posts from their edges.
+ * (4) Pink blobs stacked
  * with a yellow or sky-blue blob and a white base: beacons; then single
  * lower bands cut by the image top.  (5) Foot, range and bearing per
  * result through the camera model.
@@ -34,6 +35,9 @@
 
 #define BC_NONE_BLOB 255u
 #define BC_RUNS_PER_COLUMN 16
+
+static int32_t bc_min(int32_t a, int32_t b) { return a < b ? a : b; }
+static int32_t bc_max(int32_t a, int32_t b) { return a > b ? a : b; }
 
 void fl_beacon_params_default(fl_beacon_params_t *p)
 {
@@ -64,7 +68,8 @@ fl_status_t fl_beacon_init(fl_beacon_t *b, const fl_beacon_params_t *p)
         return FL_ERR_NULL;
     memset(b, 0, sizeof *b);
     fl_beacon_params_default(&b->params);
-    if (!bc_box_ok(&p->skyblue) || !bc_box_ok(&p->pink) || !bc_box_ok(&p->yellow) || p->col_step < 0 ||
+    if (!bc_box_ok(&p->skyblue) || !bc_box_ok(&p->pink) || !bc_box_ok(&p->yellow) ||
+        p->col_step < 0 ||
         p->col_step > 16 || p->row_step < 0 || p->row_step > 16 ||
         p->below_border_px < 0 || p->below_border_px > 64 ||
         p->min_confidence < 0 || p->min_confidence > 255 ||
@@ -116,7 +121,6 @@ typedef struct {
     const fl_image_t *img;
     const fl_color_table_t *ct;
     const fl_camera_t *cam;
-    fl_hsv_box_t yellow;
     int32_t W, H, cs, rs;
     int32_t post_d, post_h, beacon_d, beacon_h;
 } bc_ctx_t;
@@ -140,11 +144,37 @@ static fl_hsv_t bc_hsv(const bc_ctx_t *c, int32_t u, int32_t v)
     return fl_hsv_from_rgb(rgb[0], rgb[1], rgb[2]);
 }
 
+/* Colour of R, G, B by the boxes of p (yellow: p->yellow).  Most samples
+ * above the border are walls and other grey things: a colour whose
+ * saturation is surely below every box's s_lo or whose value is below
+ * every v_lo is NONE without the HSV conversion, with the same result:
+ * fl_hsv_from_rgb rounds S = 255 (max - min) / max to the nearest through
+ * a reciprocal table (error < 0.04), so 255 (max - min) < (s_lo - 1) max
+ * gives S < s_lo (checked for all 2^24 colours and every s_lo; the beacon
+ * suite compares with the plain HSV classification).  Scaling: 255 * 255
+ * < 2^16. */
+static fl_colour_t bc_colour_rgb(const fl_beacon_params_t *p, const uint8_t rgb[3])
+{
+    int32_t mx, mn, s_min, v_min;
+    s_min = bc_min(bc_min(p->skyblue.s_lo, p->pink.s_lo), p->yellow.s_lo);
+    v_min = bc_min(bc_min(p->skyblue.v_lo, p->pink.v_lo), p->yellow.v_lo);
+    mx = rgb[0] > rgb[1] ? rgb[0] : rgb[1];
+    mn = rgb[0] < rgb[1] ? rgb[0] : rgb[1];
+    if (rgb[2] > mx) mx = rgb[2];
+    if (rgb[2] < mn) mn = rgb[2];
+    if (mx < v_min || 255 * (mx - mn) < (s_min - 1) * mx)
+        return FL_COLOUR_NONE;
+    return bc_classify(p, &p->yellow, fl_hsv_from_rgb(rgb[0], rgb[1], rgb[2]));
+}
+
+/* Colour of pixel (u, v); NONE outside the image. */
 static fl_colour_t bc_colour(const bc_ctx_t *c, int32_t u, int32_t v)
 {
+    uint8_t rgb[3];
     if (u < 0 || v < 0 || u >= c->W || v >= c->H)
         return FL_COLOUR_NONE;
-    return bc_classify(&c->b->params, &c->yellow, bc_hsv(c, u, v));
+    bc_rgb(c->img, u, v, rgb);
+    return bc_colour_rgb(&c->b->params, rgb);
 }
 
 /* The white of a beacon base (or the wall behind it): unsaturated, not
@@ -171,7 +201,7 @@ fl_colour_t fl_beacon_pixel_colour(const fl_beacon_params_t *p,
         v < 0 || u >= img->width || v >= img->height)
         return FL_COLOUR_NONE;
     bc_rgb(img, u, v, rgb);
-    return bc_classify(p, &p->yellow, fl_hsv_from_rgb(rgb[0], rgb[1], rgb[2]));
+    return bc_colour_rgb(p, rgb);
 }
 
 /* ---- runs and blobs ---------------------------------------------------------- */
@@ -258,7 +288,7 @@ static void bc_column(const bc_ctx_t *c, int32_t u, int32_t prev0, int32_t prev1
     for (v = 0; v <= v_end + c->rs; v += c->rs) {
         fl_colour_t col = FL_COLOUR_NONE;
         if (v <= v_end) {
-            col = bc_classify(&b->params, &c->yellow, bc_hsv(c, u, v));
+            col = bc_colour(c, u, v);
             b->samples++;
         }
         if (cur != FL_COLOUR_NONE && col == cur) {
@@ -591,8 +621,6 @@ static void bc_beacon_emit(const bc_ctx_t *c, const fl_beacon_blob_t *up,
     bc_push(c->b, &f);
 }
 
-static int32_t bc_min(int32_t a, int32_t b) { return a < b ? a : b; }
-static int32_t bc_max(int32_t a, int32_t b) { return a > b ? a : b; }
 
 /* Bands up over lo: stacked, similar width, band-shaped, white under lo?
  * Returns the horizontal overlap (px) when they pass, else 0. */
@@ -727,7 +755,6 @@ int32_t fl_beacon_find(fl_beacon_t *b, const fl_scan_t *scan,
     c.img = img;
     c.ct = colors;
     c.cam = camera;
-    c.yellow = b->params.yellow;
     c.W = img->width;
     c.H = img->height;
     c.cs = b->params.col_step > 0 ? b->params.col_step
