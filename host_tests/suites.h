@@ -12,6 +12,7 @@ T_SUITE(scan);
 T_SUITE(fuzzy);
 T_SUITE(lines);
 T_SUITE(features);
+T_SUITE(beacon);
 T_SUITE(localize);
 T_SUITE(adversarial);
 T_SUITE(walks);

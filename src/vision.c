@@ -34,6 +34,23 @@ void fl_vision_params_default(fl_vision_params_t *p)
     p->min_confidence = 40;
     p->posts = 1;
     p->circle = 1;
+    p->beacons = 1;
+    fl_beacon_params_default(&p->beacon);
+}
+
+bool fl_vision_wants_beacons(const fl_field_t *field)
+{
+    int32_t k;
+    if (!field)
+        return false;
+    if (field->beacon_height_mm > 0 ||
+        fl_field_count_kind(field, FL_LM_BEACON) > 0)
+        return true;
+    for (k = 0; k < 2; k++)
+        if (field->goal_colour[k] == FL_COLOUR_SKYBLUE ||
+            field->goal_colour[k] == FL_COLOUR_PINK)
+            return true;
+    return false;
 }
 
 /* Effective scan params for an image width. */
@@ -60,7 +77,8 @@ fl_status_t fl_vision_init(fl_vision_t *v, const fl_vision_params_t *p)
     v->status = FL_OK;
     fl_vision_params_default(&v->params);
     if (p->min_confidence < 0 || p->min_confidence > 255 || p->posts < 0 ||
-        p->posts > 1 || p->circle < 0 || p->circle > 1 ||
+        p->posts > 1 || p->circle < 0 || p->circle > 1 || p->beacons < 0 ||
+        p->beacons > 1 ||
         p->scan.col_step < 0 || p->scan.row_step < 0)
         return FL_ERR_RANGE;
     vi_scan_params(p, 320, &sp);
@@ -77,6 +95,9 @@ fl_status_t fl_vision_init(fl_vision_t *v, const fl_vision_params_t *p)
         return st;
     memset(&v->circle, 0, sizeof v->circle);
     memset(&v->posts, 0, sizeof v->posts);
+    st = fl_beacon_init(&v->beacons, &p->beacon);
+    if (st != FL_OK)
+        return st;
     v->params = *p;
     return FL_OK;
 }
@@ -104,6 +125,7 @@ int32_t fl_vision_frame(fl_vision_t *v, const fl_color_table_t *colors,
     v->lines.width = 0;
     v->crossings.n = 0;
     v->posts.n = 0;
+    v->beacons.n = 0;
     v->circle.found = false;
     if (!out || !colors || !img || !field) {
         v->status = FL_ERR_NULL;
@@ -189,6 +211,36 @@ int32_t fl_vision_frame(fl_vision_t *v, const fl_color_table_t *colors,
         o.u_q4 = x->u_q4;
         o.v_q4 = x->v_q4;
         vi_push(out, &o, v->params.min_confidence);
+    }
+    /* coloured landmarks (beacon.h), appended: only on fields that have
+     * them, so that every other field's output is what it was */
+    if (v->params.beacons && fl_vision_wants_beacons(field)) {
+        fl_beacon_find(&v->beacons, &v->scan, img, colors, camera, field);
+        for (i = 0; i < v->beacons.n; i++) {
+            const fl_beacon_found_t *f = &v->beacons.found[i];
+            bool dup = false;
+            if (!camera || f->range_mm <= 0)
+                continue;
+            /* a yellow post goal.c found already (within its width + 4 px) */
+            for (k = 0; k < v->posts.n && f->kind == FL_LM_POST; k++) {
+                int32_t d = v->posts.post[k].foot_u_q4 - f->u_q4;
+                if ((d < 0 ? -d : d) <= v->posts.post[k].width_q4 + f->width_q4 + 64)
+                    dup = true;
+            }
+            if (dup)
+                continue;
+            memset(&o, 0, sizeof o);
+            o.kind = f->kind;
+            o.side = f->side;
+            o.colour = f->colour;
+            o.colour2 = f->colour2;
+            o.range_mm = f->range_mm;
+            o.bearing = f->bearing;
+            o.confidence = f->confidence;
+            o.u_q4 = f->u_q4;
+            o.v_q4 = f->v_q4;
+            vi_push(out, &o, v->params.min_confidence);
+        }
     }
     v->obs_dropped += out->dropped;
     v->status = FL_OK;

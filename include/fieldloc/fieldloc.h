@@ -18,6 +18,7 @@
 #include "fieldloc/circle.h"
 #include "fieldloc/crossings.h"
 #include "fieldloc/goal.h"
+#include "fieldloc/beacon.h"
 #include "fieldloc/vision.h"
 #include "fieldloc/fuzzy.h"
 

@@ -32,6 +32,13 @@ typedef struct {
     uint8_t confidence;        /* Q0.8: 255 = certain, 0 = ignore */
     int32_t u_q4, v_q4;        /* image position it came from (Q4 px), for
                                   pictures and evaluation; -1 if none */
+    fl_colour_t colour2;       /* added: beacons: the lower colour band
+                                  (colour is the upper band, as
+                                  fl_landmark_t.colour / colour2); a beacon
+                                  whose upper band was not seen has colour
+                                  FL_COLOUR_NONE and colour2 set.
+                                  FL_COLOUR_NONE (0, what memset gives)
+                                  for every other kind and when unknown */
 } fl_obs_t;
 
 /* Capacity of one frame's observation list.  Default 32, range 4..255. */

@@ -21,11 +21,18 @@
  * the centre circle (FL_LM_CENTRE_CIRCLE, orientation = halfway line),
  * then crossings and marks by falling confidence (FL_LM_L, T, X,
  * PENALTY_MARK, CENTRE_MARK).  Image positions are kept in u_q4 / v_q4.
- * Those below min_confidence are left out.
+ * Then, on fields with beacons or a sky-blue or pink goal (fl_vision_
+ * wants_beacons), the coloured landmarks of beacon.h: sky-blue and yellow
+ * posts (FL_LM_POST, colour SKYBLUE / YELLOW, side LEFT/RIGHT; a post
+ * fl_goal_find already reported is not repeated) and beacons
+ * (FL_LM_BEACON, colour = upper band, colour2 = lower band), in the order
+ * found.  Other fields never run that stage, so their outputs do not
+ * depend on it.  Those below min_confidence are left out.
  */
 #ifndef FIELDLOC_VISION_H
 #define FIELDLOC_VISION_H
 
+#include "fieldloc/beacon.h"
 #include "fieldloc/camera.h"
 #include "fieldloc/circle.h"
 #include "fieldloc/color.h"
@@ -50,6 +57,9 @@ typedef struct {
     int32_t min_confidence;       /* observations below are dropped, 0..255 */
     int32_t posts;                /* 1: goal posts */
     int32_t circle;               /* 1: centre circle */
+    int32_t beacons;              /* added: 1: coloured landmarks (beacon.h)
+                                     on fields that have them; 0: never */
+    fl_beacon_params_t beacon;    /* added: their params */
 } fl_vision_params_t;
 
 typedef struct {
@@ -59,6 +69,7 @@ typedef struct {
     fl_circle_t circle;
     fl_crossings_t crossings;
     fl_posts_t posts;
+    fl_beacon_t beacons;          /* added: n = 0 unless the stage ran */
     /* counters */
     uint32_t frames;              /* frames processed */
     uint32_t obs_dropped;         /* observations beyond FL_OBS_MAX, summed */
@@ -68,8 +79,13 @@ typedef struct {
 } fl_vision_t;
 
 /* Defaults of every stage, automatic grid, border run 4 px, confidence 40,
- * posts and circle on. */
+ * posts, circle and beacons on. */
 void fl_vision_params_default(fl_vision_params_t *p);
+
+/* True when the field has something for the beacon stage: beacons
+ * (beacon_height_mm > 0 or an FL_LM_BEACON landmark) or a goal coloured
+ * sky-blue or pink.  NULL: false. */
+bool fl_vision_wants_beacons(const fl_field_t *field);
 
 /* Validate every stage's params and clear.  FL_ERR_NULL, FL_ERR_RANGE. */
 fl_status_t fl_vision_init(fl_vision_t *v, const fl_vision_params_t *p);
