@@ -189,6 +189,11 @@ static bool post_matches(const fl_landmark_t *lm, const fl_obs_t *o)
         o->colour != FL_COLOUR_NONE && lm->colour != FL_COLOUR_NONE &&
         lm->colour != o->colour)
         return false;
+    /* beacons: the lower band too (a full beacon then matches exactly one
+     * landmark; a partial one, colour unknown, matches by its lower band) */
+    if (lm->kind == FL_LM_BEACON && o->colour2 != FL_COLOUR_NONE &&
+        lm->colour2 != FL_COLOUR_NONE && lm->colour2 != o->colour2)
+        return false;
     return true;
 }
 

@@ -902,6 +902,7 @@ void sim_observe(const sim_scenario_t *sc, const fl_camera_t *cam,
             }
             o.side = FL_SIDE_UNKNOWN;
             o.colour = lm->colour;
+            o.colour2 = lm->colour2;   /* beacons: lower band, as the vision stage reports it */
             o.confidence = (uint8_t)(160 + (int)(u_c * 96));
             o.u_q4 = u;
             o.v_q4 = v;
