@@ -483,9 +483,11 @@ static int golden_text(const fl_vision_t *v, char *buf, size_t cap)
 
 /* A T at the field border from one segment (crossings.h, "Border"): in
  * spl2013_circle_side the halfway line runs up to the far side line, which
- * is too thin there to give a segment; the T must be found at the truth
- * (within 8 px) as a border T, and with the border search disabled (no
- * camera for the crossing stage) it is not. */
+ * is too thin there for the class map; without the luma points (lines.h)
+ * it gives no segment, and the T must be found at the truth (within 8 px)
+ * as a border T; with the border search disabled (no camera for the
+ * crossing stage) it is not.  With the luma points the far side line is a
+ * segment and the T comes from the pair. */
 static void test_border_t(void)
 {
     static truth_t tr;
@@ -493,8 +495,9 @@ static void test_border_t(void)
     fl_camera_t fc;
     fl_obs_list_t obs;
     det_ctx_t dc;
+    fl_vision_params_t vp;
     char err[256];
-    int32_t i, found = 0, k;
+    int32_t i, found = 0, k, pair = 0;
     const fl_field_t *field = fl_field_find("spl2013");
     if (truth_load("fixtures/frames/spl2013_circle_side.truth", &tr, err, sizeof err) != 0 ||
         render_read_frame("fixtures/frames/spl2013_circle_side.raw", &fr, err, sizeof err) != 0) {
@@ -502,9 +505,30 @@ static void test_border_t(void)
         return;
     }
     CHECK_EQ(fl_camera_init(&fc, fl_camera_model_find("nao4-top-320"), &tr.head), FL_OK);
+    /* default parameters: the T from a pair of segments, one of luma points */
     CHECK_EQ(det_ctx_init(&dc), 0);
     fl_vision_frame(dc.vis, dc.colors, &fr.view, &fc, field, &obs);
+    for (k = 0; k < tr.n; k++) {
+        if (tr.f[k].kind != TRUTH_T || tr.f[k].occluded || tr.f[k].range_mm > 6000)
+            continue;
+        for (i = 0; i < dc.vis->crossings.n; i++) {
+            const fl_crossing_t *x = &dc.vis->crossings.c[i];
+            if (x->kind == FL_LM_T && x->seg_a >= 0 && x->seg_b >= 0 &&
+                hypot(x->u_q4 / 16.0 - tr.f[k].u, x->v_q4 / 16.0 - tr.f[k].v) <= 8.0 &&
+                ((dc.vis->lines.segments[x->seg_a].flags |
+                  dc.vis->lines.segments[x->seg_b].flags) & FL_SEG_LUMA))
+                pair++;
+        }
+    }
+    CHECK_EQ(pair, 1);
+    det_ctx_free(&dc);
+    /* no luma points: the border T */
+    fl_vision_params_default(&vp);
+    vp.lines.luma_contrast_pct = 0;
+    CHECK_EQ(det_ctx_init_params(&dc, &vp), 0);
+    fl_vision_frame(dc.vis, dc.colors, &fr.view, &fc, field, &obs);
     render_frame_free(&fr);
+    CHECK_EQ(dc.vis->lines.luma_points, 0);
     CHECK(dc.vis->crossings.border_t >= 1);
     for (k = 0; k < tr.n; k++) {
         if (tr.f[k].kind != TRUTH_T || tr.f[k].occluded || tr.f[k].range_mm > 6000)

@@ -57,6 +57,7 @@
 #define CR_KAPPA_Q4 (12 * 16) /* probe distance for ground directions */
 #define CR_SAME_ARM 4551      /* 25 deg: two arms within this are one */
 #define CR_MARK_CLUSTERS_MAX 256 /* mark candidates looked at per frame */
+#define CR_LUMA_PROBES 128    /* probes per frame that may read the luma */
 
 void fl_crossings_params_default(fl_crossings_params_t *p)
 {
@@ -240,11 +241,15 @@ static void cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
     c->n++;
 }
 
-/* White ratio of a probe ray between r0 and r0 + len (Q4) from its start,
- * into r->white: -1 when less than half of it lies inside the image
- * (w_px x h_px). */
-static void cr_probe(const fl_scan_t *scan, int32_t w_px, int32_t h_px, cr_ray_t *r)
+/* Paint ratio of a probe ray between r0 and r0 + len (Q4) from its start,
+ * into r->white: -1 when less than half of it lies inside the image.  The
+ * class map's white ratio; below the lines' white_pct, while the frame's
+ * budget of CR_LUMA_PROBES lasts, fl_lines_paint_pct (a far line too thin
+ * for the class map: its luma ridge). */
+static void cr_probe(fl_crossings_t *c, const fl_lines_t *l, const fl_scan_t *scan,
+                     cr_ray_t *r)
 {
+    int32_t w_px = l->width, h_px = l->height;
     int32_t xu = r->xu, xv = r->xv, cu = r->cu, cv = r->cv, r0 = r->r0, len = r->len;
     int32_t u0 = xu + fl_rshift_round((int64_t)cu * r0, 15);
     int32_t v0 = xv + fl_rshift_round((int64_t)cv * r0, 15);
@@ -262,6 +267,10 @@ static void cr_probe(const fl_scan_t *scan, int32_t w_px, int32_t h_px, cr_ray_t
         v1 = vm;
     }
     r->white = fl_lines_white_pct(scan, u0, v0, u1, v1);
+    if (r->white < l->params.white_pct && c->luma_probes < CR_LUMA_PROBES) {
+        c->luma_probes++;
+        r->white = fl_lines_paint_pct(l, scan, u0, v0, u1, v1);
+    }
 }
 
 /* Direction of a segment at distance t (Q4) from its end 0: the chord
@@ -410,7 +419,7 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
             ray.cv = dirs[k];
             ray.r0 = r0;
             ray.len = len;
-            cr_probe(scan, l->width, l->height, &ray);
+            cr_probe(c, l, scan, &ray);
             pr = ray.white;
             if (pr >= pp->probe_white_pct && !geo[k])
                 pres[k] = true;
@@ -541,7 +550,7 @@ static const int16_t cr_ring_c[16] = {256, 237, 181, 98, 0, -98, -181, -237,
  * outer ellipse (n_out). */
 typedef struct {
     int32_t cu, cv, iu, iv, ou, ov, long_q4;
-    int32_t su, sv, n_in, n_out, long_in;
+    int32_t su, sv, n_in, n_out, long_in, luma_in;
 } cr_census_t;
 
 static void cr_mark_census(const fl_lines_t *l, cr_census_t *k, uint32_t *vis)
@@ -549,7 +558,7 @@ static void cr_mark_census(const fl_lines_t *l, cr_census_t *k, uint32_t *vis)
     uint16_t ids[FL_LINES_NEAR_MAX];
     int32_t n, j, cu = k->cu, cv = k->cv;
     int64_t iu = k->iu, iv = k->iv, ou = k->ou, ov = k->ov;
-    k->su = k->sv = k->n_in = k->n_out = k->long_in = 0;
+    k->su = k->sv = k->n_in = k->n_out = k->long_in = k->luma_in = 0;
     n = fl_lines_points_near(l, cu, cv, k->ou / 2 + 1, k->ov / 2 + 1, ids);
     if (n > FL_LINES_NEAR_MAX) {
         k->n_out = n;
@@ -561,6 +570,8 @@ static void cr_mark_census(const fl_lines_t *l, cr_census_t *k, uint32_t *vis)
         /* inside the inner ellipse: du^2 / iu^2 + dv^2 / iv^2 <= 1 */
         if (du * du * iv * iv + dv * dv * iu * iu <= iu * iu * iv * iv) {
             k->n_in++;
+            if (q->flags & FL_LINE_POINT_LUMA)
+                k->luma_in++;
             k->su += q->u_q1;
             k->sv += q->v_q1;
             if (q->seg != FL_LINES_NONE && l->segments[q->seg].len_q4 > k->long_q4)
@@ -627,7 +638,9 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         cc.cu = cc.su / cc.n_in;
         cc.cv = cc.sv / cc.n_in;
         cr_mark_census(l, &cc, vis);
-        if (cc.n_in < 2 || cc.long_in > 0 || cc.n_out > 0)
+        /* luma points alone (noise ridges of a dark frame): 3 at least */
+        if (cc.n_in < 2 || cc.long_in > 0 || cc.n_out > 0 ||
+            (cc.luma_in == cc.n_in && cc.n_in < 3))
             continue;
         n_in = cc.n_in;
         cu = cc.su * 8 / n_in; /* Q4 */
@@ -867,7 +880,7 @@ static void cr_border_t(const cr_ctx_t *ctx, int32_t is)
     r.len = plen / 2 < lim ? plen / 2 : lim;
     if (r.len < 48)
         r.len = 48;
-    cr_probe(ctx->scan, l->width, l->height, &r);
+    cr_probe(c, l, ctx->scan, &r);
     if (r.white >= c->params.probe_green_pct)
         return;
     memset(&it, 0, sizeof it);
@@ -920,6 +933,7 @@ int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
     c->merged = 0;
     c->marks_capped = 0;
     c->border_t = 0;
+    c->luma_probes = 0;
     if (!lines || lines->width <= 0)
         return 0;
     if (scan && (scan->width != lines->width || scan->height != lines->height))

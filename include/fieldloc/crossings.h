@@ -20,7 +20,9 @@
  * cheap white-ratio test along a short ray); an arm the segment did not
  * reach but the probe finds white is added (a line broken at the
  * crossing), an arm the segment claims but the probe finds green lowers
- * the confidence.  The arm count gives the type (2 L, 3 T, 4 X).
+ * the confidence.  Far lines too thin for the class map: a probe below
+ * the lines' white_pct reads the luma (fl_lines_paint_pct; at most 128
+ * such probes per frame, counted in luma_probes).  The arm count gives the type (2 L, 3 T, 4 X).
  * Crossings closer than the merge distance (3 line widths or 4 steps) are
  * merged by the union of their arms: two opposite T's become an X, an L
  * and its continuation a T.
@@ -44,7 +46,8 @@
  * make long segments.  Points off long segments are clustered within 0.75
  * of the projected mark size; a cluster of at least 2 points with no other
  * point out to 2.5 mark sizes, whose ring of 16 class-map samples at 1.6
- * mark sizes is green (13 of 16, no white), is a penalty mark.  An X of a
+ * mark sizes is green (13 of 16, no white), is a penalty mark (a cluster
+ * of luma points alone needs 3).  An X of a
  * short bar (<= 2.5 mark sizes on the ground) across a long line is a
  * centre mark, of two short bars a penalty mark.  Both count as X (as the
  * UvA 2013 labels do); their kind says which.  A found centre circle with
@@ -118,6 +121,8 @@ typedef struct {
     int32_t merged;           /* crossings merged into others */
     int32_t marks_capped;     /* mark search stopped after 256 clusters */
     int32_t border_t;         /* T's of one segment at the field border */
+    int32_t luma_probes;      /* arm probes that fell back to the luma
+                                 (at most 128 per frame) */
     /* ---- private ---- */
     fl_angle_t garm[FL_CROSSINGS_MAX][4]; /* ground arms (robot frame) */
 } fl_crossings_t;
