@@ -595,7 +595,7 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
     memset(vis, 0, sizeof vis);
     for (k = 0; k < l->n_points; k++) {
         const fl_line_point_t *p = &l->points[k];
-        int32_t wh, wv, mh, mv, iu, iv, ou, ov, n_in, cu, cv, green = 0, white = 0,
+        int32_t wh, wv, mh, mv, iu, iv, ou, ov, n_in, cu, cv, green = 0, white = 0, outside = 0,
             conf, ru, rv, j, long_q4;
         cr_census_t cc;
         cr_item_t it;
@@ -652,16 +652,24 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
             ru = 64;
         if (rv < 48)
             rv = 48;
+        /* samples outside the image (a mark near its edge) are not
+         * counted: 13 of 16 green means 13/16 of those inside, at least 10 */
         for (j = 0; j < 16; j++) {
-            int32_t cls = cr_class_px(scan, cu + ru * cr_ring_c[j] / 256,
-                                      cv + rv * cr_ring_c[(j + 4) & 15] / 256);
+            int32_t su = cu + ru * cr_ring_c[j] / 256, sv = cv + rv * cr_ring_c[(j + 4) & 15] / 256;
+            int32_t cls;
+            if (su < 0 || sv < 0 || su > 16 * (l->width - 1) || sv > 16 * (l->height - 1)) {
+                outside++;
+                continue;
+            }
+            cls = cr_class_px(scan, su, sv);
             if (cls == FL_CLASS_GREEN)
                 green++;
             else if (cls == FL_CLASS_WHITE)
                 white++;
         }
-        if (green < 13 || white > 0)
+        if (outside > 6 || 16 * green < 13 * (16 - outside) || white > 0)
             continue;
+        green += outside;
         if (!fl_camera_pixel_to_ground(cam, cu, cv, &g))
             continue;
         memset(&it, 0, sizeof it);
