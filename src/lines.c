@@ -51,7 +51,8 @@
  * every pixel of every m-th column in the band and of every m-th row of
  * the band read once (about 15 instructions per pixel from RGB, 5 from
  * YUYV or planar), plus at most 8 ridge tests per scan line; ridge checks
- * at most 256 x 33 samples of 5 pixels per frame; growth O(points x (3 x 3 bucket
+ * at most 256 x 33 samples of 5 pixels per frame (stopping once the
+ * threshold is out of reach); growth O(points x (3 x 3 bucket
  * occupancy + FL_LINES_CANDIDATES x gap samples)); merging O(segments^2)
  * cheap tests plus at most one white check per candidate pair; refit and
  * bulge O(points + segments).
@@ -427,13 +428,14 @@ static void ln_vrun(fl_lines_t *l, const fl_scan_t *s, int32_t i, int32_t j0,
  * ridge is a short run of pixels each brighter than both pixels d away (d
  * from the projected width across the scan line: 1 + 1.5 w, 2..6 px) by
  * luma_contrast_pct of the brighter one (at least 8 levels), whose width at
- * half its height is at most d, with carpet-coloured flanks (Cb, Cr below
- * grey: green dominates) and a peak that is not yellow (its Cb not below the
- * flanks') nor orange (Cr at most grey + 8).  Ridges where the class map
+ * half its height is below d, with carpet-coloured flanks (Cb, Cr below
+ * grey: green dominates), a peak that is not yellow (its Cb not 16 below
+ * the flanks') nor orange (Cr at most grey + 12), and that goes on in one
+ * of the two pixel lines beside the scan line (ln_ridge_goes_on).  Ridges where the class map
  * already has white (within a cell) are left to the class-map points. */
 
 #define LN_LUMA_PER_LINE 8   /* ridges looked at per scan line */
-#define LN_LUMA_MAX (FL_LINES_MAX_POINTS / 2) /* luma points per frame */
+#define LN_LUMA_MAX (FL_LINES_MAX_POINTS / 8) /* luma points per frame */
 #define LN_LUMA_DMAX 6       /* largest flank distance, px */
 #define LN_RIDGE_SAMPLES 32  /* samples of a path's ridge check */
 #define LN_RIDGE_BUDGET 256  /* ridge checks of the segment stage per frame */
@@ -535,6 +537,36 @@ typedef struct {
     bool vertical;
 } ln_sline_t;
 
+/* Does the ridge at position k of a scan line go on in a parallel pixel
+ * line beside it (offset -1 or +1 across the scan line; at k - 1, k or
+ * k + 1 along it, flanks d away)?  A line does (it is at most 45 degrees
+ * off the scan line's normal); most noise specks do not. */
+static bool ln_ridge_goes_on(const fl_lines_t *l, const ln_sline_t *sl, int32_t k, int32_t d)
+{
+    const fl_image_t *im = &l->img;
+    int32_t side, j;
+    for (side = -1; side <= 1; side += 2) {
+        bool found = false;
+        for (j = -1; j <= 1 && !found; j++) {
+            int32_t x = k + j, a, f1, f2;
+            if (sl->vertical) {
+                a = ln_luma_at(im, sl->pos + side, x);
+                f1 = ln_luma_at(im, sl->pos + side, x - d);
+                f2 = ln_luma_at(im, sl->pos + side, x + d);
+            } else {
+                a = ln_luma_at(im, x, sl->pos + side);
+                f1 = ln_luma_at(im, x - d, sl->pos + side);
+                f2 = ln_luma_at(im, x + d, sl->pos + side);
+            }
+            if (a >= 0 && f1 >= 0 && f2 >= 0 && ln_ridge(l, a, f1 > f2 ? f1 : f2))
+                found = true;
+        }
+        if (found)
+            return true;
+    }
+    return false;
+}
+
 static void ln_luma_run(fl_lines_t *l, const fl_scan_t *s, const ln_sline_t *sl,
                         int32_t r0, int32_t r1, int32_t d)
 {
@@ -580,7 +612,8 @@ static void ln_luma_run(fl_lines_t *l, const fl_scan_t *s, const ln_sline_t *sl,
     ln_chroma(im, sl->vertical ? u : k + d, sl->vertical ? k + d : v, &cb2, &cr2);
     ln_chroma(im, u, v, &cbk, &crk);
     if (!ln_greenish(cb1, cr1) || !ln_greenish(cb2, cr2) ||
-        cbk + 16 < (cb1 < cb2 ? cb1 : cb2) || crk > 140) {
+        cbk + 16 < (cb1 < cb2 ? cb1 : cb2) || crk > 140 ||
+        !ln_ridge_goes_on(l, sl, k, d)) { /* (last: a line, not a speck) */
         l->runs_rejected++;
         return;
     }
@@ -693,10 +726,11 @@ static void ln_luma_points(fl_lines_t *l, const fl_scan_t *s, int32_t mc, int32_
  * the sample and its two neighbours across stands out (ln_ridge) of the
  * brighter of the two pixels d + 1 away across (d from the projected width
  * across the path at its middle row).  0 outside the image or without
- * luma.  Scaling: Q4 positions < 2^17, the unit normal in Q8, products
+ * luma.  Stops early once `need` percent is out of reach (then the result
+ * is some value below need).  Scaling: Q4 positions < 2^17, the unit normal in Q8, products
  * < 2^26 in int32. */
 static int32_t ln_ridge_pct(const fl_lines_t *l, int32_t u0, int32_t v0, int32_t u1,
-                            int32_t v1)
+                            int32_t v1, int32_t need)
 {
     const fl_image_t *im = &l->img;
     int32_t du = u1 - u0, dv = v1 - v0, len, n, k, pass = 0, nu, nv, wv, wh, w, d, vm;
@@ -733,10 +767,10 @@ static int32_t ln_ridge_pct(const fl_lines_t *l, int32_t u0, int32_t v0, int32_t
             a = b;
         if (c > a)
             a = c;
-        if (f1 < 0 || f2 < 0 || a < 0)
-            continue;
-        if (ln_ridge(l, a, f1 > f2 ? f1 : f2))
+        if (f1 >= 0 && f2 >= 0 && a >= 0 && ln_ridge(l, a, f1 > f2 ? f1 : f2))
             pass++;
+        else if ((pass + n - k) * 100 < need * (n + 1))
+            break; /* need is out of reach: the ratio so far is below it */
     }
     return pass * 100 / (n + 1);
 }
@@ -760,7 +794,7 @@ static int32_t ln_paint_pct(fl_lines_t *l, const fl_scan_t *scan, int32_t u0, in
     if (!scan || !ln_luma_path(l, p, v0, v1) || l->ridge_checks >= LN_RIDGE_BUDGET)
         return p;
     l->ridge_checks++;
-    r = ln_ridge_pct(l, u0, v0, u1, v1);
+    r = ln_ridge_pct(l, u0, v0, u1, v1, l->params.white_pct);
     return r > p ? r : p;
 }
 
@@ -770,7 +804,7 @@ int32_t fl_lines_paint_pct(const fl_lines_t *l, const fl_scan_t *scan, int32_t u
     int32_t p = fl_lines_white_pct(scan, u0_q4, v0_q4, u1_q4, v1_q4), r;
     if (!l || !scan || !ln_luma_path(l, p, v0_q4, v1_q4))
         return p;
-    r = ln_ridge_pct(l, u0_q4, v0_q4, u1_q4, v1_q4);
+    r = ln_ridge_pct(l, u0_q4, v0_q4, u1_q4, v1_q4, 0);
     return r > p ? r : p;
 }
 
@@ -1594,8 +1628,8 @@ static bool ln_segment_white(fl_lines_t *l, const fl_scan_t *scan, const fl_segm
         l->ridge_checks >= LN_RIDGE_BUDGET)
         return false;
     l->ridge_checks++;
-    return ln_ridge_pct(l, s->e0u * 8, s->e0v * 8, s->e1u * 8, s->e1v * 8) >=
-           l->params.white_pct;
+    return ln_ridge_pct(l, s->e0u * 8, s->e0v * 8, s->e1u * 8, s->e1v * 8,
+                        l->params.white_pct) >= l->params.white_pct;
 }
 
 /* ---- build ------------------------------------------------------------------ */

@@ -19,10 +19,11 @@
  * from a few pixels above their border): a ridge brighter than the pixels
  * d = 1 + 1.5 w (2..6 px) to either side by luma_contrast_pct of the
  * brighter one (and 8 levels), at most d - 1 px wide at half its height,
- * with carpet-coloured flanks (Cb, Cr below grey) and neither yellow nor
- * orange itself, where the class map has no white within a cell, gives a
- * point flagged FL_LINE_POINT_LUMA (at most 8 ridges per scan line and
- * FL_LINES_MAX_POINTS / 2 per frame, counted in luma_capped).  The paths
+ * with carpet-coloured flanks (Cb, Cr below grey), neither yellow nor
+ * orange itself, going on in the pixel line beside the scan line (a line,
+ * not a speck of noise), where the class map has no white within a cell,
+ * gives a point flagged FL_LINE_POINT_LUMA (at most 8 ridges per scan line
+ * and FL_LINES_MAX_POINTS / 8 per frame, counted in luma_capped).  The paths
  * that the segment stage checks for white (growth, the segment itself,
  * merge gaps) fall back to the luma where the class map falls short in
  * the band: the share of samples on a luma ridge across the path (at most
