@@ -493,16 +493,15 @@ static void ln_chroma(const fl_image_t *im, int32_t u, int32_t v, int32_t *cb, i
         *cr = 255;
 }
 
-/* n lumas of a scan line from (u, v), along u (horizontal) or v, into
- * buf[0..n-1]; every pixel inside the view. */
-static void ln_luma_line(const fl_image_t *im, int32_t u, int32_t v, bool horizontal,
-                         int32_t n, uint8_t *buf)
+/* n lumas of a scan line into lum_buf[0..n-1]: pixel k at byte offset
+ * off + k * step of plane 0 (every pixel inside the view; at most five
+ * arguments however gcc splits l). */
+static void ln_luma_fill(fl_lines_t *l, int32_t off, int32_t step, int32_t n)
 {
-    const uint8_t *p = im->plane[0];
-    int32_t off = ln_px_off(im, u, v), k;
-    int32_t step = horizontal ? (im->format == FL_FMT_RGB888 ? 3 : im->format == FL_FMT_YUYV422 ? 2 : 1)
-                              : im->stride[0];
-    if (im->format == FL_FMT_RGB888) {
+    const uint8_t *p = l->img.plane[0];
+    uint8_t *buf = l->lum_buf;
+    int32_t k;
+    if (l->img.format == FL_FMT_RGB888) {
         for (k = 0; k < n; k++, off += step)
             buf[k] = (uint8_t)((19595 * p[off] + 38470 * p[off + 1] + 7471 * p[off + 2] + 32768) >> 16);
     } else {
@@ -704,7 +703,7 @@ static void ln_luma_points(fl_lines_t *l, const fl_scan_t *s, int32_t mc, int32_
         sl.x0 = lo - LN_LUMA_DMAX < 0 ? 0 : lo - LN_LUMA_DMAX;
         sl.x1 = l->lum_vend + LN_LUMA_DMAX >= l->height ? l->height - 1
                                                         : l->lum_vend + LN_LUMA_DMAX;
-        ln_luma_line(&l->img, sl.pos, sl.x0, false, sl.x1 - sl.x0 + 1, l->lum_buf);
+        ln_luma_fill(l, ln_px_off(&l->img, sl.pos, sl.x0), l->img.stride[0], sl.x1 - sl.x0 + 1);
         ln_luma_scan(l, s, &sl, lo, l->lum_vend, l->lum_dv);
     }
     for (j = mr / 2; j < s->rows; j += mr) {
@@ -716,7 +715,7 @@ static void ln_luma_points(fl_lines_t *l, const fl_scan_t *s, int32_t mc, int32_
         sl.pos = v;
         sl.x0 = 0;
         sl.x1 = l->width - 1;
-        ln_luma_line(&l->img, 0, v, true, l->width, l->lum_buf);
+        ln_luma_fill(l, ln_px_off(&l->img, 0, v), ln_px_off(&l->img, 1, 0), l->width);
         ln_luma_scan(l, s, &sl, 0, l->width - 1, &l->lum_dh[v]);
     }
 }
