@@ -483,9 +483,11 @@ static int golden_text(const fl_vision_t *v, char *buf, size_t cap)
 
 /* A T at the field border from one segment (crossings.h, "Border"): in
  * spl2013_circle_side the halfway line runs up to the far side line, which
- * is too thin there to give a segment; the T must be found at the truth
- * (within 8 px) as a border T, and with the border search disabled (no
- * camera for the crossing stage) it is not. */
+ * is too thin there for the class map; without the luma points (lines.h)
+ * it gives no segment, and the T must be found at the truth (within 8 px)
+ * as a border T; with the border search disabled (no camera for the
+ * crossing stage) it is not.  With the luma points the far side line is a
+ * segment and the T comes from the pair. */
 static void test_border_t(void)
 {
     static truth_t tr;
@@ -493,8 +495,9 @@ static void test_border_t(void)
     fl_camera_t fc;
     fl_obs_list_t obs;
     det_ctx_t dc;
+    fl_vision_params_t vp;
     char err[256];
-    int32_t i, found = 0, k;
+    int32_t i, found = 0, k, pair = 0;
     const fl_field_t *field = fl_field_find("spl2013");
     if (truth_load("fixtures/frames/spl2013_circle_side.truth", &tr, err, sizeof err) != 0 ||
         render_read_frame("fixtures/frames/spl2013_circle_side.raw", &fr, err, sizeof err) != 0) {
@@ -502,9 +505,30 @@ static void test_border_t(void)
         return;
     }
     CHECK_EQ(fl_camera_init(&fc, fl_camera_model_find("nao4-top-320"), &tr.head), FL_OK);
+    /* default parameters: the T from a pair of segments, one of luma points */
     CHECK_EQ(det_ctx_init(&dc), 0);
     fl_vision_frame(dc.vis, dc.colors, &fr.view, &fc, field, &obs);
+    for (k = 0; k < tr.n; k++) {
+        if (tr.f[k].kind != TRUTH_T || tr.f[k].occluded || tr.f[k].range_mm > 6000)
+            continue;
+        for (i = 0; i < dc.vis->crossings.n; i++) {
+            const fl_crossing_t *x = &dc.vis->crossings.c[i];
+            if (x->kind == FL_LM_T && x->seg_a >= 0 && x->seg_b >= 0 &&
+                hypot(x->u_q4 / 16.0 - tr.f[k].u, x->v_q4 / 16.0 - tr.f[k].v) <= 8.0 &&
+                ((dc.vis->lines.segments[x->seg_a].flags |
+                  dc.vis->lines.segments[x->seg_b].flags) & FL_SEG_LUMA))
+                pair++;
+        }
+    }
+    CHECK_EQ(pair, 1);
+    det_ctx_free(&dc);
+    /* no luma points: the border T */
+    fl_vision_params_default(&vp);
+    vp.lines.luma_contrast_pct = 0;
+    CHECK_EQ(det_ctx_init_params(&dc, &vp), 0);
+    fl_vision_frame(dc.vis, dc.colors, &fr.view, &fc, field, &obs);
     render_frame_free(&fr);
+    CHECK_EQ(dc.vis->lines.luma_points, 0);
     CHECK(dc.vis->crossings.border_t >= 1);
     for (k = 0; k < tr.n; k++) {
         if (tr.f[k].kind != TRUTH_T || tr.f[k].occluded || tr.f[k].range_mm > 6000)
@@ -524,6 +548,56 @@ static void test_border_t(void)
     /* the same segments without a camera: no border T */
     fl_crossings_find(&dc.vis->crossings, &dc.vis->lines, &dc.vis->scan, NULL, field);
     CHECK_EQ(dc.vis->crossings.border_t, 0);
+    det_ctx_free(&dc);
+}
+
+/* Corners of a short connector (crossings.h, "Short connectors"): in
+ * spl2020_penalty_area the side of the goal area runs 10 px from the goal
+ * line down to the end of the area's front line, too short for a segment;
+ * the L at that end (truth within 8 px) must come from the connector, with
+ * 2 arms, an orientation and a range within 5 %, and the T where the side
+ * meets the goal line is found (by a pair or the connector). */
+static void test_connector(void)
+{
+    static truth_t tr;
+    render_frame_t fr;
+    fl_camera_t fc;
+    fl_obs_list_t obs;
+    det_ctx_t dc;
+    char err[256];
+    int32_t i, k, l_found = 0, t_found = 0;
+    const fl_field_t *field = fl_field_find("spl2020");
+    if (truth_load("fixtures/frames/spl2020_penalty_area.truth", &tr, err, sizeof err) != 0 ||
+        render_read_frame("fixtures/frames/spl2020_penalty_area.raw", &fr, err, sizeof err) != 0) {
+        t_info("skipped: fixture spl2020_penalty_area not found (run from the repository root)");
+        return;
+    }
+    CHECK_EQ(fl_camera_init(&fc, fl_camera_model_find("nao6-top-320"), &tr.head), FL_OK);
+    CHECK_EQ(det_ctx_init(&dc), 0);
+    fl_vision_frame(dc.vis, dc.colors, &fr.view, &fc, field, &obs);
+    render_frame_free(&fr);
+    CHECK(dc.vis->crossings.connectors >= 1);
+    for (k = 0; k < tr.n; k++) {
+        const truth_feature_t *f = &tr.f[k];
+        if (f->occluded || f->range_mm > 6000 || f->u < 150 || f->u > 200)
+            continue;
+        for (i = 0; i < dc.vis->crossings.n; i++) {
+            const fl_crossing_t *x = &dc.vis->crossings.c[i];
+            if (hypot(x->u_q4 / 16.0 - f->u, x->v_q4 / 16.0 - f->v) > 8.0)
+                continue;
+            /* a connector's confidence is at most 160 (a border T's) */
+            if (f->kind == TRUTH_L && x->kind == FL_LM_L && x->seg_b >= 0 &&
+                x->confidence <= 160) {
+                l_found++;
+                CHECK(x->n_arms == 2 && x->has_orientation);
+                CHECK(fabs(x->range_mm - f->range_mm) < 0.05 * f->range_mm);
+            }
+            if (f->kind == TRUTH_T && (x->kind == FL_LM_T || x->kind == FL_LM_X))
+                t_found++;
+        }
+    }
+    CHECK_EQ(l_found, 1);
+    CHECK_EQ(t_found, 1);
     det_ctx_free(&dc);
 }
 
@@ -651,7 +725,7 @@ static void test_eval_fixtures(void)
     floor_target("rendered crossings precision (<= 6 m)",
                  ratio(s.cross_tp, s.cross_tp + s.cross_fp), 0.94, 0.95);
     floor_target("rendered crossings recall (<= 6 m)",
-                 ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.66, 0.90);
+                 ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.71, 0.90);
     for (k = 0; k < 3; k++)   /* bins 0-1, 1-2, 2-3 m */
         if (s.rng_n[k] > 0 && s.rng_max[k] > worst3)
             worst3 = s.rng_max[k];
@@ -681,9 +755,12 @@ static void test_eval_realdata(void)
     n = evd_uva(&dc, dir, 0, &s);
     det_ctx_free(&dc);
     CHECK(n >= 20);
-    floor_target("UvA crossings precision", ratio(s.cross_tp, s.cross_tp + s.cross_fp), 0.90,
+    /* precision 0.919 at recall 0.553 before the luma line points; 0.880
+     * at recall 0.641 now (white s_hi 48, color.h): the floor keeps the
+     * target's margin */
+    floor_target("UvA crossings precision", ratio(s.cross_tp, s.cross_tp + s.cross_fp), 0.86,
                  0.85);
-    floor_target("UvA crossings recall", ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.53, 0.75);
+    floor_target("UvA crossings recall", ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.64, 0.75);
     floor_target("UvA post feet precision", ratio(s.foot_tp, s.foot_tp + s.foot_fp), 0.96, 0.90);
     floor_target("UvA post feet recall", ratio(s.foot_tp, s.foot_tp + s.foot_fn), 0.90, 0.90);
     t_info("UvA type accuracy %.3f over %d matched crossings", ratio(s.type_ok, s.cross_tp),
@@ -700,6 +777,7 @@ void suite_features(void)
     t_run("features.vision_bad_input", test_vision_bad_input);
     t_run("features.vision_noise", test_vision_noise);
     t_run("features.border_t", test_border_t);
+    t_run("features.connector", test_connector);
     t_run("features.goldens", test_goldens);
     t_run("features.eval_fixtures", test_eval_fixtures);
     t_run("features.eval_realdata", test_eval_realdata);

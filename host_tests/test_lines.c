@@ -8,6 +8,7 @@
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
+#include "scan_tool.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -94,8 +95,8 @@ static void test_params(void)
     CHECK_EQ(fl_lines_init(&L, &p), FL_ERR_RANGE);
     lines_default();
     /* per-frame calls never fail */
-    CHECK_EQ(fl_lines_find_points(NULL, &scan, NULL, 50), 0);
-    CHECK_EQ(fl_lines_find_points(&L, NULL, NULL, 50), 0);
+    CHECK_EQ(fl_lines_find_points(NULL, &scan, NULL, NULL, 50), 0);
+    CHECK_EQ(fl_lines_find_points(&L, NULL, NULL, NULL, 50), 0);
     CHECK_EQ(fl_lines_build(NULL, NULL), 0);
     CHECK(!fl_lines_reset(&L, 0, 10));
     CHECK_EQ(fl_lines_build(&L, NULL), 0);
@@ -348,7 +349,7 @@ static void test_painted(void)
     paint_rect(rgb, W, H, 40, 220, 280, 100, 4, PAINT);     /* diagonal */
     scan_painted(rgb, W, H, NULL);
     lines_default();
-    CHECK(fl_lines_find_points(&L, &scan, NULL, 0) > 20);
+    CHECK(fl_lines_find_points(&L, &scan, NULL, NULL, 0) > 20);
     /* every point is a run midpoint: on one of the painted lines (no
      * camera: no width check, rows along a line give points too) */
     for (i = 0; i < L.n_points; i++) {
@@ -393,7 +394,7 @@ static void test_width_check(void)
         memcpy(rgb + 3 * k, CARPET, 3);
     scan_painted(rgb, W, H, &cam);
     lines_default();
-    fl_lines_find_points(&L, &scan, &cam, 50);
+    fl_lines_find_points(&L, &scan, NULL, &cam, 50);
     wq4 = fl_lines_width_q4(&L, 200, false);
     /* a 50 mm line across row 200 at ~ 0.6 m is ~ 20 px wide horizontally */
     CHECK(wq4 > 16 * 10 && wq4 < 16 * 40);
@@ -405,7 +406,7 @@ static void test_width_check(void)
     paint_rect(rgb, W, H, 220, 150, 220, 239, 6 * wq4 / 16.0, PAINT);
     scan_painted(rgb, W, H, &cam);
     lines_default();
-    fl_lines_find_points(&L, &scan, &cam, 50);
+    fl_lines_find_points(&L, &scan, NULL, &cam, 50);
     for (i = 0; i < L.n_points; i++) {
         if (L.points[i].flags & FL_LINE_POINT_VERTICAL)
             continue;
@@ -418,12 +419,126 @@ static void test_width_check(void)
     CHECK_EQ(in_wide, 0);
     CHECK(L.runs_rejected >= 10);
     /* without a camera both are points */
-    fl_lines_find_points(&L, &scan, NULL, 50);
+    fl_lines_find_points(&L, &scan, NULL, NULL, 50);
     in_wide = 0;
     for (i = 0; i < L.n_points; i++)
         if (!(L.points[i].flags & FL_LINE_POINT_VERTICAL) && abs(L.points[i].u_q1 / 2 - 220) < 3)
             in_wide++;
     CHECK(in_wide >= 10);
+    free(rgb);
+}
+
+
+/* Luma points (lines.h): far away a line is a pixel tall and its colour a
+ * blend of paint and carpet that the class map does not call white.  A
+ * frame with such a faint 1 px line across the far band, a 1 px yellow
+ * line (a far goal's crossbar colour) and a bright 1 px line on a grey
+ * background above the field: in every pixel format the faint line gives
+ * luma points (on the vertical scan lines, at its row) that make one
+ * segment, the yellow and grey ones none; without the image, or with
+ * luma_contrast_pct 0, there are no luma points. */
+static void test_luma(void)
+{
+    enum { W = 320, H = 240 };
+    /* FAINT: HSV S 55, above white's 49: not white in the class map */
+    static const uint8_t FAINT[3] = {146, 186, 146}, YEL[3] = {186, 176, 60},
+                         BACK[3] = {96, 92, 90}, BRIGHT[3] = {220, 220, 220};
+    const fl_camera_model_t *m = fl_camera_model_find("nao4-top-320");
+    fl_camera_pose_t pose = {450, 0, 0, 0};
+    fl_camera_t cam;
+    fl_lines_params_t lp;
+    uint8_t *rgb = malloc((size_t)W * H * 3);
+    int k, i, f, vline = -1, vhor = -1, white = 0;
+    fl_pixel_format_t fmts[3] = {FL_FMT_RGB888, FL_FMT_YUYV422, FL_FMT_YCBCR_PLANAR};
+    CHECK_EQ(fl_camera_init(&cam, m, &pose), FL_OK);
+    /* the far band: rows whose projected line is 1 px tall or less */
+    for (k = 0; k < W * H; k++)
+        memcpy(rgb + 3 * k, CARPET, 3);
+    scan_painted(rgb, W, H, &cam);
+    lines_default();
+    fl_lines_find_points(&L, &scan, NULL, &cam, 50);
+    for (k = H - 1; k >= 0; k--) {
+        int32_t w = fl_lines_width_q4(&L, k, true);
+        if (w > 0 && w <= 16 && vline < 0)
+            vline = k;
+        if (w > 0)
+            vhor = k;
+    }
+    CHECK(vline > 0 && vhor >= 0);
+    if (vline <= 0 || vhor < 0) {
+        free(rgb);
+        return;
+    }
+    vline -= 2;
+    /* background above the horizon (+3 px), a bright line on it */
+    for (k = 0; k < W * (vhor + 3); k++)
+        memcpy(rgb + 3 * k, BACK, 3);
+    paint_rect(rgb, W, H, 0, vhor + 1, W - 1, vhor + 1, 1, BRIGHT);
+    paint_rect(rgb, W, H, 20, vline, 300, vline, 1, FAINT);
+    paint_rect(rgb, W, H, 20, vline + 6, 300, vline + 6, 1, YEL);
+    for (f = 0; f < 3; f++) {
+        scantool_frame_t fr;
+        int on = 0, off = 0, seg = 0;
+        CHECK_EQ(scantool_frame_from_rgb(rgb, W, H, fmts[f], &fr), 0);
+        {
+            fl_color_params_t cp;
+            fl_scan_params_t sp;
+            fl_color_params_default(&cp);
+            CHECK_EQ(fl_color_init(&colors, &cp), FL_OK);
+            fl_scan_params_default(&sp);
+            CHECK_EQ(fl_scan_init(&scan, &sp), FL_OK);
+            CHECK(fl_scan_frame(&scan, &colors, &fr.view, &cam) > 0);
+        }
+        /* the premise: the class map has no white on the faint line */
+        for (i = 0; i < scan.cols; i++)
+            if (fl_scan_class_at(&scan, i, vline / scan.params.row_step) == FL_CLASS_WHITE)
+                white++;
+        CHECK_EQ(white, 0);
+        lines_default();
+        fl_lines_find_points(&L, &scan, &fr.view, &cam, 50);
+        for (i = 0; i < L.n_points; i++) {
+            const fl_line_point_t *p = &L.points[i];
+            if (!(p->flags & FL_LINE_POINT_LUMA))
+                continue;
+            if ((p->flags & FL_LINE_POINT_VERTICAL) && abs(p->v_q1 - 2 * vline) <= 1)
+                on++;
+            else
+                off++;
+        }
+        CHECK_EQ(L.luma_points, on + off);
+        CHECK(on >= 50);
+        CHECK_EQ(off, 0);
+        fl_lines_build(&L, &scan);
+        for (i = 0; i < L.n_segments; i++) {
+            const fl_segment_t *s = &L.segments[i];
+            if ((s->flags & FL_SEG_LUMA) && fabs(s->v0_q4 / 16.0 - vline) < 1 &&
+                fabs(s->v1_q4 / 16.0 - vline) < 1 && seg_len(s) > 250)
+                seg++;
+        }
+        CHECK_EQ(seg, 1);
+        /* the luma ridge on the path along the line, none across the carpet */
+        CHECK(fl_lines_paint_pct(&L, &scan, 16 * 40, 16 * vline, 16 * 280, 16 * vline) >= 90);
+        CHECK_EQ(fl_lines_paint_pct(&L, &scan, 16 * 40, 16 * (vline + 3), 16 * 280,
+                                    16 * (vline + 3)), 0);
+        CHECK_EQ(fl_lines_white_pct(&scan, 16 * 40, 16 * vline, 16 * 280, 16 * vline), 0);
+        /* no image, or luma off: no luma points */
+        fl_lines_find_points(&L, &scan, NULL, &cam, 50);
+        CHECK_EQ(L.luma_points, 0);
+        fl_lines_params_default(&lp);
+        lp.luma_contrast_pct = 0;
+        CHECK_EQ(fl_lines_init(&L, &lp), FL_OK);
+        fl_lines_find_points(&L, &scan, &fr.view, &cam, 50);
+        CHECK_EQ(L.luma_points, 0);
+        t_info("luma %s: %d points on the faint line, %d ridge checks", f == 0 ? "rgb" : f == 1 ? "yuyv" : "planar", on, L.ridge_checks);
+        scantool_frame_free(&fr);
+    }
+    /* bad parameters */
+    fl_lines_params_default(&lp);
+    lp.luma_contrast_pct = 101;
+    CHECK_EQ(fl_lines_init(&L, &lp), FL_ERR_RANGE);
+    fl_lines_params_default(&lp);
+    lp.luma_width_px = 0;
+    CHECK_EQ(fl_lines_init(&L, &lp), FL_ERR_RANGE);
     free(rgb);
 }
 
@@ -438,4 +553,5 @@ void suite_lines(void)
     t_run("lines.error_stop", test_error_stop);
     t_run("lines.painted", test_painted);
     t_run("lines.width_check", test_width_check);
+    t_run("lines.luma", test_luma);
 }

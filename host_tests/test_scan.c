@@ -614,28 +614,27 @@ static void test_lighting(void)
     report("lighting gain 50..160 %, hue -8/0/+8, before re-centring", &before, 1);
     report("lighting gain 50..160 %, hue -8/0/+8, after re-centring", &after, 1);
     check_border(&after);
-    /* Issue 4 asks white precision >= 0.95 under every lighting.  At gain
-     * 160 % the lines clip and their blurred edges (a third covered) clip
-     * to near-white: 0.58 there and 0.83 over the set until the per-frame
-     * white level (fl_color_white_cap) came, 0.934 then; with the exact RGB
-     * path (no 8-level cells at the white/green boundary) and clipped lines
-     * passing the contrast check 0.945 (0.941 at 160 %), recall 0.960.
-     * With white s_hi 47 the exact path gives 0.955 / 0.955 and 48 gives
-     * 0.950 / 0.957, but the UvA crossings lose their far line pixels
-     * (features.eval_realdata recall 0.553 -> 0.515 resp. 0.534): the
-     * default stays 49.  The rest is thin far lines (spl2013_x_far, P ~0.88
-     * R ~0.82) and YUYV's shared chroma at vertical line edges.  The target
-     * is NOT met: this check is a regression floor at the measured level,
-     * the gap is printed, and README/issue say so.  Recall and yellow keep
-     * the target. */
+    /* Issue 4 asks white precision and recall >= 0.95 under every
+     * lighting.  At gain 160 % the lines clip and their blurred edges (a
+     * third covered) clip to near-white: 0.58 there and 0.83 over the set
+     * until the per-frame white level (fl_color_white_cap) came, 0.934
+     * then; with the exact RGB path (no 8-level cells at the white/green
+     * boundary) and clipped lines passing the contrast check 0.945 at
+     * white s_hi 49 (recall 0.960).  White s_hi is a trade (color.h):
+     * 47 gives 0.955 / 0.955, 48 0.950 / 0.957, 49 0.945 / 0.960; with the
+     * luma line points of lines.c, 48 is also the better one for the UvA
+     * crossings, so it is the default: precision meets the target, recall
+     * 0.957 (the recall floor follows the chosen trade: 0.955).  The rest
+     * is thin far lines (spl2013_x_far) and YUYV's shared chroma at
+     * vertical line edges. */
     if (!t_quick) {
         const scantool_eval_t *e = &after.e;
         double wp = scantool_precision(e->white_tp, e->white_fp);
         CHECK(e->white_tp > 1000);
         CHECK(e->yellow_tp > 100);
-        CHECK_LE(0.945, wp);                                  /* floor, not target */
+        CHECK_LE(0.95, wp);                                   /* the target */
         CHECK_LE(0.94, scantool_precision(per_gain[4].e.white_tp, per_gain[4].e.white_fp));
-        CHECK_LE(0.96, scantool_recall(e->white_tp, e->white_fn));   /* floor */
+        CHECK_LE(0.955, scantool_recall(e->white_tp, e->white_fn));  /* floor */
         CHECK_LE(0.95, scantool_recall(e->white_tp, e->white_fn));
         CHECK_LE(0.95, scantool_precision(e->yellow_tp, e->yellow_fp));
         CHECK_LE(0.95, scantool_recall(e->yellow_tp, e->yellow_fn));

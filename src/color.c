@@ -216,8 +216,8 @@ static bool box_has_sv(const fl_hsv_box_t *b, int32_t s, int32_t v)
 
 void fl_color_params_default(fl_color_params_t *p)
 {
-    static const fl_hsv_box_t green = {46, 78, 50, 255, 25, 255};
-    static const fl_hsv_box_t white = {0, 179, 0, 49, 60, 255};
+    static const fl_hsv_box_t green = {46, 78, 49, 255, 25, 255};
+    static const fl_hsv_box_t white = {0, 179, 0, 48, 60, 255};
     static const fl_hsv_box_t yellow = {15, 40, 90, 255, 50, 255};
     if (p == NULL)
         return;

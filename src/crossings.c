@@ -23,6 +23,10 @@
  *            beyond it and check it square to the segment on the ground
  *            (its pixels 3 steps either side projected), probe the
  *            continuation; arms from ground directions projected back.
+ *   connect  per segment end where the paint stops: the ground normal
+ *            to the nearest image-parallel segment within 1000 mm, a
+ *            painted connector (class map or luma) gives an L at the end
+ *            and a T at its foot (see cr_connect).
  *   circle   the centre mark and the halfway-line x circle X's of a found
  *            circle, projected back and checked white in the class map.
  *
@@ -57,6 +61,7 @@
 #define CR_KAPPA_Q4 (12 * 16) /* probe distance for ground directions */
 #define CR_SAME_ARM 4551      /* 25 deg: two arms within this are one */
 #define CR_MARK_CLUSTERS_MAX 256 /* mark candidates looked at per frame */
+#define CR_LUMA_PROBES 128    /* probes per frame that may read the luma */
 
 void fl_crossings_params_default(fl_crossings_params_t *p)
 {
@@ -240,11 +245,15 @@ static void cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
     c->n++;
 }
 
-/* White ratio of a probe ray between r0 and r0 + len (Q4) from its start,
- * into r->white: -1 when less than half of it lies inside the image
- * (w_px x h_px). */
-static void cr_probe(const fl_scan_t *scan, int32_t w_px, int32_t h_px, cr_ray_t *r)
+/* Paint ratio of a probe ray between r0 and r0 + len (Q4) from its start,
+ * into r->white: -1 when less than half of it lies inside the image.  The
+ * class map's white ratio; below the lines' white_pct, while the frame's
+ * budget of CR_LUMA_PROBES lasts, fl_lines_paint_pct (a far line too thin
+ * for the class map: its luma ridge). */
+static void cr_probe(fl_crossings_t *c, const fl_lines_t *l, const fl_scan_t *scan,
+                     cr_ray_t *r)
 {
+    int32_t w_px = l->width, h_px = l->height;
     int32_t xu = r->xu, xv = r->xv, cu = r->cu, cv = r->cv, r0 = r->r0, len = r->len;
     int32_t u0 = xu + fl_rshift_round((int64_t)cu * r0, 15);
     int32_t v0 = xv + fl_rshift_round((int64_t)cv * r0, 15);
@@ -262,6 +271,10 @@ static void cr_probe(const fl_scan_t *scan, int32_t w_px, int32_t h_px, cr_ray_t
         v1 = vm;
     }
     r->white = fl_lines_white_pct(scan, u0, v0, u1, v1);
+    if (r->white < l->params.white_pct && c->luma_probes < CR_LUMA_PROBES) {
+        c->luma_probes++;
+        r->white = fl_lines_paint_pct(l, scan, u0, v0, u1, v1);
+    }
 }
 
 /* Direction of a segment at distance t (Q4) from its end 0: the chord
@@ -410,7 +423,7 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
             ray.cv = dirs[k];
             ray.r0 = r0;
             ray.len = len;
-            cr_probe(scan, l->width, l->height, &ray);
+            cr_probe(c, l, scan, &ray);
             pr = ray.white;
             if (pr >= pp->probe_white_pct && !geo[k])
                 pres[k] = true;
@@ -541,7 +554,7 @@ static const int16_t cr_ring_c[16] = {256, 237, 181, 98, 0, -98, -181, -237,
  * outer ellipse (n_out). */
 typedef struct {
     int32_t cu, cv, iu, iv, ou, ov, long_q4;
-    int32_t su, sv, n_in, n_out, long_in;
+    int32_t su, sv, n_in, n_out, long_in, luma_in;
 } cr_census_t;
 
 static void cr_mark_census(const fl_lines_t *l, cr_census_t *k, uint32_t *vis)
@@ -549,7 +562,7 @@ static void cr_mark_census(const fl_lines_t *l, cr_census_t *k, uint32_t *vis)
     uint16_t ids[FL_LINES_NEAR_MAX];
     int32_t n, j, cu = k->cu, cv = k->cv;
     int64_t iu = k->iu, iv = k->iv, ou = k->ou, ov = k->ov;
-    k->su = k->sv = k->n_in = k->n_out = k->long_in = 0;
+    k->su = k->sv = k->n_in = k->n_out = k->long_in = k->luma_in = 0;
     n = fl_lines_points_near(l, cu, cv, k->ou / 2 + 1, k->ov / 2 + 1, ids);
     if (n > FL_LINES_NEAR_MAX) {
         k->n_out = n;
@@ -561,6 +574,8 @@ static void cr_mark_census(const fl_lines_t *l, cr_census_t *k, uint32_t *vis)
         /* inside the inner ellipse: du^2 / iu^2 + dv^2 / iv^2 <= 1 */
         if (du * du * iv * iv + dv * dv * iu * iu <= iu * iu * iv * iv) {
             k->n_in++;
+            if (q->flags & FL_LINE_POINT_LUMA)
+                k->luma_in++;
             k->su += q->u_q1;
             k->sv += q->v_q1;
             if (q->seg != FL_LINES_NONE && l->segments[q->seg].len_q4 > k->long_q4)
@@ -584,7 +599,7 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
     memset(vis, 0, sizeof vis);
     for (k = 0; k < l->n_points; k++) {
         const fl_line_point_t *p = &l->points[k];
-        int32_t wh, wv, mh, mv, iu, iv, ou, ov, n_in, cu, cv, green = 0, white = 0,
+        int32_t wh, wv, mh, mv, iu, iv, ou, ov, n_in, cu, cv, green = 0, white = 0, outside = 0,
             conf, ru, rv, j, long_q4;
         cr_census_t cc;
         cr_item_t it;
@@ -627,7 +642,11 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         cc.cu = cc.su / cc.n_in;
         cc.cv = cc.sv / cc.n_in;
         cr_mark_census(l, &cc, vis);
-        if (cc.n_in < 2 || cc.long_in > 0 || cc.n_out > 0)
+        /* luma points (noise ridges of a dark frame, the bright rims of
+         * carpet seams) count only beside 2 class-map points, or as 3
+         * points alone */
+        if (cc.n_in < 2 || cc.long_in > 0 || cc.n_out > 0 ||
+            (cc.luma_in > 0 && cc.n_in - cc.luma_in < 2 && cc.luma_in < 3))
             continue;
         n_in = cc.n_in;
         cu = cc.su * 8 / n_in; /* Q4 */
@@ -639,16 +658,24 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
             ru = 64;
         if (rv < 48)
             rv = 48;
+        /* samples outside the image (a mark near its edge) are not
+         * counted: 13 of 16 green means 13/16 of those inside, at least 10 */
         for (j = 0; j < 16; j++) {
-            int32_t cls = cr_class_px(scan, cu + ru * cr_ring_c[j] / 256,
-                                      cv + rv * cr_ring_c[(j + 4) & 15] / 256);
+            int32_t su = cu + ru * cr_ring_c[j] / 256, sv = cv + rv * cr_ring_c[(j + 4) & 15] / 256;
+            int32_t cls;
+            if (su < 0 || sv < 0 || su > 16 * (l->width - 1) || sv > 16 * (l->height - 1)) {
+                outside++;
+                continue;
+            }
+            cls = cr_class_px(scan, su, sv);
             if (cls == FL_CLASS_GREEN)
                 green++;
             else if (cls == FL_CLASS_WHITE)
                 white++;
         }
-        if (green < 13 || white > 0)
+        if (outside > 6 || 16 * green < 13 * (16 - outside) || white > 0)
             continue;
+        green += outside;
         if (!fl_camera_pixel_to_ground(cam, cu, cv, &g))
             continue;
         memset(&it, 0, sizeof it);
@@ -867,7 +894,7 @@ static void cr_border_t(const cr_ctx_t *ctx, int32_t is)
     r.len = plen / 2 < lim ? plen / 2 : lim;
     if (r.len < 48)
         r.len = 48;
-    cr_probe(ctx->scan, l->width, l->height, &r);
+    cr_probe(c, l, ctx->scan, &r);
     if (r.white >= c->params.probe_green_pct)
         return;
     memset(&it, 0, sizeof it);
@@ -903,6 +930,259 @@ static void cr_border_t(const cr_ctx_t *ctx, int32_t is)
     cr_add(c, c->garm, &it, merge);
 }
 
+/* ---- corners of a short connector (two parallel far lines) ------------------- */
+
+/* Longest connector on the ground (the goal box is 600 mm deep). */
+#define CR_CONN_MM 1000
+/* Parallel in the image: |sin| of the angle between the two lines at most
+ * sin 12 deg (Q15). */
+#define CR_CONN_PAR_SIN 6813
+
+/* Far away the sides of the goal box are a few pixels long: too short for
+ * a segment, so its corners (an L where the front line ends, a T where the
+ * side meets the goal line) pair with nothing.  At an end E of a segment S
+ * (moved out along S while its paint goes on, at most a step) whose paint
+ * stops there, the ground normal of S (both ways; not within 12 degrees
+ * of S in the image) is followed to the nearest segment P parallel to S in
+ * the image (12 degrees) whose line it meets between 2 line steps and
+ * CR_CONN_MM (at most 6 steps), inside P's extent.  The connector E-F must
+ * be paint (fl_lines_paint_pct >= white_pct, F moved along P by up to a
+ * step to the best paint: the ground normal is a few degrees off far
+ * away) and the half of the strip beside it beyond the corner nearer E
+ * must not be (a robot or a blob is wide).  Then F is a T (P both ways
+ * where it goes on past F by an arm, the connector back toward E; an L
+ * when P ends there) unless a crossing is already within merge distance of
+ * it, and E an L (S inward, the connector), square on the ground by
+ * construction; confidence as a border T's.  Each end costs at most 2
+ * camera projections per normal, one pass over the segments, and 8-16
+ * paint probes (counted against CR_LUMA_PROBES).
+ * Scaling: image directions Q15, positions Q4 (< 2^17): the ray-line
+ * solve's cross products < 2^50 in int64, t checked within [0, lim]
+ * (< 2^11 Q4) before the division. */
+static void cr_connect(const cr_ctx_t *ctx, int32_t is, bool end1)
+{
+    fl_crossings_t *c = ctx->c;
+    const fl_lines_t *l = ctx->l;
+    const fl_segment_t *S = &l->segments[is];
+    const fl_camera_t *cam = ctx->cam;
+    int32_t step_q4 = 16 * l->step_px, eu, ev, w, merge, k, j, lim, f, conf, arm;
+    fl_angle_t ain, gin;
+    cr_ray_t r;
+    eu = end1 ? S->u1_q4 : S->u0_q4;
+    ev = end1 ? S->v1_q4 : S->v0_q4;
+    ain = end1 ? fl_angle_add(S->angle, FL_ANGLE_180) : S->angle;
+    w = cr_width_q4(l, ev);
+    if (w <= 0 || S->len_q4 < 2 * step_q4)
+        return;
+    if (eu < 2 * w || ev < 2 * w || eu > 16 * (l->width - 1) - 2 * w ||
+        ev > 16 * (l->height - 1) - 2 * w)
+        return;
+    merge = 3 * w > 4 * step_q4 ? 3 * w : 4 * step_q4;
+    for (k = 0; k < c->n; k++) {
+        int64_t a = (int64_t)c->c[k].u_q4 - eu, b = (int64_t)c->c[k].v_q4 - ev;
+        if (a * a + b * b <= (int64_t)merge * merge)
+            return;
+    }
+    /* the segment's extreme points stop up to a step short of the paint:
+     * follow it out 1 px at a time while the 2 px ahead are paint */
+    {
+        int32_t du = -fl_cos_q15(ain), dv = -fl_sin_q15(ain), t;
+        for (t = 0; t < step_q4 + w / 2; t += 16) {
+            int32_t au = eu + fl_rshift_round((int64_t)du * t, 15);
+            int32_t av = ev + fl_rshift_round((int64_t)dv * t, 15);
+            int32_t bu = eu + fl_rshift_round((int64_t)du * (t + 32), 15);
+            int32_t bv = ev + fl_rshift_round((int64_t)dv * (t + 32), 15);
+            if (c->luma_probes >= CR_LUMA_PROBES)
+                return;
+            c->luma_probes++;
+            if (fl_lines_paint_pct(l, ctx->scan, au, av, bu, bv) < 50)
+                break;
+        }
+        eu += fl_rshift_round((int64_t)du * t, 15);
+        ev += fl_rshift_round((int64_t)dv * t, 15);
+    }
+    r.xu = eu;
+    r.xv = ev;
+    r.cu = fl_cos_q15(ain);
+    r.cv = fl_sin_q15(ain);
+    if (!fl_camera_pixel_to_ground(cam, eu, ev, &r.gx) || !cr_ground_dir(cam, &r))
+        return;
+    gin = r.dir;
+    /* S's paint stops at E */
+    r.cu = -r.cu;
+    r.cv = -r.cv;
+    r.r0 = w / 2 + 16;
+    r.len = 2 * step_q4 > 2 * w ? 2 * step_q4 : 2 * w;
+    cr_probe(c, l, ctx->scan, &r);
+    if (r.white < 0 || r.white >= c->params.probe_green_pct)
+        return;
+    arm = 2 * step_q4 > 2 * w ? 2 * step_q4 : 2 * w;
+    for (k = 0; k < 2; k++) {
+        int32_t plen, best = -1, bt = 0, btp = 0, fu, fv, ou, ov, tmin;
+        int64_t cu, cv;
+        cr_item_t it;
+        fl_point_t gf;
+        r.xu = eu;
+        r.xv = ev;
+        r.dir = fl_angle_add(gin, (fl_angle_t)(k ? -FL_ANGLE_90 : FL_ANGLE_90));
+        plen = cr_image_dir(cam, &r);
+        if (plen <= 0)
+            continue;
+        lim = (int32_t)((int64_t)plen * CR_CONN_MM / CR_SCALE_MM);
+        if (lim > 6 * step_q4)
+            lim = 6 * step_q4;
+        /* far away the ground normal of a line near the horizon projects
+         * almost along it: no corner to tell from a break */
+        if (cr_abs(fl_sin_q15(fl_angle_sub(fl_atan2(r.cv, r.cu), S->angle))) <= CR_CONN_PAR_SIN)
+            continue;
+        cu = r.cu;
+        cv = r.cv;
+        /* the nearest parallel segment the normal meets, 2 steps (and a
+         * line width) away at least: closer lines blur into one another */
+        tmin = 2 * step_q4 > w ? 2 * step_q4 : w;
+        for (j = 0; j < l->n_segments; j++) {
+            const fl_segment_t *P = &l->segments[j];
+            int64_t px = (int64_t)P->u1_q4 - P->u0_q4, py = (int64_t)P->v1_q4 - P->v0_q4;
+            int64_t den, num;
+            int32_t t, tp;
+            if (j == is || (P->flags & FL_SEG_CIRCLE) || P->len_q4 <= 0 ||
+                cr_abs(fl_sin_q15(fl_angle_sub(P->angle, S->angle))) > CR_CONN_PAR_SIN)
+                continue;
+            /* E + t (cu, cv) on P's line: t = cross(P0 - E, p) / cross(c, p) */
+            den = (cu * py - cv * px) >> 15;
+            num = ((int64_t)P->u0_q4 - eu) * py - ((int64_t)P->v0_q4 - ev) * px;
+            if (den < 0) {
+                den = -den;
+                num = -num;
+            }
+            /* t in [0, lim] before the division (its int32 range) */
+            if (den == 0 || num < 0 || num > (int64_t)lim * den)
+                continue;
+            t = (int32_t)fl_div_round(num, den);
+            if (t < tmin || t > lim || (best >= 0 && t >= bt))
+                continue;
+            fu = eu + fl_rshift_round(cu * t, 15);
+            fv = ev + fl_rshift_round(cv * t, 15);
+            tp = (int32_t)fl_div_round(((int64_t)fu - P->u0_q4) * px + ((int64_t)fv - P->v0_q4) * py,
+                                       P->len_q4);
+            if (tp < -w || tp > P->len_q4 + w)
+                continue;
+            best = j;
+            bt = t;
+            btp = tp;
+        }
+        if (best < 0)
+            continue;
+        fu = eu + fl_rshift_round(cu * bt, 15);
+        fv = ev + fl_rshift_round(cv * bt, 15);
+        /* the connector is paint (its foot F moved along P by up to a step
+         * to where the paint is best: the camera's ground normal is off by
+         * a few degrees far away), the strip beyond the corner is not */
+        {
+            const fl_segment_t *P = &l->segments[best];
+            int32_t pc = fl_cos_q15(P->angle), ps = fl_sin_q15(P->angle), bp = -1, bj = 0;
+            for (j = -2; j <= 2; j++) {
+                int32_t gu = fu + fl_rshift_round((int64_t)pc * j * step_q4 / 2, 15);
+                int32_t gv = fv + fl_rshift_round((int64_t)ps * j * step_q4 / 2, 15);
+                int32_t pp;
+                if (c->luma_probes >= CR_LUMA_PROBES)
+                    return;
+                c->luma_probes++;
+                pp = fl_lines_paint_pct(l, ctx->scan, eu, ev, gu, gv);
+                if (pp > bp || (pp == bp && cr_abs(j) < cr_abs(bj))) {
+                    bp = pp;
+                    bj = j;
+                }
+            }
+            if (bp < l->params.white_pct)
+                continue;
+            fu += fl_rshift_round((int64_t)pc * bj * step_q4 / 2, 15);
+            fv += fl_rshift_round((int64_t)ps * bj * step_q4 / 2, 15);
+            btp += bj * step_q4 / 2;
+            if (bj != 0) {
+                /* the connector's own direction */
+                int32_t a = fl_atan2(fv - ev, fu - eu);
+                r.cu = fl_cos_q15((fl_angle_t)a);
+                r.cv = fl_sin_q15((fl_angle_t)a);
+            }
+        }
+        ou = fl_rshift_round((int64_t)-fl_cos_q15(ain) * (2 * w + 32), 15);
+        ov = fl_rshift_round((int64_t)-fl_sin_q15(ain) * (2 * w + 32), 15);
+        c->luma_probes++;
+        /* (its half at E: the other half nears P, a ridge across a shallow
+         * connector) */
+        if (fl_lines_paint_pct(l, ctx->scan, eu + ou, ev + ov, (eu + fu) / 2 + ou,
+                               (ev + fv) / 2 + ov) >= c->params.probe_green_pct)
+            continue;
+        if (!fl_camera_pixel_to_ground(cam, fu, fv, &gf))
+            continue;
+        f = S->len_q4 >= 4 * step_q4 ? 256 : 77 + (int32_t)((int64_t)179 * S->len_q4 / (4 * step_q4));
+        conf = 160 * f / 256;
+        if (conf < c->params.min_confidence)
+            return;
+        /* T (or L) at F first: not where a pair already found a crossing */
+        {
+            const fl_segment_t *P = &l->segments[best];
+            fl_angle_t gp = fl_cos_q15(fl_angle_sub(P->angle, S->angle)) >= 0
+                                ? gin : fl_angle_add(gin, FL_ANGLE_180);
+            int32_t wf = cr_width_q4(l, fv), mf;
+            bool near = false;
+            mf = 3 * wf > 4 * step_q4 ? 3 * wf : 4 * step_q4;
+            for (j = 0; j < c->n; j++) {
+                int64_t a = (int64_t)c->c[j].u_q4 - fu, b = (int64_t)c->c[j].v_q4 - fv;
+                if (a * a + b * b <= (int64_t)mf * mf)
+                    near = true;
+            }
+            memset(&it, 0, sizeof it);
+            it.x.seg_a = (int16_t)best;
+            it.x.seg_b = (int16_t)is;
+            it.x.u_q4 = fu;
+            it.x.v_q4 = fv;
+            it.x.ground = gf;
+            fl_polar_from_point(gf, &it.x.range_mm, &it.x.bearing);
+            it.ground = true;
+            it.x.arm[0] = fl_atan2(-r.cv, -r.cu);
+            it.garm[0] = fl_angle_add(r.dir, FL_ANGLE_180);
+            it.x.n_arms = 1;
+            if (P->len_q4 - btp >= arm) {
+                it.x.arm[it.x.n_arms] = P->angle;
+                it.garm[it.x.n_arms++] = gp;
+            }
+            if (btp >= arm) {
+                it.x.arm[it.x.n_arms] = fl_angle_add(P->angle, FL_ANGLE_180);
+                it.garm[it.x.n_arms++] = fl_angle_add(gp, FL_ANGLE_180);
+            }
+            it.x.confidence = (uint8_t)conf;
+            if (!near && cr_type(&it.x)) {
+                cr_orient(&it.x, it.garm, true);
+                c->connectors++;
+                cr_add(c, c->garm, &it, mf < bt / 2 ? mf : bt / 2);
+            }
+        }
+        /* L at E */
+        memset(&it, 0, sizeof it);
+        it.x.seg_a = (int16_t)is;
+        it.x.seg_b = (int16_t)best;
+        it.x.u_q4 = eu;
+        it.x.v_q4 = ev;
+        it.x.ground = r.gx;
+        fl_polar_from_point(r.gx, &it.x.range_mm, &it.x.bearing);
+        it.ground = true;
+        it.x.arm[0] = ain;
+        it.garm[0] = gin;
+        it.x.arm[1] = fl_atan2(r.cv, r.cu);
+        it.garm[1] = r.dir;
+        it.x.n_arms = 2;
+        it.x.confidence = (uint8_t)conf;
+        if (cr_type(&it.x)) {
+            cr_orient(&it.x, it.garm, true);
+            c->connectors++;
+            cr_add(c, c->garm, &it, merge < bt / 2 ? merge : bt / 2);
+        }
+        return;
+    }
+}
+
 int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
                           const fl_scan_t *scan, const fl_camera_t *camera,
                           const fl_field_t *field)
@@ -920,6 +1200,8 @@ int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
     c->merged = 0;
     c->marks_capped = 0;
     c->border_t = 0;
+    c->luma_probes = 0;
+    c->connectors = 0;
     if (!lines || lines->width <= 0)
         return 0;
     if (scan && (scan->width != lines->width || scan->height != lines->height))
@@ -948,6 +1230,12 @@ int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
         for (i = 0; i < lines->n_segments; i++)
             if (!(lines->segments[i].flags & FL_SEG_CIRCLE))
                 cr_border_t(&ctx, i);
+    if (scan && camera)
+        for (i = 0; i < lines->n_segments; i++)
+            if (!(lines->segments[i].flags & FL_SEG_CIRCLE)) {
+                cr_connect(&ctx, i, false);
+                cr_connect(&ctx, i, true);
+            }
     return c->n;
 }
 

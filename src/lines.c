@@ -9,6 +9,12 @@
  *            cells, with green beside it and a width that passes the
  *            projected-width check (a per-row table from the camera,
  *            FL_LINES_WTAB knots, interpolated) becomes a point (Q1).
+ *   luma     with the image: the same scan lines in the band of rows where
+ *            the projected width is at most luma_width_px, read in luma
+ *            (one pass per scan line into lum_buf); ridge runs with
+ *            carpet flanks and no class-map white nearby become points
+ *            flagged FL_LINE_POINT_LUMA.  White checks that fall short in
+ *            the band are retried as luma ridge checks across the path.
  *   buckets  points are counting-sorted into square buckets of 2^bshift
  *            px >= gap_px, so the neighbours of a point within gap_px lie in
  *            the 3 x 3 buckets around it.
@@ -38,9 +44,15 @@
  * least min_points points (<= FL_LINES_SEG_MAX_POINTS) and its moments are
  * the exact sums over its points.
  *
- * Memory: the caller's fl_lines_t (see config.h; ~29 KB at the defaults,
- * the per-segment point list and scratch included).  Stack < 700 bytes.
- * Cost: points O(grid cells / m); growth O(points x (3 x 3 bucket
+ * Memory: the caller's fl_lines_t (see config.h; ~34 KB at the defaults,
+ * the per-segment point list, the luma tables and scratch included: 3
+ * bytes per image row).  Stack < 700 bytes.
+ * Cost: points O(grid cells / m); luma points O(band rows x width / m):
+ * every pixel of every m-th column in the band and of every m-th row of
+ * the band read once (about 15 instructions per pixel from RGB, 5 from
+ * YUYV or planar), plus at most 8 ridge tests per scan line; ridge checks
+ * at most 256 x 33 samples of 5 pixels per frame (stopping once the
+ * threshold is out of reach); growth O(points x (3 x 3 bucket
  * occupancy + FL_LINES_CANDIDATES x gap samples)); merging O(segments^2)
  * cheap tests plus at most one white check per candidate pair; refit and
  * bulge O(points + segments).
@@ -98,6 +110,8 @@ void fl_lines_params_default(fl_lines_params_t *p)
     p->merge_gap_px = 0;
     p->max_width_pct = 400;
     p->min_width_pct = 25;
+    p->luma_contrast_pct = 12;
+    p->luma_width_px = 3;
 }
 
 static bool ln_params_ok(const fl_lines_params_t *p)
@@ -111,7 +125,9 @@ static bool ln_params_ok(const fl_lines_params_t *p)
            p->white_pct >= 0 && p->white_pct <= 100 &&
            p->merge_gap_px >= 0 && p->merge_gap_px <= 4096 &&
            p->max_width_pct >= 100 && p->max_width_pct <= 2000 &&
-           p->min_width_pct >= 0 && p->min_width_pct <= 100;
+           p->min_width_pct >= 0 && p->min_width_pct <= 100 &&
+           p->luma_contrast_pct >= 0 && p->luma_contrast_pct <= 100 &&
+           p->luma_width_px >= 1 && p->luma_width_px <= 16;
 }
 
 fl_status_t fl_lines_init(fl_lines_t *l, const fl_lines_params_t *p)
@@ -153,6 +169,11 @@ bool fl_lines_reset(fl_lines_t *l, int32_t width, int32_t height)
     l->merges = 0;
     l->white_checks = 0;
     l->checks_capped = 0;
+    l->luma_points = 0;
+    l->luma_capped = 0;
+    l->ridge_checks = 0;
+    l->img.width = l->img.height = 0;
+    l->lum_vend = l->lum_hend = -1;
     l->line_width_mm = 0;
     l->bcols = l->brows = 0;
     if (width < 1 || height < 1 || width > FL_IMAGE_MAX_DIM ||
@@ -183,7 +204,7 @@ bool fl_lines_add_point(fl_lines_t *l, int32_t u_q1, int32_t v_q1,
     pt->u_q1 = (int16_t)u_q1;
     pt->v_q1 = (int16_t)v_q1;
     pt->width_px = (uint8_t)(width_px < 0 ? 0 : width_px > 255 ? 255 : width_px);
-    pt->flags = (uint8_t)(flags & FL_LINE_POINT_VERTICAL);
+    pt->flags = (uint8_t)(flags & (FL_LINE_POINT_VERTICAL | FL_LINE_POINT_LUMA));
     pt->seg = FL_LINES_NONE;
     return true;
 }
@@ -398,8 +419,397 @@ static void ln_vrun(fl_lines_t *l, const fl_scan_t *s, int32_t i, int32_t j0,
     ln_push(l, 2 * i * cs, (j0 + j1) * rs, w, FL_LINE_POINT_VERTICAL);
 }
 
+/* ---- luma points ------------------------------------------------------------ */
+
+/* Far away a painted line is a pixel or less across: blurred into the
+ * carpet its colour is no longer white (the class map calls it green or
+ * other), yet its luma still stands out.  Along the same scan lines, in the
+ * band of rows where the projected width is at most luma_width_px, a luma
+ * ridge is a short run of pixels each brighter than both pixels d away (d
+ * from the projected width across the scan line: 1 + 1.5 w, 2..6 px) by
+ * luma_contrast_pct of the brighter one (at least 8 levels), whose width at
+ * half its height is below d, with carpet-coloured flanks (Cb, Cr below
+ * grey: green dominates), a peak that is not yellow (its Cb not 16 below
+ * the flanks') nor orange (Cr at most grey + 12), and that goes on in one
+ * of the two pixel lines beside the scan line (ln_ridge_goes_on).  Ridges where the class map
+ * already has white (within a cell) are left to the class-map points. */
+
+#define LN_LUMA_PER_LINE 8   /* ridges looked at per scan line */
+#define LN_LUMA_MAX (FL_LINES_MAX_POINTS / 8) /* luma points per frame */
+#define LN_LUMA_DMAX 6       /* largest flank distance, px */
+#define LN_RIDGE_SAMPLES 32  /* samples of a path's ridge check */
+#define LN_RIDGE_BUDGET 256  /* ridge checks of the segment stage per frame */
+
+/* Offset of pixel (u, v) in plane 0 and the bytes per step along u. */
+static int32_t ln_px_off(const fl_image_t *im, int32_t u, int32_t v)
+{
+    int32_t bpp = im->format == FL_FMT_RGB888 ? 3 : im->format == FL_FMT_YUYV422 ? 2 : 1;
+    return v * im->stride[0] + bpp * u;
+}
+
+/* Luma of a pixel inside a validated view: BT.601 from RGB (the integer
+ * formula of image.c: Q16 weights summing to 2^16, products < 2^24), the
+ * Y byte of the other formats. */
+static int32_t ln_luma(const fl_image_t *im, int32_t u, int32_t v)
+{
+    const uint8_t *p = im->plane[0] + ln_px_off(im, u, v);
+    if (im->format == FL_FMT_RGB888)
+        return (19595 * p[0] + 38470 * p[1] + 7471 * p[2] + 32768) >> 16;
+    return p[0];
+}
+
+/* Luma of a pixel, -1 outside the view. */
+static int32_t ln_luma_at(const fl_image_t *im, int32_t u, int32_t v)
+{
+    if (u < 0 || v < 0 || u >= im->width || v >= im->height)
+        return -1;
+    return ln_luma(im, u, v);
+}
+
+/* Cb, Cr of a pixel inside a validated view (RGB: image.c's Q16 formula,
+ * all terms non-negative after the offset, so >> is a plain floor). */
+static void ln_chroma(const fl_image_t *im, int32_t u, int32_t v, int32_t *cb, int32_t *cr)
+{
+    const uint8_t *p;
+    switch (im->format) {
+    case FL_FMT_RGB888:
+        p = im->plane[0] + ln_px_off(im, u, v);
+        *cb = (-11058 * p[0] - 21710 * p[1] + 32768 * p[2] + (128 << 16) + 32768) >> 16;
+        *cr = (32768 * p[0] - 27439 * p[1] - 5329 * p[2] + (128 << 16) + 32768) >> 16;
+        break;
+    case FL_FMT_YUYV422:
+        p = im->plane[0] + v * im->stride[0] + 4 * (u >> 1);
+        *cb = p[1];
+        *cr = p[3];
+        break;
+    default:
+        *cb = im->plane[1][v * im->stride[1] + u];
+        *cr = im->plane[2][v * im->stride[2] + u];
+        break;
+    }
+    if (*cb > 255)
+        *cb = 255;
+    if (*cr > 255)
+        *cr = 255;
+}
+
+/* n lumas of a scan line into lum_buf[0..n-1]: pixel k at byte offset
+ * off + k * step of plane 0 (every pixel inside the view; at most five
+ * arguments however gcc splits l). */
+static void ln_luma_fill(fl_lines_t *l, int32_t off, int32_t step, int32_t n)
+{
+    const uint8_t *p = l->img.plane[0];
+    uint8_t *buf = l->lum_buf;
+    int32_t k;
+    if (l->img.format == FL_FMT_RGB888) {
+        for (k = 0; k < n; k++, off += step)
+            buf[k] = (uint8_t)((19595 * p[off] + 38470 * p[off + 1] + 7471 * p[off + 2] + 32768) >> 16);
+    } else {
+        for (k = 0; k < n; k++, off += step)
+            buf[k] = p[off];
+    }
+}
+
+/* Carpet colour: green dominates (Cb and Cr below grey, together at least
+ * 8 below). */
+static bool ln_greenish(int32_t cb, int32_t cr)
+{
+    return cb < 128 && cr < 128 && cb + cr <= 248;
+}
+
+/* Does a ridge of luma pk stand out of the brighter flank f?  Scaling:
+ * lumas 0..255, pct <= 100: products < 2^15 in int32. */
+static bool ln_ridge(const fl_lines_t *l, int32_t pk, int32_t f)
+{
+    int32_t c = pk - f;
+    return c >= 8 && c * 100 >= f * l->params.luma_contrast_pct;
+}
+
+/* One scan line's lumas are in lum_buf, position x (u on a row, v on a
+ * column) at lum_buf[x - x0]; the run r0..r1 (positions) passed the ridge
+ * test with flank distance d.  Check it and add its point.  The scan line
+ * is column i (vertical) or row v = j * rs; pos = its fixed coordinate. */
+typedef struct {
+    int32_t x0, x1;       /* positions held in lum_buf */
+    int32_t pos;          /* u of a column, v of a row (px) */
+    int32_t cell;         /* grid column i / grid row j of the scan line */
+    bool vertical;
+} ln_sline_t;
+
+/* Does the ridge at position k of a scan line go on in a parallel pixel
+ * line beside it (offset -1 or +1 across the scan line; at k - 1, k or
+ * k + 1 along it, flanks d away)?  A line does (it is at most 45 degrees
+ * off the scan line's normal); most noise specks do not. */
+static bool ln_ridge_goes_on(const fl_lines_t *l, const ln_sline_t *sl, int32_t k, int32_t d)
+{
+    const fl_image_t *im = &l->img;
+    int32_t side, j;
+    for (side = -1; side <= 1; side += 2) {
+        bool found = false;
+        for (j = -1; j <= 1 && !found; j++) {
+            int32_t x = k + j, a, f1, f2;
+            if (sl->vertical) {
+                a = ln_luma_at(im, sl->pos + side, x);
+                f1 = ln_luma_at(im, sl->pos + side, x - d);
+                f2 = ln_luma_at(im, sl->pos + side, x + d);
+            } else {
+                a = ln_luma_at(im, x, sl->pos + side);
+                f1 = ln_luma_at(im, x - d, sl->pos + side);
+                f2 = ln_luma_at(im, x + d, sl->pos + side);
+            }
+            if (a >= 0 && f1 >= 0 && f2 >= 0 && ln_ridge(l, a, f1 > f2 ? f1 : f2))
+                found = true;
+        }
+        if (found)
+            return true;
+    }
+    return false;
+}
+
+static void ln_luma_run(fl_lines_t *l, const fl_scan_t *s, const ln_sline_t *sl,
+                        int32_t r0, int32_t r1, int32_t d)
+{
+    const uint8_t *y = l->lum_buf - sl->x0;
+    const fl_image_t *im = &l->img;
+    int32_t k, pk, f, mid, e0, e1, x, cs = s->params.col_step, rs = s->params.row_step;
+    int32_t cb1, cr1, cb2, cr2, cbk, crk, u, v;
+    /* peak of the run and its flanks */
+    k = r0;
+    for (x = r0 + 1; x <= r1; x++)
+        if (y[x] > y[k])
+            k = x;
+    if (k - d < sl->x0 || k + d > sl->x1)
+        return;
+    pk = y[k];
+    f = y[k - d] > y[k + d] ? y[k - d] : y[k + d];
+    /* width at half height */
+    mid = (pk + f + 1) / 2;
+    e0 = k;
+    while (e0 - 1 > k - d && y[e0 - 1] >= mid)
+        e0--;
+    e1 = k;
+    while (e1 + 1 < k + d && y[e1 + 1] >= mid)
+        e1++;
+    if (e1 - e0 + 1 > d - 1 && e1 - e0 + 1 > 1) {
+        l->runs_rejected++;
+        return;
+    }
+    /* left to the class map where it has white within a cell */
+    if (sl->vertical) {
+        for (x = e0 / rs - 1; x <= e1 / rs + 1; x++)
+            if (ln_cell(s, sl->cell, x) == FL_CLASS_WHITE)
+                return;
+    } else {
+        for (x = e0 / cs - 1; x <= e1 / cs + 1; x++)
+            if (ln_cell(s, x, sl->cell) == FL_CLASS_WHITE)
+                return;
+    }
+    /* carpet on both sides, neither yellow nor orange paint */
+    u = sl->vertical ? sl->pos : k;
+    v = sl->vertical ? k : sl->pos;
+    ln_chroma(im, sl->vertical ? u : k - d, sl->vertical ? k - d : v, &cb1, &cr1);
+    ln_chroma(im, sl->vertical ? u : k + d, sl->vertical ? k + d : v, &cb2, &cr2);
+    ln_chroma(im, u, v, &cbk, &crk);
+    if (!ln_greenish(cb1, cr1) || !ln_greenish(cb2, cr2) ||
+        cbk + 16 < (cb1 < cb2 ? cb1 : cb2) || crk > 140 ||
+        !ln_ridge_goes_on(l, sl, k, d)) { /* (last: a line, not a speck) */
+        l->runs_rejected++;
+        return;
+    }
+    if (l->luma_points >= LN_LUMA_MAX) {
+        l->luma_capped++;
+        return;
+    }
+    l->luma_points++;
+    if (sl->vertical)
+        ln_push(l, 2 * sl->pos, e0 + e1, e1 - e0 + 1,
+                FL_LINE_POINT_VERTICAL | FL_LINE_POINT_LUMA);
+    else
+        ln_push(l, e0 + e1, 2 * sl->pos, e1 - e0 + 1, FL_LINE_POINT_LUMA);
+}
+
+/* Ridge runs of one scan line (lumas in lum_buf) between positions lo and
+ * hi; dtab: flank distance per row (columns: by position; rows: dtab[0]
+ * for the whole line); border: for a row, candidates only where the row
+ * lies at most lum_above above the column's border. */
+static void ln_luma_scan(fl_lines_t *l, const fl_scan_t *s, const ln_sline_t *sl,
+                         int32_t lo, int32_t hi, const uint8_t *dtab)
+{
+    const uint8_t *y = l->lum_buf - sl->x0;
+    int32_t x, start = -1, dr = 0, runs = 0, cs = s->params.col_step;
+    for (x = lo; x <= hi + 1; x++) {
+        bool on = false;
+        int32_t d = sl->vertical ? dtab[x] : dtab[0];
+        if (x <= hi && x - d >= sl->x0 && x + d <= sl->x1 &&
+            (sl->vertical || sl->pos >= s->border_v[x / cs] - l->lum_above)) {
+            int32_t f = y[x - d] > y[x + d] ? y[x - d] : y[x + d];
+            on = ln_ridge(l, y[x], f);
+        }
+        if (on && start < 0) {
+            start = x;
+            dr = d;
+        } else if (!on && start >= 0) {
+            if (++runs > LN_LUMA_PER_LINE) {
+                l->luma_capped++;
+                return;
+            }
+            if (x - start <= dr)
+                ln_luma_run(l, s, sl, start, x - 1, dr);
+            start = -1;
+        }
+    }
+}
+
+/* Band and flank distances from the width table: rows (from the top)
+ * whose projected width is known and at most luma_width_px. */
+static void ln_luma_band(fl_lines_t *l)
+{
+    int32_t v, lim = 16 * l->params.luma_width_px;
+    l->lum_vend = l->lum_hend = -1;
+    l->lum_above = 2 + l->height / 120;
+    for (v = 0; v < l->height; v++) {
+        int32_t wv = ln_width_at(l, l->wtab_v_q4, v), wh = ln_width_at(l, l->wtab_h_q4, v);
+        int32_t dv = 1 + (3 * wv + 31) / 32, dh = 1 + (3 * wh + 31) / 32;
+        if (wv > 0 && wv <= lim)
+            l->lum_vend = v;
+        if (wh > 0 && wh <= lim)
+            l->lum_hend = v;
+        l->lum_dv[v] = (uint8_t)(dv < 2 ? 2 : dv > LN_LUMA_DMAX ? LN_LUMA_DMAX : dv);
+        l->lum_dh[v] = (uint8_t)(dh < 2 ? 2 : dh > LN_LUMA_DMAX ? LN_LUMA_DMAX : dh);
+    }
+}
+
+/* The luma points of a frame: every m-th column from lum_above above its
+ * border to the band's end, every m-th row of the band. */
+static void ln_luma_points(fl_lines_t *l, const fl_scan_t *s, int32_t mc, int32_t mr)
+{
+    int32_t cs = s->params.col_step, rs = s->params.row_step, i, j, top = l->height;
+    ln_sline_t sl;
+    ln_luma_band(l);
+    for (i = mc / 2; i < s->cols; i += mc) {
+        int32_t bv = s->border_v[i], lo;
+        if (bv >= l->height)
+            continue;
+        lo = bv - l->lum_above;
+        if (lo < 0)
+            lo = 0;
+        if (lo < top)
+            top = lo;
+        if (lo > l->lum_vend)
+            continue;
+        sl.vertical = true;
+        sl.cell = i;
+        sl.pos = i * cs;
+        sl.x0 = lo - LN_LUMA_DMAX < 0 ? 0 : lo - LN_LUMA_DMAX;
+        sl.x1 = l->lum_vend + LN_LUMA_DMAX >= l->height ? l->height - 1
+                                                        : l->lum_vend + LN_LUMA_DMAX;
+        ln_luma_fill(l, ln_px_off(&l->img, sl.pos, sl.x0), l->img.stride[0], sl.x1 - sl.x0 + 1);
+        ln_luma_scan(l, s, &sl, lo, l->lum_vend, l->lum_dv);
+    }
+    for (j = mr / 2; j < s->rows; j += mr) {
+        int32_t v = j * rs;
+        if (v < top || v > l->lum_hend)
+            continue;
+        sl.vertical = false;
+        sl.cell = j;
+        sl.pos = v;
+        sl.x0 = 0;
+        sl.x1 = l->width - 1;
+        ln_luma_fill(l, ln_px_off(&l->img, 0, v), ln_px_off(&l->img, 1, 0), l->width);
+        ln_luma_scan(l, s, &sl, 0, l->width - 1, &l->lum_dh[v]);
+    }
+}
+
+/* Percentage of 1 px samples (at most LN_RIDGE_SAMPLES, spread evenly) of the straight path between two
+ * pixels (Q4) that lie on a luma ridge across the path: the brightest of
+ * the sample and its two neighbours across stands out (ln_ridge) of the
+ * brighter of the two pixels d + 1 away across (d from the projected width
+ * across the path at its middle row).  0 outside the image or without
+ * luma.  Stops early once `need` percent is out of reach (then the result
+ * is some value below need).  Scaling: Q4 positions < 2^17, the unit normal in Q8, products
+ * < 2^26 in int32. */
+static int32_t ln_ridge_pct(const fl_lines_t *l, int32_t u0, int32_t v0, int32_t u1,
+                            int32_t v1, int32_t need)
+{
+    const fl_image_t *im = &l->img;
+    int32_t du = u1 - u0, dv = v1 - v0, len, n, k, pass = 0, nu, nv, wv, wh, w, d, vm;
+    int32_t ou, ov, fu, fv;
+    if (im->width <= 0 || l->params.luma_contrast_pct <= 0)
+        return 0;
+    len = (int32_t)fl_hypot(du, dv);
+    if (len < 16)
+        return 0;
+    n = len / 16;
+    if (n > LN_RIDGE_SAMPLES - 1)
+        n = LN_RIDGE_SAMPLES - 1;
+    nu = -dv * 256 / len;
+    nv = du * 256 / len;
+    vm = ((v0 + v1) / 2 + 8) >> 4;
+    if (vm < 0 || vm >= l->height)
+        return 0;
+    wv = ln_width_at(l, l->wtab_v_q4, vm);
+    wh = ln_width_at(l, l->wtab_h_q4, vm);
+    w = (int32_t)(((int64_t)wv * ln_abs(du) + (int64_t)wh * ln_abs(dv)) / len);
+    d = 2 + (3 * w + 31) / 32;
+    if (d > LN_LUMA_DMAX + 1)
+        d = LN_LUMA_DMAX + 1;
+    ou = (nu + 128) >> 8;
+    ov = (nv + 128) >> 8;
+    fu = (d * nu + 128) >> 8;
+    fv = (d * nv + 128) >> 8;
+    for (k = 0; k <= n; k++) {
+        int32_t pu = (u0 + du * k / n + 8) >> 4, pv = (v0 + dv * k / n + 8) >> 4;
+        int32_t a = ln_luma_at(im, pu, pv), b = ln_luma_at(im, pu + ou, pv + ov);
+        int32_t c = ln_luma_at(im, pu - ou, pv - ov);
+        int32_t f1 = ln_luma_at(im, pu + fu, pv + fv), f2 = ln_luma_at(im, pu - fu, pv - fv);
+        if (b > a)
+            a = b;
+        if (c > a)
+            a = c;
+        if (f1 >= 0 && f2 >= 0 && a >= 0 && ln_ridge(l, a, f1 > f2 ? f1 : f2))
+            pass++;
+        else if ((pass + n - k) * 100 < need * (n + 1))
+            break; /* need is out of reach: the ratio so far is below it */
+    }
+    return pass * 100 / (n + 1);
+}
+
+/* Does a path whose class-map white ratio is p fall back to the luma:
+ * below white_pct, with an image, its middle row (Q4 ends) in the band? */
+static bool ln_luma_path(const fl_lines_t *l, int32_t p, int32_t v0, int32_t v1)
+{
+    int32_t bend = l->lum_vend > l->lum_hend ? l->lum_vend : l->lum_hend;
+    return p < l->params.white_pct && l->img.width > 0 && bend >= 0 &&
+           (v0 + v1) / 32 <= bend;
+}
+
+/* Paint on the path: the class map's white ratio (thin-line tolerant, at
+ * most `mode` samples, see ln_white_pct); where ln_luma_path, the luma
+ * ridge ratio when higher (counted in ridge_checks). */
+static int32_t ln_paint_pct(fl_lines_t *l, const fl_scan_t *scan, int32_t u0, int32_t v0,
+                            int32_t u1, int32_t v1, int32_t mode)
+{
+    int32_t p = ln_white_pct(scan, u0, v0, u1, v1, mode), r;
+    if (!scan || !ln_luma_path(l, p, v0, v1) || l->ridge_checks >= LN_RIDGE_BUDGET)
+        return p;
+    l->ridge_checks++;
+    r = ln_ridge_pct(l, u0, v0, u1, v1, l->params.white_pct);
+    return r > p ? r : p;
+}
+
+int32_t fl_lines_paint_pct(const fl_lines_t *l, const fl_scan_t *scan, int32_t u0_q4,
+                           int32_t v0_q4, int32_t u1_q4, int32_t v1_q4)
+{
+    int32_t p = fl_lines_white_pct(scan, u0_q4, v0_q4, u1_q4, v1_q4), r;
+    if (!l || !scan || !ln_luma_path(l, p, v0_q4, v1_q4))
+        return p;
+    r = ln_ridge_pct(l, u0_q4, v0_q4, u1_q4, v1_q4, 0);
+    return r > p ? r : p;
+}
+
 int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
-                             const fl_camera_t *camera, int32_t line_width_mm)
+                             const fl_image_t *img, const fl_camera_t *camera,
+                             int32_t line_width_mm)
 {
     int32_t cs, rs, mr, mc, i, j, w;
     if (!l)
@@ -473,6 +883,13 @@ int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
                 start = -1;
             }
         }
+    }
+    /* thin far lines from the image's luma (needs the projected widths) */
+    if (img && l->line_width_mm > 0 && l->params.luma_contrast_pct > 0 &&
+        fl_image_validate(img) == FL_OK && img->width == scan->width &&
+        img->height == scan->height) {
+        l->img = *img;
+        ln_luma_points(l, scan, mc, mr);
     }
     return l->n_points;
 }
@@ -589,11 +1006,27 @@ static int64_t ln_sse_fit(const ln_mom_t *m)
     return (r << sh) / (2 * n);
 }
 
-/* Threshold (in the moment units: Q1 >> LN_MSHIFT, squared) for n points. */
+/* Threshold (in the moment units: Q1 >> LN_MSHIFT, squared) for n points,
+ * scaled by l->thr_q8 (Q8, 128..256: see ln_thin_q8); the unscaled sum
+ * < 2^27, times 256 < 2^35 in int64, floored. */
 static int64_t ln_thr(const fl_lines_t *l, int32_t n)
 {
     int64_t t = (int64_t)l->params.err_base_q2 + (int64_t)n * l->params.err_point_q2;
-    return t >> (2 * LN_MSHIFT);
+    return ((t * l->thr_q8) >> 8) >> (2 * LN_MSHIFT);
+}
+
+/* Error scale for lines at pixel row v (Q8): the projected width (the
+ * smaller of across and along, Q4) over 2 px, within 1/2..1; 1 when
+ * unknown.  A far line a pixel wide gives points within half a pixel: the
+ * allowance made for the run quantization of wide lines would let its
+ * growth jump to a parallel line 2-3 px away. */
+static int32_t ln_thin_q8(const fl_lines_t *l, int32_t v)
+{
+    int32_t wh = fl_lines_width_q4(l, v, false), wv = fl_lines_width_q4(l, v, true);
+    int32_t w = wh < wv ? wh : wv;
+    if (w <= 0 || w >= 32)
+        return 256;
+    return w < 16 ? 128 : w * 8;
 }
 
 /* Merging: is the summed squared error of the points to their
@@ -770,6 +1203,8 @@ static void ln_seg_add(fl_lines_t *l, ln_grow_t *g, int32_t id, int32_t sid,
         s->e0v = p->v_q1;
         g->end0 = id;
     }
+    if (p->flags & FL_LINE_POINT_LUMA)
+        s->n_luma++;
     p->seg = (uint16_t)sid;
     g->ids[g->n_ids++] = (uint16_t)id;
 }
@@ -797,8 +1232,8 @@ static void ln_grow_end(fl_lines_t *l, const fl_scan_t *scan, ln_grow_t *g,
                     return;
                 }
                 l->white_checks++;
-                if (fl_lines_white_pct(scan, eu * 8, ev * 8, p->u_q1 * 8,
-                                       p->v_q1 * 8) < l->params.white_pct)
+                if (ln_paint_pct(l, scan, eu * 8, ev * 8, p->u_q1 * 8, p->v_q1 * 8,
+                                 4096) < l->params.white_pct)
                     continue;
             }
             ln_mom_of(s, &m);
@@ -891,8 +1326,8 @@ static bool ln_try_merge(fl_lines_t *l, const fl_scan_t *scan, fl_segment_t *a,
         return false;
     if (scan && best > (int64_t)4 * l->gap_px * l->gap_px) {
         l->white_checks++;
-        if (fl_lines_white_pct(scan, pts[gi][0] * 8, pts[gi][1] * 8,
-                               pts[gj][0] * 8, pts[gj][1] * 8) < l->params.white_pct)
+        if (ln_paint_pct(l, scan, pts[gi][0] * 8, pts[gi][1] * 8, pts[gj][0] * 8,
+                         pts[gj][1] * 8, 4096) < l->params.white_pct)
             return false;
     }
     /* farthest pair of the four ends: the merged extremes */
@@ -906,6 +1341,11 @@ static bool ln_try_merge(fl_lines_t *l, const fl_scan_t *scan, fl_segment_t *a,
                 bj = j;
             }
         }
+    {
+        int32_t ta = ln_thin_q8(l, (a->e0v + a->e1v) / 4);
+        int32_t tb = ln_thin_q8(l, (b->e0v + b->e1v) / 4);
+        l->thr_q8 = ta > tb ? ta : tb;
+    }
     ln_mom_of(a, &m);
     ln_mom_of(b, &mb);
     ln_mom_shift(&mb, a->au - b->au, a->av - b->av);
@@ -918,6 +1358,7 @@ static bool ln_try_merge(fl_lines_t *l, const fl_scan_t *scan, fl_segment_t *a,
     if (!ln_err_ok(l, &m))
         return false;
     a->n = (uint16_t)m.n;
+    a->n_luma = (uint16_t)(a->n_luma + b->n_luma);
     a->sx = m.sx;
     a->sy = m.sy;
     a->sxx = m.sxx;
@@ -1103,7 +1544,7 @@ static void ln_prune(fl_lines_t *l, ln_grow_t *g)
 {
     fl_segment_t *s = &g->s;
     int64_t n = s->n, A, B, C, cu, cv;
-    int32_t c, sn, k, kept = 0, tol, wq4;
+    int32_t c, sn, k, kept = 0, tol, wq4, n_luma = 0;
     int64_t tmin = 0, tmax = 0;
     ln_mom_t m;
     if (n < 3)
@@ -1117,7 +1558,8 @@ static void ln_prune(fl_lines_t *l, ln_grow_t *g)
     k = fl_lines_width_q4(l, (int32_t)(cv / 2), true);
     if (k > 0 && (wq4 <= 0 || k < wq4))
         wq4 = k;
-    tol = 4 + (wq4 > 0 ? wq4 / 32 : 0); /* Q1: 2 px + width / 4 */
+    /* Q1: 2 px + width / 4; lines under 2 px wide: 1 px + width / 2 */
+    tol = wq4 <= 0 ? 4 : wq4 >= 32 ? 4 + wq4 / 32 : 2 + wq4 / 16;
     memset(&m, 0, sizeof m);
     for (k = 0; k < g->n_ids; k++) {
         fl_line_point_t *p = &l->points[g->ids[k]];
@@ -1129,6 +1571,8 @@ static void ln_prune(fl_lines_t *l, ln_grow_t *g)
             continue;
         }
         g->ids[kept++] = g->ids[k];
+        if (p->flags & FL_LINE_POINT_LUMA)
+            n_luma++;
         ln_mom_add(&m, ln_mu(p->u_q1, s->au), ln_mu(p->v_q1, s->av));
         if (m.n == 1 || t < tmin) {
             tmin = t;
@@ -1142,6 +1586,7 @@ static void ln_prune(fl_lines_t *l, ln_grow_t *g)
         }
     }
     g->n_ids = kept;
+    s->n_luma = (uint16_t)n_luma;
     s->n = (uint16_t)m.n;
     s->sx = m.sx;
     s->sy = m.sy;
@@ -1168,17 +1613,22 @@ static bool ln_thick(const fl_lines_t *l, const fl_scan_t *scan, const fl_segmen
  * white: random class noise is white on a fifth of the cells and passes
  * the tolerant test half the time, never the strict one.  At most 64
  * samples. */
-static bool ln_segment_white(const fl_lines_t *l, const fl_scan_t *scan,
-                             const fl_segment_t *s)
+static bool ln_segment_white(fl_lines_t *l, const fl_scan_t *scan, const fl_segment_t *s)
 {
     bool thick = ln_thick(l, scan, s);
     int32_t strict = ln_white_pct(scan, s->e0u * 8, s->e0v * 8, s->e1u * 8, s->e1v * 8,
                                   64 | LN_STRICT);
-    if (thick)
-        return strict >= l->params.white_pct;
-    return strict >= 40 &&
-           ln_white_pct(scan, s->e0u * 8, s->e0v * 8, s->e1u * 8, s->e1v * 8, 64) >=
-               l->params.white_pct;
+    if (thick ? strict >= l->params.white_pct
+              : strict >= 40 && ln_white_pct(scan, s->e0u * 8, s->e0v * 8, s->e1u * 8,
+                                             s->e1v * 8, 64) >= l->params.white_pct)
+        return true;
+    /* a thin far line found in the luma: the path is a luma ridge */
+    if (s->n_luma == 0 || !ln_luma_path(l, strict, s->e0v * 8, s->e1v * 8) ||
+        l->ridge_checks >= LN_RIDGE_BUDGET)
+        return false;
+    l->ridge_checks++;
+    return ln_ridge_pct(l, s->e0u * 8, s->e0v * 8, s->e1u * 8, s->e1v * 8,
+                        l->params.white_pct) >= l->params.white_pct;
 }
 
 /* ---- build ------------------------------------------------------------------ */
@@ -1216,6 +1666,7 @@ int32_t fl_lines_build(fl_lines_t *l, const fl_scan_t *scan)
         }
         memset(&g.s, 0, sizeof g.s);
         g.n_ids = 0;
+        l->thr_q8 = ln_thin_q8(l, p->v_q1 / 2);
         g.s.au = (int16_t)(p->u_q1 >> LN_MSHIFT);
         g.s.av = (int16_t)(p->v_q1 >> LN_MSHIFT);
         g.s.e0u = g.s.e1u = p->u_q1;
@@ -1279,8 +1730,11 @@ int32_t fl_lines_build(fl_lines_t *l, const fl_scan_t *scan)
         if (l->points[k].seg != FL_LINES_NONE)
             l->points[k].seg = remap[l->points[k].seg];
     l->n_segments = j;
-    for (i = 0; i < l->n_segments; i++)
+    for (i = 0; i < l->n_segments; i++) {
         ln_refit(&l->segments[i]);
+        if (l->segments[i].n_luma > 0)
+            l->segments[i].flags |= FL_SEG_LUMA;
+    }
     ln_curvature(l);
     return l->n_segments;
 }

@@ -149,7 +149,7 @@ int32_t fl_vision_frame(fl_vision_t *v, const fl_color_table_t *colors,
         return 0;
     }
     lw = field->line_width_mm;
-    fl_lines_find_points(&v->lines, &v->scan, camera, lw);
+    fl_lines_find_points(&v->lines, &v->scan, img, camera, lw);
     fl_lines_build(&v->lines, &v->scan);
     if (v->params.circle)
         fl_circle_find(&v->circle, &v->lines, camera, field);

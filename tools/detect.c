@@ -162,8 +162,10 @@ void det_draw(const det_ctx_t *c, uint8_t *rgb, int width, int height,
     const fl_vision_t *v = c->vis;
     int i;
     for (i = 0; i < v->lines.n_points; i++) {
+        static const uint8_t pink[3] = {255, 150, 200}; /* luma points */
         const fl_line_point_t *p = &v->lines.points[i];
-        px(rgb, width, height, p->u_q1 / 2, p->v_q1 / 2, grey);
+        px(rgb, width, height, p->u_q1 / 2, p->v_q1 / 2,
+           (p->flags & FL_LINE_POINT_LUMA) ? pink : grey);
     }
     for (i = 0; i < v->lines.n_segments; i++) {
         const fl_segment_t *s = &v->lines.segments[i];

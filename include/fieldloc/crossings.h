@@ -20,7 +20,9 @@
  * cheap white-ratio test along a short ray); an arm the segment did not
  * reach but the probe finds white is added (a line broken at the
  * crossing), an arm the segment claims but the probe finds green lowers
- * the confidence.  The arm count gives the type (2 L, 3 T, 4 X).
+ * the confidence.  Far lines too thin for the class map: a probe below
+ * the lines' white_pct reads the luma (fl_lines_paint_pct; at most 128
+ * such probes per frame, counted in luma_probes).  The arm count gives the type (2 L, 3 T, 4 X).
  * Crossings closer than the merge distance (3 line widths or 4 steps) are
  * merged by the union of their arms: two opposite T's become an X, an L
  * and its continuation a T.
@@ -40,11 +42,24 @@
  * confidence as a pair's length factor times 160/256 (counted in
  * border_t).  Field corners seen this way are called T as well.
  *
+ * Short connectors.  Far away the sides of the goal box (and other short
+ * lines between two parallel ones) are a few pixels long: no segment, so
+ * their corners pair with nothing.  At an end of a segment where its paint
+ * stops, the line's ground normal is followed to the nearest segment
+ * parallel to it in the image, 2 line steps to 1000 mm (at most 6 steps)
+ * away; when that connector is paint (fl_lines_paint_pct, the luma for
+ * thin lines) and the strip beside it beyond the corner is not, the end
+ * is an L and the connector's foot a T (an L where the parallel segment
+ * ends), square on the ground by construction, confidence as a border T
+ * (counted in connectors).  No crossing is added within merge distance of
+ * one found before.
+ *
  * Marks.  The penalty and centre marks (a 100 mm cross) are too small to
  * make long segments.  Points off long segments are clustered within 0.75
  * of the projected mark size; a cluster of at least 2 points with no other
  * point out to 2.5 mark sizes, whose ring of 16 class-map samples at 1.6
- * mark sizes is green (13 of 16, no white), is a penalty mark.  An X of a
+ * mark sizes is green (13 of 16, no white), is a penalty mark (a cluster
+ * of luma points alone needs 3).  An X of a
  * short bar (<= 2.5 mark sizes on the ground) across a long line is a
  * centre mark, of two short bars a penalty mark.  Both count as X (as the
  * UvA 2013 labels do); their kind says which.  A found centre circle with
@@ -62,7 +77,9 @@
  * FL_LINES_MAX_SEGMENTS^2 / 2), each surviving pair 4 probes of at most 64
  * samples and 3-5 camera projections; border T's one test per segment (a
  * walk, a border search and a probe of at most 64 samples each, 4-8 camera
- * projections); marks O(points) with bounded bucket searches.
+ * projections); connectors per segment end 2-6 camera projections, a pass
+ * over the segments and probes within the frame's 128 luma probes; marks
+ * O(points) with bounded bucket searches.
  */
 #ifndef FIELDLOC_CROSSINGS_H
 #define FIELDLOC_CROSSINGS_H
@@ -118,6 +135,9 @@ typedef struct {
     int32_t merged;           /* crossings merged into others */
     int32_t marks_capped;     /* mark search stopped after 256 clusters */
     int32_t border_t;         /* T's of one segment at the field border */
+    int32_t luma_probes;      /* arm probes that fell back to the luma
+                                 (at most 128 per frame) */
+    int32_t connectors;       /* crossings of short connectors (L + T) */
     /* ---- private ---- */
     fl_angle_t garm[FL_CROSSINGS_MAX][4]; /* ground arms (robot frame) */
 } fl_crossings_t;

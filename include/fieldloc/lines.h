@@ -11,6 +11,25 @@
  * most max_width_pct (oblique lines cross a scan line over a longer run;
  * robots, goals and clutter are wider still).
  *
+ * Luma points.  Far away a line is a pixel or two across: blurred into
+ * the carpet, its colour is no longer white and the class map misses it,
+ * or it lies a few pixels above the field border.  With the frame's image,
+ * the same scan lines are read in the image's luma over the band of rows
+ * where the projected width is at most luma_width_px (vertical scan lines
+ * from a few pixels above their border): a ridge brighter than the pixels
+ * d = 1 + 1.5 w (2..6 px) to either side by luma_contrast_pct of the
+ * brighter one (and 8 levels), at most d - 1 px wide at half its height,
+ * with carpet-coloured flanks (Cb, Cr below grey), neither yellow nor
+ * orange itself, going on in the pixel line beside the scan line (a line,
+ * not a speck of noise), where the class map has no white within a cell,
+ * gives a point flagged FL_LINE_POINT_LUMA (at most 8 ridges per scan line
+ * and FL_LINES_MAX_POINTS / 8 per frame, counted in luma_capped).  The paths
+ * that the segment stage checks for white (growth, the segment itself,
+ * merge gaps) fall back to the luma where the class map falls short in
+ * the band: the share of samples on a luma ridge across the path (at most
+ * 32 samples, 256 such checks per frame, counted in ridge_checks).
+ * Segments with luma points carry FL_SEG_LUMA.
+ *
  * Segments (seed 000, Algorithm 1).  Points are taken as seeds in order.
  * A segment grows from its tail, then from its head, to the best of the
  * nearest (at most FL_LINES_CANDIDATES) unassigned points within gap_px
@@ -20,8 +39,11 @@
  * distance of its points to the line through its two end points exceeds
  * err_base_q2 + n * err_point_q2 (seed 000, equation 1; the per-point term
  * keeps a long straight line from being cut by quantization noise, while a
- * circle arc is cut into chords).  Points more than 2 px (plus a quarter
- * of the line width) off the grown segment's least-squares line are given
+ * circle arc is cut into chords), scaled down to half where the projected
+ * line is under 2 px wide (points of a thin line lie within a pixel; the
+ * full allowance lets growth jump to a parallel line 2-3 px away).  Points
+ * more than 2 px (plus a quarter of the line width; under 2 px wide: 1 px
+ * plus half of it) off the grown segment's least-squares line are given
  * back (a point where another line joins).  A segment is kept with
  * min_points points, min_len_px length and a white straight path between
  * its ends.  It is merged into an earlier one when they extend each other:
@@ -44,8 +66,10 @@
  * stored ones pairwise once more).
  *
  * Lifecycle: fl_lines_params_default(&p); fl_lines_init(&l, &p) once;
- * per frame fl_lines_find_points(&l, &scan, camera, line_width_mm) then
- * fl_lines_build(&l, &scan).  Tests may instead fill points[] / n_points
+ * per frame fl_lines_find_points(&l, &scan, &image, camera, line_width_mm)
+ * then fl_lines_build(&l, &scan); the image's pixels are read until the
+ * frame's last fl_lines_build / fl_lines_paint_pct / fl_crossings_find
+ * (the view is kept in l).  Tests may instead fill points[] / n_points
  * with fl_lines_reset + fl_lines_add_point and call fl_lines_build with a
  * NULL scan (no white checks).  Callers read everything before the
  * "private" mark.
@@ -61,6 +85,7 @@
 #include "fieldloc/common.h"
 #include "fieldloc/config.h"
 #include "fieldloc/fixed.h"
+#include "fieldloc/image.h"
 #include "fieldloc/scan.h"
 
 #define FL_LINES_NONE 0xffffu   /* point not in a segment */
@@ -69,6 +94,8 @@
 
 /* Point flags. */
 #define FL_LINE_POINT_VERTICAL 1u /* found on a vertical scan line (column) */
+#define FL_LINE_POINT_LUMA 2u     /* a luma ridge of the image (thin far line
+                                     the class map misses), not a white run */
 
 typedef struct {
     int16_t u_q1, v_q1;   /* run midpoint, half pixels */
@@ -80,6 +107,7 @@ typedef struct {
 /* Segment flags. */
 #define FL_SEG_MERGED 1u  /* built from more than one grown piece */
 #define FL_SEG_CIRCLE 2u  /* a chord of the centre circle (circle.h) */
+#define FL_SEG_LUMA 4u    /* at least one of its points is a luma point */
 
 typedef struct {
     /* fitted end points, Q4 pixels; (u0, v0) is the end with the smaller
@@ -99,6 +127,7 @@ typedef struct {
     /* ---- private: growth state ---- */
     int16_t au, av;       /* anchor (Q1, halved above 2048 px) */
     int16_t e0u, e0v, e1u, e1v; /* extreme points, Q1 */
+    uint16_t n_luma;      /* luma points among its points */
     int64_t sx, sy, sxx, syy, sxy; /* moments about the anchor */
 } fl_segment_t;
 
@@ -122,6 +151,11 @@ typedef struct {
                                  100..2000 */
     int32_t min_width_pct;    /* runs at least this % of the projected
                                  width (thinner: noise), 0..100 */
+    int32_t luma_contrast_pct; /* luma points: ridge at least this % of
+                                 its brighter flank above it (and 8 grey
+                                 levels), 1..100; 0 = no luma points */
+    int32_t luma_width_px;    /* luma points only where the projected
+                                 line width is at most this, 1..16 px */
 } fl_lines_params_t;
 
 typedef struct {
@@ -142,7 +176,21 @@ typedef struct {
     int32_t white_checks;     /* white-ratio checks made by the growth */
     int32_t checks_capped;    /* growth steps stopped by the per-frame
                                  budget of 2 x FL_LINES_MAX_POINTS checks */
+    int32_t luma_points;      /* points found as luma ridges */
+    int32_t luma_capped;      /* scan lines cut by the per-line cap, plus
+                                 ridges beyond the per-frame cap */
+    int32_t ridge_checks;     /* paths checked in the luma (after the class
+                                 map fell short) */
     /* ---- private ---- */
+    fl_image_t img;           /* view of this frame's pixels (width 0:
+                                 none); valid while the caller's frame is */
+    int32_t lum_vend, lum_hend; /* last rows of the luma band, vertical and
+                                 horizontal scan lines (-1: none) */
+    int32_t lum_above;        /* luma scan starts this far above the border */
+    int32_t thr_q8;           /* error threshold scale of the current test */
+    uint8_t lum_dv[FL_IMAGE_MAX_DIM]; /* flank distance per row, columns */
+    uint8_t lum_dh[FL_IMAGE_MAX_DIM]; /* ... rows */
+    uint8_t lum_buf[FL_IMAGE_MAX_DIM]; /* one scan line's lumas */
     int32_t bshift, bcols, brows;   /* bucket size 2^bshift px, grid */
     uint16_t bstart[FL_LINES_MAX_BUCKETS + 1];
     uint16_t border[FL_LINES_MAX_POINTS];  /* point ids sorted by bucket */
@@ -156,17 +204,19 @@ typedef struct {
 
 /* Defaults: step auto, gap auto, 3 points, length auto, error 16 + 4 per
  * point (Q2: 4 px^2 + 1 px^2 per point), white 70 %, merge gap auto, width
- * 400 % .. 25 %. */
+ * 400 % .. 25 %, luma contrast 12 % where the line is at most 3 px wide. */
 void fl_lines_params_default(fl_lines_params_t *p);
 
 /* Validate params (FL_ERR_RANGE) and clear.  FL_ERR_NULL. */
 fl_status_t fl_lines_init(fl_lines_t *l, const fl_lines_params_t *p);
 
-/* Find the line points of a scanned frame.  camera may be NULL (no width
- * check); line_width_mm <= 0 also disables it.  Returns n_points (0 for a
- * NULL or empty scan). */
+/* Find the line points of a scanned frame.  img: the scanned frame (same
+ * size as the scan) or NULL (no luma points).  camera may be NULL (no
+ * width check, no luma points); line_width_mm <= 0 also disables both.
+ * Returns n_points (0 for a NULL or empty scan). */
 int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
-                             const fl_camera_t *camera, int32_t line_width_mm);
+                             const fl_image_t *img, const fl_camera_t *camera,
+                             int32_t line_width_mm);
 
 /* Start a point list by hand (tests): clears points and segments and sets
  * the image size used by the bucket grid.  Returns false on a bad size. */
@@ -187,6 +237,17 @@ int32_t fl_lines_build(fl_lines_t *l, const fl_scan_t *scan);
  * the grid entirely. */
 int32_t fl_lines_white_pct(const fl_scan_t *scan, int32_t u0_q4,
                            int32_t v0_q4, int32_t u1_q4, int32_t v1_q4);
+
+/* Paint on the straight path between two pixels (Q4), 0..100: the class
+ * map's white ratio (fl_lines_white_pct); where that is below white_pct
+ * and the path's middle row lies in the luma band of the last frame
+ * (projected width at most luma_width_px, with its image), the share of
+ * 1 px samples (at most 64) on a luma ridge across the path when higher.
+ * Reads the frame's pixels: call before the caller releases them.  l NULL:
+ * fl_lines_white_pct. */
+int32_t fl_lines_paint_pct(const fl_lines_t *l, const fl_scan_t *scan,
+                           int32_t u0_q4, int32_t v0_q4, int32_t u1_q4,
+                           int32_t v1_q4);
 
 /* Projected width (Q4 px) of a painted line at pixel row v_px, as used by
  * the width check: across the row (horizontal run of a line pointing away
