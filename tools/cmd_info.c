@@ -136,12 +136,13 @@ int cmd_sizes(int argc, char **argv)
 {
     struct { const char *name; size_t size; const char *what; } t[] = {
         {"fl_color_table_t", sizeof(fl_color_table_t), "colour class tables (built once, read-only per frame)"},
-        {"fl_vision_t", sizeof(fl_vision_t), "whole vision path: scanner, lines, circle, crossings, posts"},
+        {"fl_vision_t", sizeof(fl_vision_t), "whole vision path: scanner, lines, circle, crossings, posts, beacons"},
         {"  fl_scan_t", sizeof(fl_scan_t), "column scanner (class map, histograms, feet)"},
         {"  fl_lines_t", sizeof(fl_lines_t), "line points and segments"},
         {"  fl_circle_t", sizeof(fl_circle_t), "centre circle"},
         {"  fl_crossings_t", sizeof(fl_crossings_t), "L/T/X crossings and marks"},
         {"  fl_posts_t", sizeof(fl_posts_t), "goal posts"},
+        {"  fl_beacon_t", sizeof(fl_beacon_t), "coloured goals and beacons (AIBO fields)"},
         {"fl_fuzzy_t", sizeof(fl_fuzzy_t), "fuzzy position grid (SPL 2013 capacity)"},
         {"fl_camera_t", sizeof(fl_camera_t), "camera model with its pose"},
         {"fl_obs_list_t", sizeof(fl_obs_list_t), "one frame's observations"},

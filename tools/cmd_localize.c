@@ -40,8 +40,10 @@
  * the heading difference to the previous frame (turning in place, no
  * translation).  Prints per frame the estimate and its error, and per spot
  * the final error, position and heading, taken modulo the field's
- * 180-degree symmetry (the smaller of the errors to the labelled pose and
- * to its mirror (-x, -y, theta + 180)).  --write-seq DIR also writes each
+ * 180-degree symmetry: the labelled pose or its mirror (-x, -y, theta +
+ * 180), whichever is closer by position error + 17.5 mm per degree of
+ * heading error (1 m per radian), so that at the centre spot, where both
+ * positions are the same, the heading decides.  --write-seq DIR also writes each
  * spot as a sequence file DIR/uva_spot_X_Y.txt (absolute image paths), so
  * `fieldloc localize DIR/uva_spot_X_Y.txt` reproduces its pose lines.
  */
@@ -197,16 +199,18 @@ static int lz_uva_spots(const char *pictures, const char *write_seq,
             const rd_uva_record_t *r = &set.rec[sp->idx[i]];
             const fl_fuzzy_estimate_t *e = &res[i].est;
             double pe, he, mpe, mhe, ex = e->x_mm, ey = e->y_mm, eh = lr_deg(e->heading);
+            int mir;
             lr_pose_error(ex, ey, eh, r->x_cm * 10, r->y_cm * 10, r->theta_deg, &pe, &he, &mpe,
                           &mhe);
+            mir = mpe + 17.5 * mhe < pe + 17.5 * he;   /* the mirror is closer */
             printf("spot %.0f %.0f frame %d %s theta %.0f obs %d used %d est %d %d %.1f rel %.3f "
                    "err %.0f mm %.1f deg%s\n",
                    sp->x_cm, sp->y_cm, i + 1, r->index, r->theta_deg, res[i].obs,
                    res[i].used < 0 ? 0 : res[i].used, (int)e->x_mm, (int)e->y_mm, eh,
-                   e->reliability_q16 / 65536.0, mpe < pe ? mpe : pe, mpe < pe ? mhe : he,
-                   mpe < pe ? " (mirror)" : "");
+                   e->reliability_q16 / 65536.0, mir ? mpe : pe, mir ? mhe : he,
+                   mir ? " (mirror)" : "");
             if (i == sp->n - 1) {
-                double fp = mpe < pe ? mpe : pe, fh = mpe < pe ? mhe : he;
+                double fp = mir ? mpe : pe, fh = mir ? mhe : he;
                 printf("spot_result %.0f %.0f frames %d pos_err_mm %.0f heading_err_deg %.1f "
                        "reliability %.3f\n",
                        sp->x_cm, sp->y_cm, sp->n, fp, fh, e->reliability_q16 / 65536.0);
