@@ -569,26 +569,27 @@ static bool ln_ridge_goes_on(const fl_lines_t *l, const ln_sline_t *sl, int32_t 
 static void ln_luma_run(fl_lines_t *l, const fl_scan_t *s, const ln_sline_t *sl,
                         int32_t r0, int32_t r1, int32_t d)
 {
-    const uint8_t *y = l->lum_buf - sl->x0;
+    const uint8_t *y = l->lum_buf;   /* position x at y[x - o] */
+    const int32_t o = sl->x0;
     const fl_image_t *im = &l->img;
     int32_t k, pk, f, mid, e0, e1, x, cs = s->params.col_step, rs = s->params.row_step;
     int32_t cb1, cr1, cb2, cr2, cbk, crk, u, v;
     /* peak of the run and its flanks */
     k = r0;
     for (x = r0 + 1; x <= r1; x++)
-        if (y[x] > y[k])
+        if (y[x - o] > y[k - o])
             k = x;
     if (k - d < sl->x0 || k + d > sl->x1)
         return;
-    pk = y[k];
-    f = y[k - d] > y[k + d] ? y[k - d] : y[k + d];
+    pk = y[k - o];
+    f = y[k - d - o] > y[k + d - o] ? y[k - d - o] : y[k + d - o];
     /* width at half height */
     mid = (pk + f + 1) / 2;
     e0 = k;
-    while (e0 - 1 > k - d && y[e0 - 1] >= mid)
+    while (e0 - 1 > k - d && y[e0 - 1 - o] >= mid)
         e0--;
     e1 = k;
-    while (e1 + 1 < k + d && y[e1 + 1] >= mid)
+    while (e1 + 1 < k + d && y[e1 + 1 - o] >= mid)
         e1++;
     if (e1 - e0 + 1 > d - 1 && e1 - e0 + 1 > 1) {
         l->runs_rejected++;
@@ -635,15 +636,16 @@ static void ln_luma_run(fl_lines_t *l, const fl_scan_t *s, const ln_sline_t *sl,
 static void ln_luma_scan(fl_lines_t *l, const fl_scan_t *s, const ln_sline_t *sl,
                          int32_t lo, int32_t hi, const uint8_t *dtab)
 {
-    const uint8_t *y = l->lum_buf - sl->x0;
+    const uint8_t *y = l->lum_buf;   /* position x at y[x - o] */
+    const int32_t o = sl->x0;
     int32_t x, start = -1, dr = 0, runs = 0, cs = s->params.col_step;
     for (x = lo; x <= hi + 1; x++) {
         bool on = false;
         int32_t d = sl->vertical ? dtab[x] : dtab[0];
         if (x <= hi && x - d >= sl->x0 && x + d <= sl->x1 &&
             (sl->vertical || sl->pos >= s->border_v[x / cs] - l->lum_above)) {
-            int32_t f = y[x - d] > y[x + d] ? y[x - d] : y[x + d];
-            on = ln_ridge(l, y[x], f);
+            int32_t f = y[x - d - o] > y[x + d - o] ? y[x - d - o] : y[x + d - o];
+            on = ln_ridge(l, y[x - o], f);
         }
         if (on && start < 0) {
             start = x;
