@@ -820,6 +820,41 @@ static void test_polar(void)
     t_digest("camera.polar", h);
 }
 
+/* A round object's foot pixel -> its centre: d / 2 further along the
+ * ray on the ground, the pixel moved onto the centre (further away: up the
+ * image); nothing written without a ground point or a camera. */
+static void test_foot_to_centre(void)
+{
+    const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-320");
+    fl_camera_pose_t ps;
+    fl_camera_t cam;
+    fl_point_t g, c = {7, 7};
+    int32_t u = 160 * 16, v = 200 * 16, u0, v0;
+    uint32_t rg, rcen;
+    ps.neck_height_mm = m->default_neck_height_mm;
+    ps.pitch_offset = m->default_pitch_offset;
+    ps.head_pitch = 0;
+    ps.head_yaw = fl_angle_from_mdeg(20000);
+    CHECK_EQ(fl_camera_init(&cam, m, &ps), FL_OK);
+    CHECK(fl_camera_pixel_to_ground(&cam, u, v, &g));
+    u0 = u;
+    v0 = v;
+    CHECK(fl_camera_foot_to_centre(&cam, &u, &v, 100, &c));
+    rg = fl_hypot(g.x_mm, g.y_mm);
+    rcen = fl_hypot(c.x_mm, c.y_mm);
+    CHECK_LE((int64_t)rg + 49, (int64_t)rcen);   /* 50 mm further, +-1 of rounding */
+    CHECK_LE((int64_t)rcen, (int64_t)rg + 51);
+    CHECK(v < v0);                               /* further: higher in the image */
+    CHECK_LE(abs(u - u0), 16 * 8);
+    /* above the horizon and without a camera: false, nothing written */
+    u = u0;
+    v = -400 * 16;   /* far above the bottom camera's horizon */
+    c.x_mm = c.y_mm = 7;
+    CHECK(!fl_camera_foot_to_centre(&cam, &u, &v, 100, &c));
+    CHECK(!fl_camera_foot_to_centre(NULL, &u, &v, 100, &c));
+    CHECK(u == u0 && v == -400 * 16 && c.x_mm == 7 && c.y_mm == 7);
+}
+
 void suite_camera(void)
 {
     t_run("camera.catalogue", test_catalogue);
@@ -829,4 +864,5 @@ void suite_camera(void)
     t_run("camera.horizon", test_horizon);
     t_run("camera.extremes", test_extremes);
     t_run("camera.polar", test_polar);
+    t_run("camera.foot_to_centre", test_foot_to_centre);
 }

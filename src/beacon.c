@@ -359,31 +359,6 @@ static bool bc_lowest_in_column(const fl_beacon_t *b, int32_t i)
 
 /* ---- geometry ---------------------------------------------------------------- */
 
-/* Foot pixel (Q4) -> centre of a round object of diameter d: the ground
- * point plus d / 2 along the ray; the pixel moved to the centre.  False
- * without a ground point.  Scaling: see the file top. */
-static bool bc_foot(const bc_ctx_t *c, int32_t *u_q4, int32_t *v_q4, int32_t d,
-                    fl_point_t *ground)
-{
-    fl_point_t g;
-    uint32_t r;
-    int32_t u2, v2;
-    if (!c->cam || !fl_camera_pixel_to_ground(c->cam, *u_q4, *v_q4, &g))
-        return false;
-    r = fl_hypot(g.x_mm, g.y_mm);
-    if (r == 0) {
-        *ground = g;
-        return true;
-    }
-    ground->x_mm = fl_div_round((int64_t)g.x_mm * ((int64_t)r + d / 2), (int64_t)r);
-    ground->y_mm = fl_div_round((int64_t)g.y_mm * ((int64_t)r + d / 2), (int64_t)r);
-    if (fl_camera_ground_to_pixel(c->cam, *ground, &u2, &v2)) {
-        *u_q4 = u2;
-        *v_q4 = v2;
-    }
-    return true;
-}
-
 /* Distance from the camera (mm) to a ground point at height z_mm above it:
  * sqrt(range^2 + (camera height - z)^2), >= 1. */
 static int64_t bc_dist3(const bc_ctx_t *c, int32_t range_mm, int32_t z_mm)
@@ -483,7 +458,7 @@ static void bc_post(const bc_ctx_t *c, int32_t k, int32_t dir, int32_t top_v)
         }
         f.width_q4 = w_q4;
         f.u_q4 -= dir * (w_q4 / 2);
-        if (!bc_foot(c, &f.u_q4, &f.v_q4, c->post_d, &f.ground))
+        if (!fl_camera_foot_to_centre(c->cam, &f.u_q4, &f.v_q4, c->post_d, &f.ground))
             return;
         fl_polar_from_point(f.ground, &f.range_mm, &f.bearing);
     }
@@ -583,7 +558,7 @@ static void bc_beacon_emit(const bc_ctx_t *c, const fl_beacon_blob_t *up,
         f.confidence = up ? 200 : 150;
         if (c->cam) {
             int64_t d3, expect;
-            if (!bc_foot(c, &f.u_q4, &f.v_q4, c->beacon_d, &f.ground))
+            if (!fl_camera_foot_to_centre(c->cam, &f.u_q4, &f.v_q4, c->beacon_d, &f.ground))
                 return;
             fl_polar_from_point(f.ground, &f.range_mm, &f.bearing);
             /* the width a beacon has at that distance (f d / dist, Q4):

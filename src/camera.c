@@ -434,3 +434,28 @@ fl_point_t fl_point_from_polar(int32_t range_mm, fl_angle_t bearing)
     p.y_mm = fl_mul_q30(range_mm, fl_sin_q30(bearing));
     return p;
 }
+
+bool fl_camera_foot_to_centre(const fl_camera_t *cam, int32_t *u_q4, int32_t *v_q4,
+                              int32_t diameter_mm, fl_point_t *centre)
+{
+    fl_point_t g;
+    uint32_t r;
+    int64_t rc;
+    int32_t u2, v2;
+    if (!cam || !u_q4 || !v_q4 || !centre ||
+        !fl_camera_pixel_to_ground(cam, *u_q4, *v_q4, &g))
+        return false;
+    r = fl_hypot(g.x_mm, g.y_mm);
+    if (r == 0) {
+        *centre = g;
+        return true;
+    }
+    rc = (int64_t)r + diameter_mm / 2;
+    centre->x_mm = fl_div_round((int64_t)g.x_mm * rc, (int64_t)r);
+    centre->y_mm = fl_div_round((int64_t)g.y_mm * rc, (int64_t)r);
+    if (fl_camera_ground_to_pixel(cam, *centre, &u2, &v2)) {
+        *u_q4 = u2;
+        *v_q4 = v2;
+    }
+    return true;
+}

@@ -277,27 +277,12 @@ static void gl_candidate(const gl_ctx_t *ctx, int32_t u0, int32_t u1, int32_t vb
     p.top_v_q4 = top >= 0 ? top * 16 - 8 : 0;
     p.confidence = 200;
     if (p.foot_visible) {
-        fl_point_t g;
         p.foot_u_q4 = u_c * 8;
         p.foot_v_q4 = foot_v * 16 + 8;
         if (jfoot >= 0 && jfoot - 1 > foot_v)
             p.foot_v_q4 = (jfoot - 1) * 16 + 8;
-        if (cam && fl_camera_pixel_to_ground(cam, p.foot_u_q4, p.foot_v_q4, &g)) {
-            uint32_t r = fl_hypot(g.x_mm, g.y_mm);
-            if (r > 0) {
-                int64_t rc = (int64_t)r + diam / 2;
-                int32_t u2, v2;
-                p.ground.x_mm = fl_div_round((int64_t)g.x_mm * rc, r);
-                p.ground.y_mm = fl_div_round((int64_t)g.y_mm * rc, r);
-                if (fl_camera_ground_to_pixel(cam, p.ground, &u2, &v2)) {
-                    p.foot_u_q4 = u2;
-                    p.foot_v_q4 = v2;
-                }
-            } else {
-                p.ground = g;
-            }
+        if (fl_camera_foot_to_centre(cam, &p.foot_u_q4, &p.foot_v_q4, diam, &p.ground))
             fl_polar_from_point(p.ground, &p.range_mm, &p.bearing);
-        }
     }
     /* a post is post_height tall: its yellow must reach half the height
      * the camera predicts from the foot distance (f h / d), or the image

@@ -102,6 +102,20 @@ fl_status_t fl_vision_init(fl_vision_t *v, const fl_vision_params_t *p)
     return FL_OK;
 }
 
+/* An observation with the fields every kind has; the rest zero (side and
+ * colours unknown, no orientation). */
+static void vi_obs(fl_obs_t *o, fl_landmark_kind_t kind, int32_t range_mm, fl_angle_t bearing,
+                   uint8_t confidence, int32_t u_q4, int32_t v_q4)
+{
+    memset(o, 0, sizeof *o);
+    o->kind = kind;
+    o->range_mm = range_mm;
+    o->bearing = bearing;
+    o->confidence = confidence;
+    o->u_q4 = u_q4;
+    o->v_q4 = v_q4;
+}
+
 static int32_t vi_push(fl_obs_list_t *out, const fl_obs_t *o, int32_t min_conf)
 {
     if (o->confidence < min_conf)
@@ -165,28 +179,19 @@ int32_t fl_vision_frame(fl_vision_t *v, const fl_color_table_t *colors,
         const fl_post_t *p = &v->posts.post[i];
         if (!camera || p->range_mm <= 0)
             continue;
-        memset(&o, 0, sizeof o);
-        o.kind = FL_LM_POST;
+        vi_obs(&o, FL_LM_POST, p->range_mm, p->bearing, p->confidence, p->foot_u_q4,
+               p->foot_v_q4);
         o.side = p->side;
         o.colour = field->goal_colour[0] == field->goal_colour[1]
                        ? field->goal_colour[0] : FL_COLOUR_YELLOW;
-        o.range_mm = p->range_mm;
-        o.bearing = p->bearing;
-        o.confidence = p->confidence;
-        o.u_q4 = p->foot_u_q4;
-        o.v_q4 = p->foot_v_q4;
         vi_push(out, &o, v->params.min_confidence);
     }
     if (v->circle.found) {
-        memset(&o, 0, sizeof o);
-        o.kind = FL_LM_CENTRE_CIRCLE;
-        o.range_mm = v->circle.range_mm;
-        o.bearing = v->circle.bearing;
+        vi_obs(&o, FL_LM_CENTRE_CIRCLE, v->circle.range_mm, v->circle.bearing,
+               v->circle.confidence, v->circle.has_pixel ? v->circle.u_q4 : -1,
+               v->circle.has_pixel ? v->circle.v_q4 : -1);
         o.orientation = v->circle.orientation;
         o.has_orientation = v->circle.has_orientation;
-        o.confidence = v->circle.confidence;
-        o.u_q4 = v->circle.has_pixel ? v->circle.u_q4 : -1;
-        o.v_q4 = v->circle.has_pixel ? v->circle.v_q4 : -1;
         vi_push(out, &o, v->params.min_confidence);
     }
     memset(done, 0, sizeof done);
@@ -201,15 +206,9 @@ int32_t fl_vision_frame(fl_vision_t *v, const fl_color_table_t *colors,
         x = &v->crossings.c[best];
         if (!camera || x->range_mm <= 0)
             continue;
-        memset(&o, 0, sizeof o);
-        o.kind = x->kind;
-        o.range_mm = x->range_mm;
-        o.bearing = x->bearing;
+        vi_obs(&o, x->kind, x->range_mm, x->bearing, x->confidence, x->u_q4, x->v_q4);
         o.orientation = x->orientation;
         o.has_orientation = x->has_orientation;
-        o.confidence = x->confidence;
-        o.u_q4 = x->u_q4;
-        o.v_q4 = x->v_q4;
         vi_push(out, &o, v->params.min_confidence);
     }
     /* coloured landmarks (beacon.h), appended: only on fields that have
@@ -229,16 +228,10 @@ int32_t fl_vision_frame(fl_vision_t *v, const fl_color_table_t *colors,
             }
             if (dup)
                 continue;
-            memset(&o, 0, sizeof o);
-            o.kind = f->kind;
+            vi_obs(&o, f->kind, f->range_mm, f->bearing, f->confidence, f->u_q4, f->v_q4);
             o.side = f->side;
             o.colour = f->colour;
             o.colour2 = f->colour2;
-            o.range_mm = f->range_mm;
-            o.bearing = f->bearing;
-            o.confidence = f->confidence;
-            o.u_q4 = f->u_q4;
-            o.v_q4 = f->v_q4;
             vi_push(out, &o, v->params.min_confidence);
         }
     }

@@ -88,6 +88,16 @@ bool fl_camera_pixel_to_ground(const fl_camera_t *cam, int32_t u_q4,
 bool fl_camera_ground_to_pixel(const fl_camera_t *cam, fl_point_t ground,
                                int32_t *u_q4, int32_t *v_q4);
 
+/* Foot pixel (Q4) of a round upright object (a post, a beacon) of
+ * diameter diameter_mm -> its centre on the ground: the foot's ground
+ * point moved diameter_mm / 2 further along the ray, and the pixel moved
+ * to that centre's projection (left as it was when that fails).  False
+ * (nothing written) without a ground point.  Scaling: ground points are
+ * within FL_CAMERA_MAX_RANGE_MM, so coordinate * (range + d / 2) fits
+ * int64; the division rounds to nearest. */
+bool fl_camera_foot_to_centre(const fl_camera_t *cam, int32_t *u_q4, int32_t *v_q4,
+                              int32_t diameter_mm, fl_point_t *centre);
+
 /* Row (v, Q4) of the horizon at column u_q4: pixels with v below (greater
  * than) this can see the ground.  Returns INT32_MIN when the whole column
  * is below the horizon and INT32_MAX when none of it can be. */
