@@ -105,7 +105,7 @@ $(RUNNER): $(TEST_OBJ) $(TOOL_LIB_OBJ) $(LIB)
 $(CLI): $(BUILD)/tools/fieldloc.o $(TOOL_LIB_OBJ) $(LIB)
 	$(LINK) $(HOST_CFLAGS) -o $@ $^ $(HOST_LIBS) $(CV_LIBS)
 
-test: $(RUNNER) check
+test: $(RUNNER) $(CLI) check
 	@$(RUNNER) | tee $(BUILD)/test.log; exit $${PIPESTATUS[0]}
 
 test-quick: $(RUNNER)

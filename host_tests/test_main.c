@@ -9,7 +9,22 @@
 int t_quick = 0;
 int t_exhaustive = 0;
 
-static const char *t_filter = NULL;
+/* -k filters: a case runs when its name contains any of them (none given:
+ * every case runs). */
+#define T_FILTER_MAX 16
+static const char *t_filters[T_FILTER_MAX];
+static int t_nfilters = 0;
+
+static int t_selected(const char *name)
+{
+    int k;
+    if (t_nfilters == 0)
+        return 1;
+    for (k = 0; k < t_nfilters; k++)
+        if (strstr(name, t_filters[k]))
+            return 1;
+    return 0;
+}
 static int t_passed, t_failed, t_cur_failed;
 static const char *t_cur_name;
 
@@ -129,7 +144,7 @@ const char *t_realdata_dir(void)
 
 void t_run(const char *name, t_fn fn)
 {
-    if (t_filter && !strstr(name, t_filter))
+    if (!t_selected(name))
         return;
     t_cur_name = name;
     t_cur_failed = 0;
@@ -154,10 +169,10 @@ int main(int argc, char **argv)
             t_quick = 1;
         else if (!strcmp(argv[i], "--exhaustive"))
             t_exhaustive = 1;
-        else if (!strcmp(argv[i], "-k") && i + 1 < argc)
-            t_filter = argv[++i];
+        else if (!strcmp(argv[i], "-k") && i + 1 < argc && t_nfilters < T_FILTER_MAX)
+            t_filters[t_nfilters++] = argv[++i];
         else {
-            fprintf(stderr, "usage: %s [--quick | --exhaustive] [-k SUBSTRING]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--quick | --exhaustive] [-k SUBSTRING]...\n", argv[0]);
             return 2;
         }
     }
@@ -166,7 +181,7 @@ int main(int argc, char **argv)
     do {                                                                  \
         if (suite_##name)                                                 \
             suite_##name();                                               \
-        else if (!t_filter) {                                             \
+        else if (t_nfilters == 0) {                                             \
             printf("FAIL suite %s missing (no host_tests/test_%s.c)\n",   \
                    #name, #name);                                         \
             t_failed++;                                                   \
