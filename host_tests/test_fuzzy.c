@@ -607,6 +607,73 @@ static void test_kidnap(void)
 
 /* ---- abuse ------------------------------------------------------------------ */
 
+/* ring_track_q8: while a mode is tracked the update uses rings scaled by
+ * it (the vision path's precise ranges); from ignorance, and in the gate,
+ * the wide rings.  From ignorance both settings give the same grid, bit
+ * for bit; on a tracked mode a far observation (a post 6.8 m away)
+ * leaves less possibility mass (sum of cell heights) with the narrow
+ * rings, keeps
+ * the true pose possible, and the gate's bookkeeping (consistency,
+ * deferrals) is the same. */
+static void test_ring_track(void)
+{
+    const fl_field_t *f = fl_field_find("spl2013");
+    fl_fuzzy_params_t p;
+    fl_fuzzy_estimate_t e;
+    fl_obs_list_t list;
+    int32_t x = -2300, y = 1100;
+    fl_angle_t h = DEG(-35);
+    uint32_t wide, narrow, pw, pn;
+    fl_fuzzy_params_default(&p);
+    p.ring_track_q8 = 0;
+    CHECK_EQ(fl_fuzzy_params_check(&p), FL_ERR_RANGE);
+    p.ring_track_q8 = 257;
+    CHECK_EQ(fl_fuzzy_params_check(&p), FL_ERR_RANGE);
+    p.ring_track_q8 = 96;
+    CHECK_EQ(fl_fuzzy_params_check(&p), FL_OK);
+    /* from ignorance: identical */
+    fl_fuzzy_init(&G, f, NULL);
+    fl_fuzzy_init(&G2, f, &p);
+    visible(f, x, y, h, &list);
+    CHECK(list.n >= 2);
+    fl_fuzzy_update(&G, &list);
+    fl_fuzzy_update(&G2, &list);
+    CHECK(memcmp(G.cell, G2.cell, sizeof G.cell) == 0);
+    /* tracked */
+    fl_fuzzy_init(&G, f, NULL);
+    frames_from(f, x, y, h, 12);
+    fl_fuzzy_set_prior_half(&G, -1);
+    CHECK(fl_fuzzy_estimate(&G, &e));
+    CHECK(G.track_valid);
+    memcpy(&G2, &G, sizeof G);
+    G2.params.ring_track_q8 = 96;
+    fl_obs_list_clear(&list);
+    {
+        fl_obs_t o = make_obs(fl_field_nth_kind(f, FL_LM_POST, 0), x, y, h);
+        CHECK_LE(6000, o.range_mm);
+        fl_obs_list_push(&list, &o);
+    }
+    fl_fuzzy_update(&G, &list);
+    fl_fuzzy_update(&G2, &list);
+    wide = narrow = 0;
+    {
+        int i;
+        for (i = 0; i < G.nx * G.ny; i++) {
+            wide += G.cell[i].height;
+            narrow += G2.cell[i].height;
+        }
+    }
+    pw = fl_fuzzy_possibility_q16(&G, x, y, h);
+    pn = fl_fuzzy_possibility_q16(&G2, x, y, h);
+    t_info("fuzzy ring_track: height sum after a post at %d mm on a tracked mode: wide %u, "
+           "narrow (96) %u; true pose %.2f / %.2f", (int)list.obs[0].range_mm, wide, narrow,
+           pw / 65536.0, pn / 65536.0);
+    CHECK(narrow < wide);
+    CHECK_LE(32768, pn);
+    CHECK_EQ(G.consistency_q16, G2.consistency_q16);
+    CHECK_EQ(G.stats.obs_gated, G2.stats.obs_gated);
+}
+
 static void check_valid_on_carpet(void)
 {
     fl_fuzzy_estimate_t e;
@@ -815,6 +882,7 @@ void suite_fuzzy(void)
     t_run("fuzzy.resets", test_resets);
     t_run("fuzzy.heading_clusters", test_heading_clusters);
     t_run("fuzzy.kidnap", test_kidnap);
+    t_run("fuzzy.ring_track", test_ring_track);
     t_run("fuzzy.abuse", test_abuse);
     t_run("fuzzy.digest", test_digest);
     t_run("fuzzy.sim_walk", test_sim_walk);

@@ -95,6 +95,7 @@ void fl_fuzzy_params_default(fl_fuzzy_params_t *p)
     p->ring_core_q8 = 15;
     p->ring_slope_mm = 80;
     p->ring_slope_q8 = 46;
+    p->ring_track_q8 = 256;
     p->bearing_core = 455;
     p->bearing_slope = 910;
     p->orient_core = 1820;
@@ -124,6 +125,7 @@ fl_status_t fl_fuzzy_params_check(const fl_fuzzy_params_t *p)
         p->ring_base_mm < 0 || p->ring_base_mm > 5000 ||
         p->ring_slope_mm < 1 || p->ring_slope_mm > 5000 ||
         p->ring_core_q8 > 256 || p->ring_slope_q8 > 256 ||
+        p->ring_track_q8 < 1 || p->ring_track_q8 > 256 ||
         p->bearing_core < 0 || p->bearing_slope < 0 ||
         p->orient_core < 0 || p->orient_slope < 1 ||
         p->head_min_core < 0 || p->head_min_slope < 0 ||

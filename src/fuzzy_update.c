@@ -484,8 +484,9 @@ static void visit_row(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
 }
 
 /* Scaling and overflow: range <= max_range_mm <= 30000; rc, rs = base +
- * r * q8 / 256 <= 5000 + 30000; confidence Q0.8 -> bias Q0.8 -> Q16. */
-static void obs_params(const fl_fuzzy_t *g, const fl_obs_t *o, obsp_t *q)
+ * r * q8 / 256 <= 5000 + 30000, times the ring scale tq in [1, 256]
+ * (Q8, 256 = 1) < 2^24 in uint32, rounded back by 8; confidence Q0.8 -> bias Q0.8 -> Q16. */
+static void obs_params(const fl_fuzzy_t *g, const fl_obs_t *o, obsp_t *q, uint32_t tq)
 {
     const fl_fuzzy_params_t *p = &g->params;
     int32_t dmin, cell_ang;
@@ -495,6 +496,11 @@ static void obs_params(const fl_fuzzy_t *g, const fl_obs_t *o, obsp_t *q)
             (int32_t)(((uint32_t)q->r * (p->ring_core_q8 > 256 ? 256u : p->ring_core_q8)) >> 8);
     q->rs = clamp32(p->ring_slope_mm, 1, 5000) +
             (int32_t)(((uint32_t)q->r * (p->ring_slope_q8 > 256 ? 256u : p->ring_slope_q8)) >> 8);
+    /* tracked: precise rings (rounded, the slope at least 1 mm) */
+    q->rc = (int32_t)(((uint32_t)q->rc * tq + 128u) >> 8);
+    q->rs = (int32_t)(((uint32_t)q->rs * tq + 128u) >> 8);
+    if (q->rs < 1)
+        q->rs = 1;
     q->rw = q->rc + q->rs;
     q->rin = q->r - q->rw;
     q->rout = q->r + q->rw;
@@ -774,7 +780,7 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
         g->stats.obs_ignored = fz_sat_inc(g->stats.obs_ignored);
         return false;
     }
-    obs_params(g, o, &q);
+    obs_params(g, o, &q, 256u);       /* the wide rings: regions and gate */
     nreg = build_regions(g, o, &q);
     if (nreg == 0) {
         g->stats.obs_ignored = fz_sat_inc(g->stats.obs_ignored);
@@ -807,6 +813,12 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
             g->contra_run = 0;
         }
     }
+    /* tracked: the update itself uses the precise rings (ring_track_q8;
+     * the regions of the wide rings contain them, the gate above keeps
+     * the wide rings so that deferral and kidnap detection do not depend
+     * on it) */
+    if (g->track_valid && p->ring_track_q8 < 256)
+        obs_params(g, o, &q, (uint32_t)clamp32(p->ring_track_q8, 1, 256));
     /* an exactly symmetric belief on a symmetric field: the first half of
      * the rows (and the middle row of an odd grid) is updated, the rest is
      * its mirror (symmetrize below would make it so anyway) */

@@ -107,7 +107,10 @@ double lr_deg(fl_angle_t a);
 
 /* The localizer parameters used with the vision path (simulate --frames,
  * localize, demo): fl_fuzzy_params_default with the changes measured in
- * tools/locrun.c (lr_params_frames). */
+ * tools/locrun.c (lr_params_frames), among them precise tracking rings,
+ * ring_track_q8 = LR_RING_TRACK_FRAMES, which lr_init turns back to 256
+ * (wide) for cameras narrower than 320 px (the AIBO's). */
+#define LR_RING_TRACK_FRAMES 96
 void lr_params_frames(fl_fuzzy_params_t *p);
 
 /* Set one fuzzy parameter by name, "NAME=INTEGER" (field names of

@@ -141,6 +141,13 @@ typedef struct {
     uint16_t ring_core_q8;       /* + this fraction of the range (0.06) */
     int32_t ring_slope_mm;       /* radial slope width at range 0 (80) */
     uint16_t ring_slope_q8;      /* + this fraction of the range (0.18) */
+    uint16_t ring_track_q8;      /* while a mode is tracked the update uses
+                                    the four ring widths above scaled by
+                                    this (1 = 256, the default; 1..256):
+                                    precise rings for tracking; wide ones
+                                    from ignorance and for the gate, so
+                                    deferral and kidnap detection do not
+                                    change (tools/locrun.c: vision path) */
     fl_angle_t bearing_core;     /* heading core half-width (2.5 deg) */
     fl_angle_t bearing_slope;    /* heading slope width (5 deg) */
     fl_angle_t head_min_core;    /* a cell's heading core and slope never
