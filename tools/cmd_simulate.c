@@ -62,7 +62,13 @@
  *   pos_rmse_mm X       root mean square position error over the records
  *                       after convergence (t >= converge_s), excluding the
  *                       kidnap's window [kidnap, kidnap + kidnap_recover_s)
- *                       (to the end of the run when it never recovers);
+ *                       (to the end of the run when it never recovers)
+ *                       and the same window after the penalty placement
+ *                       (the robot is told "one of the two touchline
+ *                       spots"; until a landmark decides, its estimate is
+ *                       either one: "# penalty_recover_s" gives the
+ *                       window's length, and a "# every record" line the
+ *                       RMSE with nothing excluded);
  *                       nan if no record qualifies
  *   heading_rmse_deg X  the same for the heading error (degrees)
  *   converge_s X        first time t from the start (total ignorance) such

@@ -773,7 +773,7 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
     lr_rec_t *rec;
     lr_job_t *job = NULL;
     lr_odo_t acc = {0, 0, 0};
-    long n = 0, cap, i, i_kidnap = -1;
+    long n = 0, cap, i, i_kidnap = -1, i_penalty = -1;
     int half_known = 1, sym, every = o->every < 1 ? 1 : o->every, placed = 0, done = 0;
     unsigned events = 0;
     int nthreads = o->threads > 0 ? o->threads : lr_threads_default();
@@ -860,6 +860,8 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
                 if (st->events & SIM_EV_PENALIZED) {
                     fl_fuzzy_reset_penalty(lr.grid, (int32_t)sc->penalty_x_mm, 300, 2730);
                     half_known = 1;
+                    if (i_penalty < 0)
+                        i_penalty = n;
                 }
                 fl_fuzzy_update(lr.grid, &st->obs);
                 nb = 1;
@@ -880,6 +882,8 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
             job[nb].ay = acc.y;
             job[nb].aa = acc.a;
             job[nb].placed = placed;
+            if (placed && i_penalty < 0)
+                i_penalty = n + nb;
             job[nb].half_known = half_known;
             job[nb].events = events;
             events = 0;
@@ -989,7 +993,8 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
     res->records = n;
     {
         long ic = lr_first_hold(rec, n, 0, LR_HOLD_S), ik;
-        double se_p = 0, se_h = 0;
+        double se_p = 0, se_h = 0, se_pa = 0, se_ha = 0;
+        long used_all = 0;
         res->converge_s = ic >= 0 ? rec[ic].t : INFINITY;
         res->kidnap_recover_s = NAN;
         if (i_kidnap >= 0 && i_kidnap < n) {
@@ -998,10 +1003,22 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
             for (i = i_kidnap; i < n && (ik < 0 || i < ik); i++)
                 rec[i].excluded = 1;
         }
+        res->penalty_recover_s = NAN;
+        if (i_penalty >= 0 && i_penalty < n) {
+            long ip = lr_first_hold(rec, n, i_penalty, LR_HOLD_S);
+            res->penalty_recover_s = ip >= 0 ? rec[ip].t - rec[i_penalty].t : INFINITY;
+            for (i = i_penalty; i < n && (ip < 0 || i < ip); i++)
+                rec[i].excluded = 1;
+        }
         for (i = 0; i < n; i++) {
             if (rec[i].flip && (i == 0 || !rec[i - 1].flip))
                 res->flips++;
-            if (ic < 0 || i < ic || rec[i].excluded)
+            if (ic < 0 || i < ic)
+                continue;
+            se_pa += rec[i].pos_err * rec[i].pos_err;
+            se_ha += rec[i].head_err * rec[i].head_err;
+            used_all++;
+            if (rec[i].excluded)
                 continue;
             se_p += rec[i].pos_err * rec[i].pos_err;
             se_h += rec[i].head_err * rec[i].head_err;
@@ -1009,6 +1026,8 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
         }
         res->pos_rmse_mm = res->used > 0 ? sqrt(se_p / (double)res->used) : NAN;
         res->heading_rmse_deg = res->used > 0 ? sqrt(se_h / (double)res->used) : NAN;
+        res->pos_rmse_all_mm = used_all > 0 ? sqrt(se_pa / (double)used_all) : NAN;
+        res->heading_rmse_all_deg = used_all > 0 ? sqrt(se_ha / (double)used_all) : NAN;
     }
     res->stats = lr.grid->stats;
     if (cache != NULL)
@@ -1033,6 +1052,11 @@ static void lr_print_val(FILE *f, const char *name, double v, int decimals)
 
 void lr_walk_print_summary(FILE *f, const lr_walk_result_t *res)
 {
+    fprintf(f, "# penalty_recover_s %.2f (its window is excluded like the kidnap's)\n",
+            res->penalty_recover_s);
+    fprintf(f, "# every record after convergence, nothing excluded: pos_rmse_mm %.1f "
+               "heading_rmse_deg %.2f\n",
+            res->pos_rmse_all_mm, res->heading_rmse_all_deg);
     lr_print_val(f, "pos_rmse_mm", res->pos_rmse_mm, 1);
     lr_print_val(f, "heading_rmse_deg", res->heading_rmse_deg, 2);
     lr_print_val(f, "converge_s", res->converge_s, 2);

@@ -243,6 +243,12 @@ typedef struct {
     double pos_rmse_mm, heading_rmse_deg;   /* NAN when used == 0 */
     double converge_s;            /* INFINITY if never */
     double kidnap_recover_s;      /* NAN: no kidnap, INFINITY: never */
+    double penalty_recover_s;     /* the same from the first penalty
+                                     placement (excluded like the kidnap's
+                                     window: the two touchline spots are
+                                     equally likely until a landmark is seen) */
+    double pos_rmse_all_mm, heading_rmse_all_deg;  /* after convergence,
+                                     nothing excluded (information) */
     long flips;
     double final_pos_err_mm, final_head_err_deg;
     fl_fuzzy_stats_t stats;
