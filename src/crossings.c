@@ -1250,23 +1250,73 @@ static bool cr_white_near(const fl_scan_t *s, int32_t u_q4, int32_t v_q4)
            cr_class_px(s, u_q4, v_q4 - dv) == FL_CLASS_WHITE;
 }
 
+/* Halfway-line direction for a circle found without one: the longest
+ * segment (not a chord of the circle) at least a third of the radius long
+ * on the ground whose ground line passes within max(150 mm, range / 10) of
+ * the circle's centre (the circle stage asks for a full radius, which a
+ * halfway line broken by the centre mark or cut by the image edge misses).
+ * Direction folded to [-90, 90) deg like the circle's.  Scaling: ground
+ * coordinates |mm| < 2^17, the cross product < 2^35 in int64 against
+ * tolerance x length < 2^35. */
+static bool cr_circle_axis(const fl_circle_t *circle, const fl_lines_t *lines,
+                           const fl_camera_t *camera, int32_t R, fl_angle_t *out)
+{
+    int32_t i, best_len = 0, tol;
+    tol = (int32_t)fl_hypot(circle->centre.x_mm, circle->centre.y_mm) / 10;
+    if (tol < 150)
+        tol = 150;
+    for (i = 0; i < lines->n_segments && i < FL_LINES_MAX_SEGMENTS; i++) {
+        const fl_segment_t *s = &lines->segments[i];
+        fl_point_t a, b;
+        int64_t dx, dy, cr;
+        int32_t len;
+        if ((s->flags & FL_SEG_CIRCLE) ||
+            !fl_camera_pixel_to_ground(camera, s->u0_q4, s->v0_q4, &a) ||
+            !fl_camera_pixel_to_ground(camera, s->u1_q4, s->v1_q4, &b))
+            continue;
+        dx = (int64_t)b.x_mm - a.x_mm;
+        dy = (int64_t)b.y_mm - a.y_mm;
+        if (dx < -(1 << 17) || dx > (1 << 17) || dy < -(1 << 17) || dy > (1 << 17))
+            continue;
+        len = (int32_t)fl_hypot((int32_t)dx, (int32_t)dy);
+        if (3 * len < R || len <= best_len)
+            continue;
+        cr = dx * ((int64_t)circle->centre.y_mm - a.y_mm) -
+             dy * ((int64_t)circle->centre.x_mm - a.x_mm);
+        if (cr < 0)
+            cr = -cr;
+        if (cr <= (int64_t)tol * len) {
+            fl_angle_t o = fl_atan2((int32_t)dy, (int32_t)dx);
+            if (o >= 16384 || o < -16384)
+                o = fl_angle_add(o, FL_ANGLE_180);
+            *out = o;
+            best_len = len;
+        }
+    }
+    return best_len > 0;
+}
+
 int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
                                 const fl_lines_t *lines, const fl_scan_t *scan,
                                 const fl_camera_t *camera,
                                 const fl_field_t *field)
 {
     int32_t k, a, added = 0, R, step_q4;
+    fl_angle_t ori;
     if (!c || !circle || !lines || !scan || !camera || !field || !circle->found ||
-        !circle->has_orientation || field->circle_radius_mm <= 0 || lines->width <= 0 ||
+        field->circle_radius_mm <= 0 || lines->width <= 0 ||
         scan->width != lines->width || scan->height != lines->height)
         return 0;
     R = field->circle_radius_mm;
+    ori = circle->orientation;
+    if (!circle->has_orientation && !cr_circle_axis(circle, lines, camera, R, &ori))
+        return 0;
     step_q4 = 16 * lines->step_px;
     for (k = -1; k <= 1; k++) {
         cr_item_t it;
         fl_point_t p;
         int32_t u, v, w, merge;
-        int16_t co = fl_cos_q15(circle->orientation), so = fl_sin_q15(circle->orientation);
+        int16_t co = fl_cos_q15(ori), so = fl_sin_q15(ori);
         p.x_mm = circle->centre.x_mm + k * fl_mul_q15(R, co);
         p.y_mm = circle->centre.y_mm + k * fl_mul_q15(R, so);
         if (!fl_camera_ground_to_pixel(camera, p, &u, &v) || u < 0 || v < 0 ||
@@ -1282,7 +1332,7 @@ int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
         it.x.seg_a = it.x.seg_b = -1;
         it.ground = true;
         for (a = 0; a < 4; a++) {
-            fl_angle_t g = fl_angle_add(circle->orientation, (fl_angle_t)(a == 0 ? 0 : a == 1 ? 16384 : a == 2 ? -32768 : -16384));
+            fl_angle_t g = fl_angle_add(ori, (fl_angle_t)(a == 0 ? 0 : a == 1 ? 16384 : a == 2 ? -32768 : -16384));
             fl_point_t q;
             int32_t u2, v2;
             q.x_mm = p.x_mm + fl_mul_q15(100, fl_cos_q15(g));
