@@ -221,8 +221,12 @@ static int32_t ln_cell(const fl_scan_t *s, int32_t i, int32_t j)
 }
 
 /* mode: the largest number of samples (1..4096), plus LN_STRICT for no
- * neighbour tolerance (six arguments: no stack-passed ones). */
+ * neighbour tolerance, plus LN_NEED(p) for callers that only compare the
+ * result with p (1..100): the walk stops once p is out of reach and the
+ * ratio so far (below p) is returned (six arguments: no stack-passed
+ * ones). */
 #define LN_STRICT 0x10000
+#define LN_NEED(p) ((int32_t)(p) << 20)
 static int32_t ln_white_pct(const fl_scan_t *scan, int32_t u0_q4, int32_t v0_q4,
                             int32_t u1_q4, int32_t v1_q4, int32_t mode);
 
@@ -240,6 +244,7 @@ static int32_t ln_white_pct(const fl_scan_t *scan, int32_t u0_q4, int32_t v0_q4,
 {
     int32_t max_samples = mode & 0xffff;
     bool strict = (mode & LN_STRICT) != 0;
+    int32_t need = (mode >> 20) & 127;
     int32_t cs, rs, gu0, gv0, gu1, gv1, du, dv, n, k, white = 0, inside = 0;
     int32_t su, sv, pu, pv;
     bool horiz;
@@ -285,6 +290,10 @@ static int32_t ln_white_pct(const fl_scan_t *scan, int32_t u0_q4, int32_t v0_q4,
                               ln_cell(scan, i + 1, j) == FL_CLASS_WHITE))
                 white++;
         }
+        /* early rejection: even all-white samples from here on stay below
+         * need (the result is then below need, as the full walk's) */
+        if (need > 0 && (white + n - k) * 100 < need * (n + 1))
+            break;
         pu += su;
         pv += sv;
     }
@@ -1235,7 +1244,7 @@ static void ln_grow_end(fl_lines_t *l, const fl_scan_t *scan, ln_grow_t *g,
                 }
                 l->white_checks++;
                 if (ln_paint_pct(l, scan, eu * 8, ev * 8, p->u_q1 * 8, p->v_q1 * 8,
-                                 4096) < l->params.white_pct)
+                                 4096 | LN_NEED(l->params.white_pct)) < l->params.white_pct)
                     continue;
             }
             ln_mom_of(s, &m);
@@ -1329,7 +1338,8 @@ static bool ln_try_merge(fl_lines_t *l, const fl_scan_t *scan, fl_segment_t *a,
     if (scan && best > (int64_t)4 * l->gap_px * l->gap_px) {
         l->white_checks++;
         if (ln_paint_pct(l, scan, pts[gi][0] * 8, pts[gi][1] * 8, pts[gj][0] * 8,
-                         pts[gj][1] * 8, 4096) < l->params.white_pct)
+                         pts[gj][1] * 8, 4096 | LN_NEED(l->params.white_pct)) <
+            l->params.white_pct)
             return false;
     }
     /* farthest pair of the four ends: the merged extremes */
