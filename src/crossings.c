@@ -945,7 +945,7 @@ static void cr_border_t(const cr_ctx_t *ctx, int32_t is)
  * stops there, the ground normal of S (both ways; not within 12 degrees
  * of S in the image) is followed to the nearest segment P parallel to S in
  * the image (12 degrees) whose line it meets between 2 line steps and
- * CR_CONN_MM (at most 6 steps), inside P's extent.  The connector E-F must
+ * CR_CONN_MM (at most 8 steps), inside P's extent.  The connector E-F must
  * be paint (fl_lines_paint_pct >= white_pct, F moved along P by up to a
  * step to the best paint: the ground normal is a few degrees off far
  * away) and the half of the strip beside it beyond the corner nearer E
@@ -1029,8 +1029,8 @@ static void cr_connect(const cr_ctx_t *ctx, int32_t is, bool end1)
         if (plen <= 0)
             continue;
         lim = (int32_t)((int64_t)plen * CR_CONN_MM / CR_SCALE_MM);
-        if (lim > 6 * step_q4)
-            lim = 6 * step_q4;
+        if (lim > 8 * step_q4)
+            lim = 8 * step_q4;
         /* far away the ground normal of a line near the horizon projects
          * almost along it: no corner to tell from a break */
         if (cr_abs(fl_sin_q15(fl_angle_sub(fl_atan2(r.cv, r.cu), S->angle))) <= CR_CONN_PAR_SIN)

@@ -46,7 +46,7 @@
  * lines between two parallel ones) are a few pixels long: no segment, so
  * their corners pair with nothing.  At an end of a segment where its paint
  * stops, the line's ground normal is followed to the nearest segment
- * parallel to it in the image, 2 line steps to 1000 mm (at most 6 steps)
+ * parallel to it in the image, 2 line steps to 1000 mm (at most 8 steps)
  * away; when that connector is paint (fl_lines_paint_pct, the luma for
  * thin lines) and the strip beside it beyond the corner is not, the end
  * is an L and the connector's foot a T (an L where the parallel segment
