@@ -61,6 +61,7 @@
 #define CR_KAPPA_Q4 (12 * 16) /* probe distance for ground directions */
 #define CR_SAME_ARM 4551      /* 25 deg: two arms within this are one */
 #define CR_MARK_CLUSTERS_MAX 256 /* mark candidates looked at per frame */
+#define CR_MARK_CLUSTERS_CLUTTER 64 /* ... once the line points overflowed */
 #define CR_LUMA_PROBES 128    /* probes per frame that may read the luma */
 
 void fl_crossings_params_default(fl_crossings_params_t *p)
@@ -594,6 +595,8 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
 {
     uint32_t vis[(FL_LINES_MAX_POINTS + 31) / 32];
     int32_t k, lw = l->line_width_mm, step_q4 = 16 * l->step_px, clusters = 0;
+    int32_t max_clusters = l->points_dropped > 0 ? CR_MARK_CLUSTERS_CLUTTER
+                                                 : CR_MARK_CLUSTERS_MAX;
     if (!scan || !field || field->mark_size_mm <= 0 || lw <= 0 || !cam)
         return;
     memset(vis, 0, sizeof vis);
@@ -607,7 +610,7 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         if (vis[k >> 5] & (1u << (k & 31)))
             continue;
         vis[k >> 5] |= 1u << (k & 31);
-        if (++clusters > CR_MARK_CLUSTERS_MAX) {
+        if (++clusters > max_clusters) {
             c->marks_capped++;
             return;
         }

@@ -133,7 +133,8 @@ typedef struct {
     int32_t rejected_ground;  /* failed the 90 degree ground check */
     int32_t rejected_arms;    /* arm set that is no crossing */
     int32_t merged;           /* crossings merged into others */
-    int32_t marks_capped;     /* mark search stopped after 256 clusters */
+    int32_t marks_capped;     /* mark search stopped after 256 clusters
+                                 (64 once the line points overflowed) */
     int32_t border_t;         /* T's of one segment at the field border */
     int32_t luma_probes;      /* arm probes that fell back to the luma
                                  (at most 128 per frame) */
