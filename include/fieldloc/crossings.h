@@ -116,7 +116,9 @@ typedef struct {
     int32_t arm_px;           /* segment extent past X that makes an arm,
                                  px; 0 = auto (max(2 step, 2 line width)) */
     int32_t reach_px;         /* largest gap between X and a segment end,
-                                 px; 0 = auto (max(3 step, 3 line width)) */
+                                 px; 0 = auto (max(3 step, 3 line width),
+                                 at least 5 steps when both segments are
+                                 6 steps long) */
     int32_t probe_white_pct;  /* probe: arm present at >= this % white */
     int32_t probe_green_pct;  /* probe: arm absent at < this % white */
     int32_t min_confidence;   /* crossings below are dropped, 0..255 */
