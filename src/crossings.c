@@ -408,6 +408,21 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     geo[1] = ta >= arm;
     geo[2] = B->len_q4 - tb >= arm;
     geo[3] = tb >= arm;
+    /* an arm cut off by the image edge: half an arm of segment up to an
+     * end within a step of the border */
+    {
+        int32_t eh = step_q4, umax = 16 * (l->width - 1) - eh, vmax = 16 * (l->height - 1) - eh;
+#define CR_AT_EDGE(u, v) ((u) < eh || (v) < eh || (u) > umax || (v) > vmax)
+        if (!geo[0] && 2 * (A->len_q4 - ta) >= arm && CR_AT_EDGE(A->u1_q4, A->v1_q4))
+            geo[0] = true;
+        if (!geo[1] && 2 * ta >= arm && CR_AT_EDGE(A->u0_q4, A->v0_q4))
+            geo[1] = true;
+        if (!geo[2] && 2 * (B->len_q4 - tb) >= arm && CR_AT_EDGE(B->u1_q4, B->v1_q4))
+            geo[2] = true;
+        if (!geo[3] && 2 * tb >= arm && CR_AT_EDGE(B->u0_q4, B->v0_q4))
+            geo[3] = true;
+#undef CR_AT_EDGE
+    }
     dirc[0] = ca; dirs[0] = sa;
     dirc[1] = -ca; dirs[1] = -sa;
     dirc[2] = cb; dirs[2] = sb;

@@ -5,7 +5,9 @@
  * Pairs.  Every pair of segments (lines.h) at least min_angle apart in the
  * image whose (infinite) lines meet inside the image is a candidate.  For
  * each segment the meeting point X is placed along it: an arm leaves X
- * where the segment goes on past X by at least arm_px; X may lie beyond a
+ * where the segment goes on past X by at least arm_px (half of it where
+ * the segment ends within a line step of the image border: the arm is cut
+ * off there); X may lie beyond a
  * segment's end by at most reach_px (segments stop short of a crossing,
  * where white runs merge).  Seed 000's rules follow: near both ends -> L,
  * inside one and near an end of the other -> T, inside both -> X.  The
