@@ -409,8 +409,9 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     geo[2] = B->len_q4 - tb >= arm;
     geo[3] = tb >= arm;
     /* an arm cut off by the image edge: half an arm of segment up to an
-     * end within a step of the border */
-    {
+     * end within a step of the border (not in images under 8 arms across:
+     * there every segment is near an edge) */
+    if (16 * l->width >= 8 * arm && 16 * l->height >= 8 * arm) {
         int32_t eh = step_q4, umax = 16 * (l->width - 1) - eh, vmax = 16 * (l->height - 1) - eh;
 #define CR_AT_EDGE(u, v) ((u) < eh || (v) < eh || (u) > umax || (v) > vmax)
         if (!geo[0] && 2 * (A->len_q4 - ta) >= arm && CR_AT_EDGE(A->u1_q4, A->v1_q4))
