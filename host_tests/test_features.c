@@ -432,10 +432,18 @@ static void test_vision_noise(void)
         CHECK(obs.n <= FL_OBS_MAX);
         CHECK(dc.vis->lines.n_points <= FL_LINES_MAX_POINTS);
         CHECK(dc.vis->lines.n_points == FL_LINES_MAX_POINTS || dc.vis->lines.points_dropped == 0);
+        /* class noise overflows the points: the clutter budgets apply
+         * (growth checks FL_LINES_MAX_POINTS / 2, ridge checks 64, marks
+         * 64 clusters) */
+        CHECK(dc.vis->lines.points_dropped > 0);
+        CHECK_LE(dc.vis->lines.white_checks, FL_LINES_MAX_POINTS / 2);
+        CHECK(dc.vis->lines.checks_capped > 0);
+        CHECK_LE(dc.vis->lines.ridge_checks, 64);
         n_cross += dc.vis->crossings.n;
-        t_info("noise %dx%d: points %d (+%d dropped), segments %d, crossings %d, posts %d, "
-               "circle %d",
+        t_info("noise %dx%d: points %d (+%d dropped), white checks %d, segments %d, "
+               "crossings %d, posts %d, circle %d",
                w, h, (int)dc.vis->lines.n_points, (int)dc.vis->lines.points_dropped,
+               (int)dc.vis->lines.white_checks,
                (int)dc.vis->lines.n_segments, (int)dc.vis->crossings.n, (int)dc.vis->posts.n,
                (int)dc.vis->circle.found);
         free(rgb);
@@ -601,6 +609,55 @@ static void test_connector(void)
     det_ctx_free(&dc);
 }
 
+/* A circle found without its halfway line (the circle stage wants a full
+ * radius of line through the centre; spl2013_penalty_far's halfway line is
+ * broken by the centre mark): the crossings stage takes the longest
+ * segment through the centre instead and reports the centre mark and the
+ * circle's X on the halfway line. */
+static void test_circle_axis(void)
+{
+    static truth_t tr;
+    render_frame_t fr;
+    fl_camera_t fc;
+    fl_obs_list_t obs;
+    det_ctx_t dc;
+    char err[256];
+    int32_t i, k, found = 0, want = 0;
+    const fl_field_t *field = fl_field_find("spl2013");
+    if (truth_load("fixtures/frames/spl2013_penalty_far.truth", &tr, err, sizeof err) != 0 ||
+        render_read_frame("fixtures/frames/spl2013_penalty_far.raw", &fr, err, sizeof err) != 0) {
+        t_info("skipped: fixture spl2013_penalty_far not found (run from the repository root)");
+        return;
+    }
+    CHECK_EQ(fl_camera_init(&fc, fl_camera_model_find("nao4-top-320"), &tr.head), FL_OK);
+    CHECK_EQ(det_ctx_init(&dc), 0);
+    fl_vision_frame(dc.vis, dc.colors, &fr.view, &fc, field, &obs);
+    render_frame_free(&fr);
+    CHECK(dc.vis->circle.found);
+    CHECK(!dc.vis->circle.has_orientation);
+    for (k = 0; k < tr.n; k++) {
+        const truth_feature_t *f = &tr.f[k];
+        if (f->occluded || f->range_mm > 3000 ||
+            (f->kind != TRUTH_X && f->kind != TRUTH_CENTRE_MARK))
+            continue;
+        want++;
+        for (i = 0; i < dc.vis->crossings.n; i++) {
+            const fl_crossing_t *x = &dc.vis->crossings.c[i];
+            if (hypot(x->u_q4 / 16.0 - f->u, x->v_q4 / 16.0 - f->v) <= 8.0 &&
+                (x->kind == FL_LM_X || x->kind == FL_LM_CENTRE_MARK)) {
+                found++;
+                CHECK(fabs(x->range_mm - f->range_mm) < 0.05 * f->range_mm);
+                break;
+            }
+        }
+    }
+    t_info("circle without halfway line: %d of %d X's / centre marks under 3 m found",
+           (int)found, (int)want);
+    CHECK(want >= 2);
+    CHECK_EQ(found, want);
+    det_ctx_free(&dc);
+}
+
 static void test_goldens(void)
 {
     const char *write = getenv("FIELDLOC_WRITE_GOLDEN");
@@ -725,7 +782,7 @@ static void test_eval_fixtures(void)
     floor_target("rendered crossings precision (<= 6 m)",
                  ratio(s.cross_tp, s.cross_tp + s.cross_fp), 0.94, 0.95);
     floor_target("rendered crossings recall (<= 6 m)",
-                 ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.71, 0.90);
+                 ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.74, 0.90);
     for (k = 0; k < 3; k++)   /* bins 0-1, 1-2, 2-3 m */
         if (s.rng_n[k] > 0 && s.rng_max[k] > worst3)
             worst3 = s.rng_max[k];
@@ -760,7 +817,7 @@ static void test_eval_realdata(void)
      * target's margin */
     floor_target("UvA crossings precision", ratio(s.cross_tp, s.cross_tp + s.cross_fp), 0.86,
                  0.85);
-    floor_target("UvA crossings recall", ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.64, 0.75);
+    floor_target("UvA crossings recall", ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.65, 0.75);
     floor_target("UvA post feet precision", ratio(s.foot_tp, s.foot_tp + s.foot_fp), 0.96, 0.90);
     floor_target("UvA post feet recall", ratio(s.foot_tp, s.foot_tp + s.foot_fn), 0.90, 0.90);
     t_info("UvA type accuracy %.3f over %d matched crossings", ratio(s.type_ok, s.cross_tp),
@@ -778,6 +835,7 @@ void suite_features(void)
     t_run("features.vision_noise", test_vision_noise);
     t_run("features.border_t", test_border_t);
     t_run("features.connector", test_connector);
+    t_run("features.circle_axis", test_circle_axis);
     t_run("features.goldens", test_goldens);
     t_run("features.eval_fixtures", test_eval_fixtures);
     t_run("features.eval_realdata", test_eval_realdata);

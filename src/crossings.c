@@ -61,6 +61,7 @@
 #define CR_KAPPA_Q4 (12 * 16) /* probe distance for ground directions */
 #define CR_SAME_ARM 4551      /* 25 deg: two arms within this are one */
 #define CR_MARK_CLUSTERS_MAX 256 /* mark candidates looked at per frame */
+#define CR_MARK_CLUSTERS_CLUTTER 64 /* ... once the line points overflowed */
 #define CR_LUMA_PROBES 128    /* probes per frame that may read the luma */
 
 void fl_crossings_params_default(fl_crossings_params_t *p)
@@ -394,6 +395,12 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     w = cr_width_q4(l, xv);
     arm = pp->arm_px > 0 ? 16 * pp->arm_px : 2 * step_q4 > 2 * w ? 2 * step_q4 : 2 * w;
     reach = pp->reach_px > 0 ? 16 * pp->reach_px : 3 * step_q4 > 3 * w ? 3 * step_q4 : 3 * w;
+    /* two long segments (6 steps each) may stop up to 5 steps short of
+     * their intersection: where lines meet at a shallow image angle (a far
+     * corner) one of them takes the other's points near the corner */
+    if (pp->reach_px <= 0 && A->len_q4 >= 6 * step_q4 && B->len_q4 >= 6 * step_q4 &&
+        reach < 5 * step_q4)
+        reach = 5 * step_q4;
     if (ta < -reach || ta > A->len_q4 + reach || tb < -reach || tb > B->len_q4 + reach)
         return;
     /* arms: 0 = A forward, 1 = A backward, 2 = B forward, 3 = B backward */
@@ -401,6 +408,22 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     geo[1] = ta >= arm;
     geo[2] = B->len_q4 - tb >= arm;
     geo[3] = tb >= arm;
+    /* an arm cut off by the image edge: half an arm of segment up to an
+     * end within a step of the border (not in images under 8 arms across:
+     * there every segment is near an edge) */
+    if (16 * l->width >= 8 * arm && 16 * l->height >= 8 * arm) {
+        int32_t eh = step_q4, umax = 16 * (l->width - 1) - eh, vmax = 16 * (l->height - 1) - eh;
+#define CR_AT_EDGE(u, v) ((u) < eh || (v) < eh || (u) > umax || (v) > vmax)
+        if (!geo[0] && 2 * (A->len_q4 - ta) >= arm && CR_AT_EDGE(A->u1_q4, A->v1_q4))
+            geo[0] = true;
+        if (!geo[1] && 2 * ta >= arm && CR_AT_EDGE(A->u0_q4, A->v0_q4))
+            geo[1] = true;
+        if (!geo[2] && 2 * (B->len_q4 - tb) >= arm && CR_AT_EDGE(B->u1_q4, B->v1_q4))
+            geo[2] = true;
+        if (!geo[3] && 2 * tb >= arm && CR_AT_EDGE(B->u0_q4, B->v0_q4))
+            geo[3] = true;
+#undef CR_AT_EDGE
+    }
     dirc[0] = ca; dirs[0] = sa;
     dirc[1] = -ca; dirs[1] = -sa;
     dirc[2] = cb; dirs[2] = sb;
@@ -594,6 +617,8 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
 {
     uint32_t vis[(FL_LINES_MAX_POINTS + 31) / 32];
     int32_t k, lw = l->line_width_mm, step_q4 = 16 * l->step_px, clusters = 0;
+    int32_t max_clusters = l->points_dropped > 0 ? CR_MARK_CLUSTERS_CLUTTER
+                                                 : CR_MARK_CLUSTERS_MAX;
     if (!scan || !field || field->mark_size_mm <= 0 || lw <= 0 || !cam)
         return;
     memset(vis, 0, sizeof vis);
@@ -607,7 +632,7 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         if (vis[k >> 5] & (1u << (k & 31)))
             continue;
         vis[k >> 5] |= 1u << (k & 31);
-        if (++clusters > CR_MARK_CLUSTERS_MAX) {
+        if (++clusters > max_clusters) {
             c->marks_capped++;
             return;
         }
@@ -945,7 +970,7 @@ static void cr_border_t(const cr_ctx_t *ctx, int32_t is)
  * stops there, the ground normal of S (both ways; not within 12 degrees
  * of S in the image) is followed to the nearest segment P parallel to S in
  * the image (12 degrees) whose line it meets between 2 line steps and
- * CR_CONN_MM (at most 6 steps), inside P's extent.  The connector E-F must
+ * CR_CONN_MM (at most 8 steps), inside P's extent.  The connector E-F must
  * be paint (fl_lines_paint_pct >= white_pct, F moved along P by up to a
  * step to the best paint: the ground normal is a few degrees off far
  * away) and the half of the strip beside it beyond the corner nearer E
@@ -1029,8 +1054,8 @@ static void cr_connect(const cr_ctx_t *ctx, int32_t is, bool end1)
         if (plen <= 0)
             continue;
         lim = (int32_t)((int64_t)plen * CR_CONN_MM / CR_SCALE_MM);
-        if (lim > 6 * step_q4)
-            lim = 6 * step_q4;
+        if (lim > 8 * step_q4)
+            lim = 8 * step_q4;
         /* far away the ground normal of a line near the horizon projects
          * almost along it: no corner to tell from a break */
         if (cr_abs(fl_sin_q15(fl_angle_sub(fl_atan2(r.cv, r.cu), S->angle))) <= CR_CONN_PAR_SIN)
@@ -1250,23 +1275,73 @@ static bool cr_white_near(const fl_scan_t *s, int32_t u_q4, int32_t v_q4)
            cr_class_px(s, u_q4, v_q4 - dv) == FL_CLASS_WHITE;
 }
 
+/* Halfway-line direction for a circle found without one: the longest
+ * segment (not a chord of the circle) at least a third of the radius long
+ * on the ground whose ground line passes within max(150 mm, range / 10) of
+ * the circle's centre (the circle stage asks for a full radius, which a
+ * halfway line broken by the centre mark or cut by the image edge misses).
+ * Direction folded to [-90, 90) deg like the circle's.  Scaling: ground
+ * coordinates |mm| < 2^17, the cross product < 2^35 in int64 against
+ * tolerance x length < 2^35. */
+static bool cr_circle_axis(const fl_circle_t *circle, const fl_lines_t *lines,
+                           const fl_camera_t *camera, int32_t R, fl_angle_t *out)
+{
+    int32_t i, best_len = 0, tol;
+    tol = (int32_t)fl_hypot(circle->centre.x_mm, circle->centre.y_mm) / 10;
+    if (tol < 150)
+        tol = 150;
+    for (i = 0; i < lines->n_segments && i < FL_LINES_MAX_SEGMENTS; i++) {
+        const fl_segment_t *s = &lines->segments[i];
+        fl_point_t a, b;
+        int64_t dx, dy, cr;
+        int32_t len;
+        if ((s->flags & FL_SEG_CIRCLE) ||
+            !fl_camera_pixel_to_ground(camera, s->u0_q4, s->v0_q4, &a) ||
+            !fl_camera_pixel_to_ground(camera, s->u1_q4, s->v1_q4, &b))
+            continue;
+        dx = (int64_t)b.x_mm - a.x_mm;
+        dy = (int64_t)b.y_mm - a.y_mm;
+        if (dx < -(1 << 17) || dx > (1 << 17) || dy < -(1 << 17) || dy > (1 << 17))
+            continue;
+        len = (int32_t)fl_hypot((int32_t)dx, (int32_t)dy);
+        if (3 * len < R || len <= best_len)
+            continue;
+        cr = dx * ((int64_t)circle->centre.y_mm - a.y_mm) -
+             dy * ((int64_t)circle->centre.x_mm - a.x_mm);
+        if (cr < 0)
+            cr = -cr;
+        if (cr <= (int64_t)tol * len) {
+            fl_angle_t o = fl_atan2((int32_t)dy, (int32_t)dx);
+            if (o >= 16384 || o < -16384)
+                o = fl_angle_add(o, FL_ANGLE_180);
+            *out = o;
+            best_len = len;
+        }
+    }
+    return best_len > 0;
+}
+
 int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
                                 const fl_lines_t *lines, const fl_scan_t *scan,
                                 const fl_camera_t *camera,
                                 const fl_field_t *field)
 {
     int32_t k, a, added = 0, R, step_q4;
+    fl_angle_t ori;
     if (!c || !circle || !lines || !scan || !camera || !field || !circle->found ||
-        !circle->has_orientation || field->circle_radius_mm <= 0 || lines->width <= 0 ||
+        field->circle_radius_mm <= 0 || lines->width <= 0 ||
         scan->width != lines->width || scan->height != lines->height)
         return 0;
     R = field->circle_radius_mm;
+    ori = circle->orientation;
+    if (!circle->has_orientation && !cr_circle_axis(circle, lines, camera, R, &ori))
+        return 0;
     step_q4 = 16 * lines->step_px;
     for (k = -1; k <= 1; k++) {
         cr_item_t it;
         fl_point_t p;
         int32_t u, v, w, merge;
-        int16_t co = fl_cos_q15(circle->orientation), so = fl_sin_q15(circle->orientation);
+        int16_t co = fl_cos_q15(ori), so = fl_sin_q15(ori);
         p.x_mm = circle->centre.x_mm + k * fl_mul_q15(R, co);
         p.y_mm = circle->centre.y_mm + k * fl_mul_q15(R, so);
         if (!fl_camera_ground_to_pixel(camera, p, &u, &v) || u < 0 || v < 0 ||
@@ -1282,7 +1357,7 @@ int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
         it.x.seg_a = it.x.seg_b = -1;
         it.ground = true;
         for (a = 0; a < 4; a++) {
-            fl_angle_t g = fl_angle_add(circle->orientation, (fl_angle_t)(a == 0 ? 0 : a == 1 ? 16384 : a == 2 ? -32768 : -16384));
+            fl_angle_t g = fl_angle_add(ori, (fl_angle_t)(a == 0 ? 0 : a == 1 ? 16384 : a == 2 ? -32768 : -16384));
             fl_point_t q;
             int32_t u2, v2;
             q.x_mm = p.x_mm + fl_mul_q15(100, fl_cos_q15(g));

@@ -51,7 +51,8 @@
  * every pixel of every m-th column in the band and of every m-th row of
  * the band read once (about 15 instructions per pixel from RGB, 5 from
  * YUYV or planar), plus at most 8 ridge tests per scan line; ridge checks
- * at most 256 x 33 samples of 5 pixels per frame (stopping once the
+ * at most 256 x 33 samples of 5 pixels per frame (64 and a growth budget
+ * of FL_LINES_MAX_POINTS / 2 checks once the points overflowed; stopping once the
  * threshold is out of reach); growth O(points x (3 x 3 bucket
  * occupancy + FL_LINES_CANDIDATES x gap samples)); merging O(segments^2)
  * cheap tests plus at most one white check per candidate pair; refit and
@@ -86,6 +87,13 @@
  * (real frames: under 40 in the 3 x 3 buckets). */
 #define LN_CHECK_BUDGET (2 * FL_LINES_MAX_POINTS)
 #define LN_SEARCH_MAX 96
+/* Clutter: a frame whose line points overflowed FL_LINES_MAX_POINTS (every
+ * rendered fixture and UvA frame has at most a third of them; class noise
+ * fills the table) gets a quarter of the growth's white checks and of the
+ * ridge checks: a field frame never gets there, and the worst frame's
+ * cost is mostly failed checks. */
+#define LN_CLUTTER_BUDGET (FL_LINES_MAX_POINTS / 2)
+#define LN_CLUTTER_RIDGE_BUDGET (LN_RIDGE_BUDGET / 4)
 
 /* ---- small helpers --------------------------------------------------------- */
 
@@ -221,8 +229,12 @@ static int32_t ln_cell(const fl_scan_t *s, int32_t i, int32_t j)
 }
 
 /* mode: the largest number of samples (1..4096), plus LN_STRICT for no
- * neighbour tolerance (six arguments: no stack-passed ones). */
+ * neighbour tolerance, plus LN_NEED(p) for callers that only compare the
+ * result with p (1..100): the walk stops once p is out of reach and the
+ * ratio so far (below p) is returned (six arguments: no stack-passed
+ * ones). */
 #define LN_STRICT 0x10000
+#define LN_NEED(p) ((int32_t)(p) << 20)
 static int32_t ln_white_pct(const fl_scan_t *scan, int32_t u0_q4, int32_t v0_q4,
                             int32_t u1_q4, int32_t v1_q4, int32_t mode);
 
@@ -240,6 +252,7 @@ static int32_t ln_white_pct(const fl_scan_t *scan, int32_t u0_q4, int32_t v0_q4,
 {
     int32_t max_samples = mode & 0xffff;
     bool strict = (mode & LN_STRICT) != 0;
+    int32_t need = (mode >> 20) & 127;
     int32_t cs, rs, gu0, gv0, gu1, gv1, du, dv, n, k, white = 0, inside = 0;
     int32_t su, sv, pu, pv;
     bool horiz;
@@ -285,6 +298,10 @@ static int32_t ln_white_pct(const fl_scan_t *scan, int32_t u0_q4, int32_t v0_q4,
                               ln_cell(scan, i + 1, j) == FL_CLASS_WHITE))
                 white++;
         }
+        /* early rejection: even all-white samples from here on stay below
+         * need (the result is then below need, as the full walk's) */
+        if (need > 0 && (white + n - k) * 100 < need * (n + 1))
+            break;
         pu += su;
         pv += sv;
     }
@@ -439,6 +456,17 @@ static void ln_vrun(fl_lines_t *l, const fl_scan_t *s, int32_t i, int32_t j0,
 #define LN_LUMA_DMAX 6       /* largest flank distance, px */
 #define LN_RIDGE_SAMPLES 32  /* samples of a path's ridge check */
 #define LN_RIDGE_BUDGET 256  /* ridge checks of the segment stage per frame */
+
+/* The frame's budgets (see LN_CLUTTER_BUDGET). */
+static int32_t ln_check_budget(const fl_lines_t *l)
+{
+    return l->points_dropped > 0 ? LN_CLUTTER_BUDGET : LN_CHECK_BUDGET;
+}
+
+static int32_t ln_ridge_budget(const fl_lines_t *l)
+{
+    return l->points_dropped > 0 ? LN_CLUTTER_RIDGE_BUDGET : LN_RIDGE_BUDGET;
+}
 
 /* Offset of pixel (u, v) in plane 0 and the bytes per step along u. */
 static int32_t ln_px_off(const fl_image_t *im, int32_t u, int32_t v)
@@ -792,7 +820,7 @@ static int32_t ln_paint_pct(fl_lines_t *l, const fl_scan_t *scan, int32_t u0, in
                             int32_t u1, int32_t v1, int32_t mode)
 {
     int32_t p = ln_white_pct(scan, u0, v0, u1, v1, mode), r;
-    if (!scan || !ln_luma_path(l, p, v0, v1) || l->ridge_checks >= LN_RIDGE_BUDGET)
+    if (!scan || !ln_luma_path(l, p, v0, v1) || l->ridge_checks >= ln_ridge_budget(l))
         return p;
     l->ridge_checks++;
     r = ln_ridge_pct(l, u0, v0, u1, v1, l->params.white_pct);
@@ -1216,7 +1244,7 @@ static void ln_grow_end(fl_lines_t *l, const fl_scan_t *scan, ln_grow_t *g,
                         int32_t sid, bool tail)
 {
     fl_segment_t *s = &g->s;
-    if (scan && l->white_checks >= LN_CHECK_BUDGET)
+    if (scan && l->white_checks >= ln_check_budget(l))
         return;
     while (g->n_ids < FL_LINES_SEG_MAX_POINTS) {
         ln_cand_t c[FL_LINES_CANDIDATES];
@@ -1229,13 +1257,13 @@ static void ln_grow_end(fl_lines_t *l, const fl_scan_t *scan, ln_grow_t *g,
             int32_t pu, pv, qu, qv;
             if (scan) {
                 /* per-frame budget: noise cannot blow up the time */
-                if (l->white_checks >= LN_CHECK_BUDGET) {
+                if (l->white_checks >= ln_check_budget(l)) {
                     l->checks_capped++;
                     return;
                 }
                 l->white_checks++;
                 if (ln_paint_pct(l, scan, eu * 8, ev * 8, p->u_q1 * 8, p->v_q1 * 8,
-                                 4096) < l->params.white_pct)
+                                 4096 | LN_NEED(l->params.white_pct)) < l->params.white_pct)
                     continue;
             }
             ln_mom_of(s, &m);
@@ -1329,7 +1357,8 @@ static bool ln_try_merge(fl_lines_t *l, const fl_scan_t *scan, fl_segment_t *a,
     if (scan && best > (int64_t)4 * l->gap_px * l->gap_px) {
         l->white_checks++;
         if (ln_paint_pct(l, scan, pts[gi][0] * 8, pts[gi][1] * 8, pts[gj][0] * 8,
-                         pts[gj][1] * 8, 4096) < l->params.white_pct)
+                         pts[gj][1] * 8, 4096 | LN_NEED(l->params.white_pct)) <
+            l->params.white_pct)
             return false;
     }
     /* farthest pair of the four ends: the merged extremes */
@@ -1626,7 +1655,7 @@ static bool ln_segment_white(fl_lines_t *l, const fl_scan_t *scan, const fl_segm
         return true;
     /* a thin far line found in the luma: the path is a luma ridge */
     if (s->n_luma == 0 || !ln_luma_path(l, strict, s->e0v * 8, s->e1v * 8) ||
-        l->ridge_checks >= LN_RIDGE_BUDGET)
+        l->ridge_checks >= ln_ridge_budget(l))
         return false;
     l->ridge_checks++;
     return ln_ridge_pct(l, s->e0u * 8, s->e0v * 8, s->e1u * 8, s->e1v * 8,

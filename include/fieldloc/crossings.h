@@ -5,7 +5,9 @@
  * Pairs.  Every pair of segments (lines.h) at least min_angle apart in the
  * image whose (infinite) lines meet inside the image is a candidate.  For
  * each segment the meeting point X is placed along it: an arm leaves X
- * where the segment goes on past X by at least arm_px; X may lie beyond a
+ * where the segment goes on past X by at least arm_px (half of it where
+ * the segment ends within a line step of the image border: the arm is cut
+ * off there); X may lie beyond a
  * segment's end by at most reach_px (segments stop short of a crossing,
  * where white runs merge).  Seed 000's rules follow: near both ends -> L,
  * inside one and near an end of the other -> T, inside both -> X.  The
@@ -46,7 +48,7 @@
  * lines between two parallel ones) are a few pixels long: no segment, so
  * their corners pair with nothing.  At an end of a segment where its paint
  * stops, the line's ground normal is followed to the nearest segment
- * parallel to it in the image, 2 line steps to 1000 mm (at most 6 steps)
+ * parallel to it in the image, 2 line steps to 1000 mm (at most 8 steps)
  * away; when that connector is paint (fl_lines_paint_pct, the luma for
  * thin lines) and the strip beside it beyond the corner is not, the end
  * is an L and the connector's foot a T (an L where the parallel segment
@@ -116,7 +118,9 @@ typedef struct {
     int32_t arm_px;           /* segment extent past X that makes an arm,
                                  px; 0 = auto (max(2 step, 2 line width)) */
     int32_t reach_px;         /* largest gap between X and a segment end,
-                                 px; 0 = auto (max(3 step, 3 line width)) */
+                                 px; 0 = auto (max(3 step, 3 line width),
+                                 at least 5 steps when both segments are
+                                 6 steps long) */
     int32_t probe_white_pct;  /* probe: arm present at >= this % white */
     int32_t probe_green_pct;  /* probe: arm absent at < this % white */
     int32_t min_confidence;   /* crossings below are dropped, 0..255 */
@@ -133,7 +137,8 @@ typedef struct {
     int32_t rejected_ground;  /* failed the 90 degree ground check */
     int32_t rejected_arms;    /* arm set that is no crossing */
     int32_t merged;           /* crossings merged into others */
-    int32_t marks_capped;     /* mark search stopped after 256 clusters */
+    int32_t marks_capped;     /* mark search stopped after 256 clusters
+                                 (64 once the line points overflowed) */
     int32_t border_t;         /* T's of one segment at the field border */
     int32_t luma_probes;      /* arm probes that fell back to the luma
                                  (at most 128 per frame) */

@@ -175,7 +175,9 @@ typedef struct {
     int32_t merges;           /* pieces merged into earlier segments */
     int32_t white_checks;     /* white-ratio checks made by the growth */
     int32_t checks_capped;    /* growth steps stopped by the per-frame
-                                 budget of 2 x FL_LINES_MAX_POINTS checks */
+                                 budget of 2 x FL_LINES_MAX_POINTS checks,
+                                 FL_LINES_MAX_POINTS / 2 once points were
+                                 dropped (clutter) */
     int32_t luma_points;      /* points found as luma ridges */
     int32_t luma_capped;      /* scan lines cut by the per-line cap, plus
                                  ridges beyond the per-frame cap */
