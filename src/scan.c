@@ -448,10 +448,16 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
     col_t col;
     col_init(&col, f, i * f->cs);
     for (k = 0; k < 2; k++) {
-        int32_t jw = jb - 1, jg, c;
-        while (jw >= lo && jb - jw <= max_white &&
-               col_class(&col, ct, jw * rs) == FL_CLASS_WHITE)
+        int32_t jw = jb - 1, jg, c = -1;
+        /* c keeps the class of the sample that ended the walk (-1: the
+         * walk ended on a bound), so it is not classified twice */
+        while (jw >= lo && jb - jw <= max_white) {
+            c = col_class(&col, ct, jw * rs);
+            if (c != FL_CLASS_WHITE)
+                break;
+            c = -1;
             jw--;
+        }
         if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1 &&
             green_near_top(s, f, i)) {
             /* a line cut by the top of an image that is all ground */
@@ -463,7 +469,8 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
         }
         if (jw < 0 || jb - jw > max_white)
             return;
-        c = col_class(&col, ct, jw * rs);
+        if (c < 0)
+            c = col_class(&col, ct, jw * rs);
         /* one other sample (the blurred edge) may sit under a post */
         if (c == FL_CLASS_OTHER && jw > 0 &&
             col_class(&col, ct, (jw - 1) * rs) == FL_CLASS_YELLOW)
@@ -646,7 +653,9 @@ static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
         j++;
     if (j > level - ns)
         return false;   /* the green (nearly) reaches the level: carpet */
-    for (; j < s->rows; j++) {
+    /* a run completing below row level + 2 ns - 1 would start below
+     * level + ns and be refused: the walk stops there */
+    for (; j < s->rows && j <= level + 2 * ns - 1; j++) {
         int32_t c = map_class(s, i, j);
         if (c == FL_CLASS_GREEN) {
             if (++run >= ns) {
