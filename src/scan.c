@@ -300,7 +300,44 @@ static void find_candidates(fl_scan_t *s, const frame_t *f, int32_t j0, int32_t 
         col_init(&col, f, i * f->cs);
         s->first_row[i] = (int16_t)s->rows;
         s->border_v[i] = (int16_t)s->height;
-        for (j = j0 + ns - 1; j < s->rows; j += ns)
+        j = j0 + ns - 1;
+        if (j < s->rows && f->fmt != FL_FMT_YCBCR_PLANAR) {
+            /* the lookups of col_class, walking a pointer down (never
+             * past the last row) */
+            const uint8_t *q = col.y + (size_t)(j * f->rs) * col.sy;
+            ptrdiff_t dc = col.cb - col.y;
+            size_t step = (size_t)(ns * f->rs) * col.sy;
+            const uint16_t *tr = ct->rgb_dr + 255, *tb = ct->rgb_db + 255;
+            if (col.rgb) {
+                for (;;) {
+                    ptrdiff_t g = q[1];
+                    if (ct->pattern[(ptrdiff_t)ct->rgb_chroma[(unsigned)tr[(ptrdiff_t)q[0] - g] +
+                                                              tb[(ptrdiff_t)q[2] - g]] + g] ==
+                        FL_CLASS_GREEN) {
+                        s->first_row[i] = (int16_t)j;
+                        break;
+                    }
+                    if (j + ns >= s->rows)
+                        break;
+                    j += ns;
+                    q += step;
+                }
+                continue;
+            }
+            for (;;) {
+                if (ct->pattern[(size_t)ct->chroma[((unsigned)q[dc] << 8) | q[dc + 2]] +
+                                q[0]] == FL_CLASS_GREEN) {
+                    s->first_row[i] = (int16_t)j;
+                    break;
+                }
+                if (j + ns >= s->rows)
+                    break;
+                j += ns;
+                q += step;
+            }
+            continue;
+        }
+        for (; j < s->rows; j += ns)
             if (col_class(&col, ct, j * f->rs) == FL_CLASS_GREEN) {
                 s->first_row[i] = (int16_t)j;   /* the candidate, for now */
                 break;
