@@ -686,14 +686,17 @@ static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
                          int32_t t, int32_t level)
 {
     int32_t j = s->first_row[i], run = 0, st = -1, jj, k, v, lo, n_other = 0, n_white = 0;
-    while (j < s->rows && j <= level - ns && map_class(s, i, j) == FL_CLASS_GREEN)
+    int32_t wi = i >> 5, sh = 62 - 2 * (i & 31);
+    int32_t lim = level - ns < s->rows - 1 ? level - ns : s->rows - 1;
+    while (j <= lim && ((s->map[j][wi] >> sh) & 3) == FL_CLASS_GREEN)
         j++;
     if (j > level - ns)
         return false;   /* the green (nearly) reaches the level: carpet */
     /* a run completing below row level + 2 ns - 1 would start below
      * level + ns and be refused: the walk stops there */
-    for (; j < s->rows && j <= level + 2 * ns - 1; j++) {
-        int32_t c = map_class(s, i, j);
+    lim = level + 2 * ns - 1 < s->rows - 1 ? level + 2 * ns - 1 : s->rows - 1;
+    for (; j <= lim; j++) {
+        int32_t c = (int32_t)((s->map[j][wi] >> sh) & 3);
         if (c == FL_CLASS_GREEN) {
             if (++run >= ns) {
                 st = j - ns + 1;
