@@ -36,11 +36,21 @@
  *  contrast check passed or the per-column check cap was reached).
  * Memory: fl_scan_t only (85 824 bytes at the default capacities);
  *  the stack holds a few words and one 8-entry window.
- * Cost (x86-64 host, callgrind, tools/callgrind.sh): full resolution YUYV
- *  about 9 instructions per pixel of the frame on the UvA 2013 frame (the
- *  table lookups alone are 6 per classified pixel), the default 2 x 2 grid
- *  about 3.8; worst case bounded by cells + per-column caps (noise frames
- *  in bench_scan).
+ * Cost (x86-64 host, gcc 12 -O2, callgrind, tools/callgrind.sh, UvA 2013
+ *  320x240 frame): full resolution YUYV 887k instructions per frame (11.6
+ *  per pixel), RGB 1.29M (16.7); default 2 x 2 grid YUYV 337k (4.4 per
+ *  image pixel, 17.5 per grid cell), RGB 439k (5.7).  Where a grid cell's
+ *  cost goes (default YUYV, per frame): the lookups of phase B ~139k (9
+ *  instructions per classified cell: at col_step 2 every sample is the
+ *  even pixel of its own YUYV pair, so the chroma lookup is not shared as
+ *  at full resolution, where a pair costs 12 = 6 per pixel; the band
+ *  starts at the earliest possible run start of its 32 columns, ~15k cells
+ *  classified for ~13k below the border), the bit logic of B ~57k (~100
+ *  per 32-cell row word), and the per-column scalar phases ~130k, which do
+ *  not shrink with the grid: A candidates ~23k, A' extend ~26k and bumps
+ *  ~15k, C ~10k, D ~22k (exact HSV of ~84 samples), border refinement and
+ *  col_init/col_class of the scalar walks the rest.  Worst case bounded by
+ *  cells + per-column caps (noise frames in bench_scan).
  */
 #include "fieldloc/scan.h"
 
