@@ -625,6 +625,19 @@ static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
         c &= found | (found << 1);
         lo &= found;
         hi &= found;
+        if ((hi | y1 | y2) == 0) {
+            /* only green and other (the carpet below the border): no white
+             * run, no yellow, no foot; the row's state moves down */
+            s->map[j][w] = c;
+            g2 = g1;
+            g1 = lo;
+            y3 = 0;
+            y2 = 0;
+            y1 = 0;
+            wprev = 0;
+            wrej = 0;
+            continue;
+        }
         g = lo & ~hi;
         wh = hi & ~lo;
         y = lo & hi;
