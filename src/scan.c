@@ -583,11 +583,15 @@ static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
     row = f->p0 + (size_t)j_lo * step;
     for (j = j_lo; j < s->rows; j++, row += step) {
         uint64_t c, lo, hi, g, wh, y, starts, rej, cand;
-        switch (kind) {
-        case 1: c = word_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern); break;
+        /* the common kinds first: a predicted compare is cheaper than the
+         * jump table */
+        if (kind == 4)
+            c = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
+        else if (kind == 1)
+            c = word_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern);
+        else switch (kind) {
         case 2: c = word_yuyv_even(row + 2 * u0, 2 * cs, ct->chroma, ct->pattern); break;
         case 3: c = word_rgb(row + 3 * u0, 3 * cs, ct); break;
-        case 4: c = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern); break;
         case 5: c = word_rgb_1(row + 3 * u0, 3, ct); break;
         case 6: c = word_rgb_2(row + 3 * u0, 6, ct); break;
         default: c = word_generic(f, j * f->rs, 32 * w, n); break;
