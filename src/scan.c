@@ -36,11 +36,21 @@
  *  contrast check passed or the per-column check cap was reached).
  * Memory: fl_scan_t only (85 824 bytes at the default capacities);
  *  the stack holds a few words and one 8-entry window.
- * Cost (x86-64 host, callgrind, tools/callgrind.sh): full resolution YUYV
- *  about 9 instructions per pixel of the frame on the UvA 2013 frame (the
- *  table lookups alone are 6 per classified pixel), the default 2 x 2 grid
- *  about 3.8; worst case bounded by cells + per-column caps (noise frames
- *  in bench_scan).
+ * Cost (x86-64 host, gcc 12 -O2, callgrind, tools/callgrind.sh, UvA 2013
+ *  320x240 frame): full resolution YUYV 887k instructions per frame (11.6
+ *  per pixel), RGB 1.29M (16.7); default 2 x 2 grid YUYV 337k (4.4 per
+ *  image pixel, 17.5 per grid cell), RGB 439k (5.7).  Where a grid cell's
+ *  cost goes (default YUYV, per frame): the lookups of phase B ~139k (9
+ *  instructions per classified cell: at col_step 2 every sample is the
+ *  even pixel of its own YUYV pair, so the chroma lookup is not shared as
+ *  at full resolution, where a pair costs 12 = 6 per pixel; the band
+ *  starts at the earliest possible run start of its 32 columns, ~15k cells
+ *  classified for ~13k below the border), the bit logic of B ~57k (~100
+ *  per 32-cell row word), and the per-column scalar phases ~130k, which do
+ *  not shrink with the grid: A candidates ~23k, A' extend ~26k and bumps
+ *  ~15k, C ~10k, D ~22k (exact HSV of ~84 samples), border refinement and
+ *  col_init/col_class of the scalar walks the rest.  Worst case bounded by
+ *  cells + per-column caps (noise frames in bench_scan).
  */
 #include "fieldloc/scan.h"
 
@@ -300,7 +310,44 @@ static void find_candidates(fl_scan_t *s, const frame_t *f, int32_t j0, int32_t 
         col_init(&col, f, i * f->cs);
         s->first_row[i] = (int16_t)s->rows;
         s->border_v[i] = (int16_t)s->height;
-        for (j = j0 + ns - 1; j < s->rows; j += ns)
+        j = j0 + ns - 1;
+        if (j < s->rows && f->fmt != FL_FMT_YCBCR_PLANAR) {
+            /* the lookups of col_class, walking a pointer down (never
+             * past the last row) */
+            const uint8_t *q = col.y + (size_t)(j * f->rs) * col.sy;
+            ptrdiff_t dc = col.cb - col.y;
+            size_t step = (size_t)(ns * f->rs) * col.sy;
+            const uint16_t *tr = ct->rgb_dr + 255, *tb = ct->rgb_db + 255;
+            if (col.rgb) {
+                for (;;) {
+                    ptrdiff_t g = q[1];
+                    if (ct->pattern[(ptrdiff_t)ct->rgb_chroma[(unsigned)tr[(ptrdiff_t)q[0] - g] +
+                                                              tb[(ptrdiff_t)q[2] - g]] + g] ==
+                        FL_CLASS_GREEN) {
+                        s->first_row[i] = (int16_t)j;
+                        break;
+                    }
+                    if (j + ns >= s->rows)
+                        break;
+                    j += ns;
+                    q += step;
+                }
+                continue;
+            }
+            for (;;) {
+                if (ct->pattern[(size_t)ct->chroma[((unsigned)q[dc] << 8) | q[dc + 2]] +
+                                q[0]] == FL_CLASS_GREEN) {
+                    s->first_row[i] = (int16_t)j;
+                    break;
+                }
+                if (j + ns >= s->rows)
+                    break;
+                j += ns;
+                q += step;
+            }
+            continue;
+        }
+        for (; j < s->rows; j += ns)
             if (col_class(&col, ct, j * f->rs) == FL_CLASS_GREEN) {
                 s->first_row[i] = (int16_t)j;   /* the candidate, for now */
                 break;
@@ -448,10 +495,16 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
     col_t col;
     col_init(&col, f, i * f->cs);
     for (k = 0; k < 2; k++) {
-        int32_t jw = jb - 1, jg, c;
-        while (jw >= lo && jb - jw <= max_white &&
-               col_class(&col, ct, jw * rs) == FL_CLASS_WHITE)
+        int32_t jw = jb - 1, jg, c = -1;
+        /* c keeps the class of the sample that ended the walk (-1: the
+         * walk ended on a bound), so it is not classified twice */
+        while (jw >= lo && jb - jw <= max_white) {
+            c = col_class(&col, ct, jw * rs);
+            if (c != FL_CLASS_WHITE)
+                break;
+            c = -1;
             jw--;
+        }
         if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1 &&
             green_near_top(s, f, i)) {
             /* a line cut by the top of an image that is all ground */
@@ -463,7 +516,8 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
         }
         if (jw < 0 || jb - jw > max_white)
             return;
-        c = col_class(&col, ct, jw * rs);
+        if (c < 0)
+            c = col_class(&col, ct, jw * rs);
         /* one other sample (the blurred edge) may sit under a post */
         if (c == FL_CLASS_OTHER && jw > 0 &&
             col_class(&col, ct, (jw - 1) * rs) == FL_CLASS_YELLOW)
@@ -529,11 +583,15 @@ static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
     row = f->p0 + (size_t)j_lo * step;
     for (j = j_lo; j < s->rows; j++, row += step) {
         uint64_t c, lo, hi, g, wh, y, starts, rej, cand;
-        switch (kind) {
-        case 1: c = word_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern); break;
+        /* the common kinds first: a predicted compare is cheaper than the
+         * jump table */
+        if (kind == 4)
+            c = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
+        else if (kind == 1)
+            c = word_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern);
+        else switch (kind) {
         case 2: c = word_yuyv_even(row + 2 * u0, 2 * cs, ct->chroma, ct->pattern); break;
         case 3: c = word_rgb(row + 3 * u0, 3 * cs, ct); break;
-        case 4: c = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern); break;
         case 5: c = word_rgb_1(row + 3 * u0, 3, ct); break;
         case 6: c = word_rgb_2(row + 3 * u0, 6, ct); break;
         default: c = word_generic(f, j * f->rs, 32 * w, n); break;
@@ -571,6 +629,19 @@ static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
         c &= found | (found << 1);
         lo &= found;
         hi &= found;
+        if ((hi | y1 | y2) == 0) {
+            /* only green and other (the carpet below the border): no white
+             * run, no yellow, no foot; the row's state moves down */
+            s->map[j][w] = c;
+            g2 = g1;
+            g1 = lo;
+            y3 = 0;
+            y2 = 0;
+            y1 = 0;
+            wprev = 0;
+            wrej = 0;
+            continue;
+        }
         g = lo & ~hi;
         wh = hi & ~lo;
         y = lo & hi;
@@ -642,12 +713,17 @@ static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
                          int32_t t, int32_t level)
 {
     int32_t j = s->first_row[i], run = 0, st = -1, jj, k, v, lo, n_other = 0, n_white = 0;
-    while (j < s->rows && j <= level - ns && map_class(s, i, j) == FL_CLASS_GREEN)
+    int32_t wi = i >> 5, sh = 62 - 2 * (i & 31);
+    int32_t lim = level - ns < s->rows - 1 ? level - ns : s->rows - 1;
+    while (j <= lim && ((s->map[j][wi] >> sh) & 3) == FL_CLASS_GREEN)
         j++;
     if (j > level - ns)
         return false;   /* the green (nearly) reaches the level: carpet */
-    for (; j < s->rows; j++) {
-        int32_t c = map_class(s, i, j);
+    /* a run completing below row level + 2 ns - 1 would start below
+     * level + ns and be refused: the walk stops there */
+    lim = level + 2 * ns - 1 < s->rows - 1 ? level + 2 * ns - 1 : s->rows - 1;
+    for (; j <= lim; j++) {
+        int32_t c = (int32_t)((s->map[j][wi] >> sh) & 3);
         if (c == FL_CLASS_GREEN) {
             if (++run >= ns) {
                 st = j - ns + 1;
