@@ -813,13 +813,15 @@ static bool ln_luma_path(const fl_lines_t *l, int32_t p, int32_t v0, int32_t v1)
            (v0 + v1) / 32 <= bend;
 }
 
-/* Paint on the path: the class map's white ratio (thin-line tolerant, at
- * most `mode` samples, see ln_white_pct); where ln_luma_path, the luma
- * ridge ratio when higher (counted in ridge_checks). */
+/* Paint on the path, for a comparison with params.white_pct: the class
+ * map's white ratio (thin-line tolerant, the walk stopping once white_pct
+ * is out of reach, see ln_white_pct); where ln_luma_path, the luma ridge
+ * ratio when higher (counted in ridge_checks).  Six arguments: a seventh
+ * goes on the stack, a dynamic frame that make stack rejects. */
 static int32_t ln_paint_pct(fl_lines_t *l, const fl_scan_t *scan, int32_t u0, int32_t v0,
-                            int32_t u1, int32_t v1, int32_t mode)
+                            int32_t u1, int32_t v1)
 {
-    int32_t p = ln_white_pct(scan, u0, v0, u1, v1, mode), r;
+    int32_t p = ln_white_pct(scan, u0, v0, u1, v1, 4096 | LN_NEED(l->params.white_pct)), r;
     if (!scan || !ln_luma_path(l, p, v0, v1) || l->ridge_checks >= ln_ridge_budget(l))
         return p;
     l->ridge_checks++;
@@ -1262,8 +1264,8 @@ static void ln_grow_end(fl_lines_t *l, const fl_scan_t *scan, ln_grow_t *g,
                     return;
                 }
                 l->white_checks++;
-                if (ln_paint_pct(l, scan, eu * 8, ev * 8, p->u_q1 * 8, p->v_q1 * 8,
-                                 4096 | LN_NEED(l->params.white_pct)) < l->params.white_pct)
+                if (ln_paint_pct(l, scan, eu * 8, ev * 8, p->u_q1 * 8, p->v_q1 * 8) <
+                    l->params.white_pct)
                     continue;
             }
             ln_mom_of(s, &m);
@@ -1357,8 +1359,7 @@ static bool ln_try_merge(fl_lines_t *l, const fl_scan_t *scan, fl_segment_t *a,
     if (scan && best > (int64_t)4 * l->gap_px * l->gap_px) {
         l->white_checks++;
         if (ln_paint_pct(l, scan, pts[gi][0] * 8, pts[gi][1] * 8, pts[gj][0] * 8,
-                         pts[gj][1] * 8, 4096 | LN_NEED(l->params.white_pct)) <
-            l->params.white_pct)
+                         pts[gj][1] * 8) < l->params.white_pct)
             return false;
     }
     /* farthest pair of the four ends: the merged extremes */
