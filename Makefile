@@ -78,19 +78,28 @@ RUNNER   := $(BUILD)/run_tests
 
 all: $(LIB) $(CLI)
 
-$(BUILD)/src/%.o: src/%.c
+# Every object depends on a stamp of the effective flags, rewritten only when
+# they change: installing OpenCV (or changing CC, OPT, ARCHFLAGS) after a build
+# recompiles instead of linking objects built for another configuration.
+FLAGS_STAMP := $(BUILD)/flags.txt
+FLAGS_NOW   := $(CC) $(CXX) | $(FW_CFLAGS) | $(HOST_CFLAGS) | $(CV_CFLAGS) | $(CV_LIBS)
+ifeq ($(filter clean echo,$(MAKECMDGOALS)),)
+$(shell mkdir -p $(BUILD) && { [ "$$(cat $(FLAGS_STAMP) 2>/dev/null)" = "$(FLAGS_NOW)" ] || echo "$(FLAGS_NOW)" > $(FLAGS_STAMP); })
+endif
+
+$(BUILD)/src/%.o: src/%.c $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
 
-$(BUILD)/host_tests/%.o: host_tests/%.c
+$(BUILD)/host_tests/%.o: host_tests/%.c $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
 
-$(BUILD)/tools/%.o: tools/%.c
+$(BUILD)/tools/%.o: tools/%.c $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
 
-$(BUILD)/tools/%.o: tools/%.cpp
+$(BUILD)/tools/%.o: tools/%.cpp $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CXX) -O2 -g -Wall -Iinclude -Itools $(CV_DEFS) $(CV_CFLAGS) -MMD -MP -c $< -o $@
 
