@@ -605,6 +605,266 @@ static void test_kidnap(void)
            detected_at, G.stats.kidnaps);
 }
 
+/* ---- negative information, kind confusion, far crossings ------------------- */
+
+/* A view (obs.h) centred on bearing b, half width hw, ranges near..far. */
+static fl_obs_view_t make_view(fl_angle_t b, fl_angle_t hw, int32_t near, int32_t far)
+{
+    fl_obs_view_t v;
+    v.valid = true;
+    v.bearing_right = fl_angle_sub(b, hw);
+    v.bearing_left = fl_angle_add(b, hw);
+    v.near_mm = near;
+    v.far_mm = far;
+    return v;
+}
+
+/* From ignorance, one oriented T (the halfway T at (0, -3000)) seen from P
+ * fits one pose per T of the map; the frame's view (centred on that T)
+ * shows nothing else.  At P nothing else lies in the view; at Q, the pose
+ * the same T-relative geometry gives at the goal-area T (4500, 1100), the
+ * penalty-area L (3900, 1100) would be in it and is not observed: with
+ * neg_q8 Q loses possibility, P (and its mirror) keep 1.  With neg_q8 = 0
+ * fl_fuzzy_update_view is fl_fuzzy_update, bit for bit. */
+static void test_negative_info(void)
+{
+    const fl_field_t *f = fl_field_find("spl2013");
+    const fl_landmark_t *t = NULL;
+    fl_fuzzy_params_t p;
+    fl_obs_list_t list;
+    fl_obs_view_t v;
+    fl_obs_t o;
+    uint16_t i;
+    uint32_t pp, pq, pm, qq0;
+    int32_t px = 2500, py = -1800, qx = 3300, qy = 3600;
+    fl_angle_t ph = DEG(-90), qh = DEG(0);
+    for (i = 0; i < fl_field_count_kind(f, FL_LM_T); i++) {
+        const fl_landmark_t *lm = fl_field_nth_kind(f, FL_LM_T, i);
+        if (lm->x_mm == 0 && lm->y_mm == -3000)
+            t = lm;
+    }
+    CHECK(t != NULL);
+    if (t == NULL)
+        return;
+    o = make_obs(t, px, py, ph);
+    fl_obs_list_clear(&list);
+    fl_obs_list_push(&list, &o);
+    v = make_view(o.bearing, DEG(25), 600, 4000);
+    /* off: identical to fl_fuzzy_update */
+    fl_fuzzy_init(&G, f, NULL);
+    fl_fuzzy_init(&G2, f, NULL);
+    CHECK_EQ(fl_fuzzy_update(&G, &list), 1);
+    CHECK_EQ(fl_fuzzy_update_view(&G2, &list, &v), 1);
+    CHECK(memcmp(G.cell, G2.cell, sizeof G.cell) == 0);
+    qq0 = fl_fuzzy_possibility_q16(&G, qx, qy, qh);
+    CHECK_LE(0.9 * 65536, fl_fuzzy_possibility_q16(&G, px, py, ph));
+    CHECK_LE(0.9 * 65536, qq0);
+    /* on */
+    fl_fuzzy_params_default(&p);
+    p.neg_q8 = 128;
+    CHECK_EQ(fl_fuzzy_params_check(&p), FL_OK);
+    fl_fuzzy_init(&G2, f, &p);
+    CHECK_EQ(fl_fuzzy_update_view(&G2, &list, &v), 1);
+    CHECK(fl_fuzzy_check(&G2));
+    pp = fl_fuzzy_possibility_q16(&G2, px, py, ph);
+    pm = fl_fuzzy_possibility_q16(&G2, -px, -py, fl_angle_add(ph, DEG(180)));
+    pq = fl_fuzzy_possibility_q16(&G2, qx, qy, qh);
+    t_info("fuzzy negative information: one T from ignorance, its view shows nothing else: "
+           "true pose %.2f (mirror %.2f), the pose at the goal-area T %.2f -> %.2f",
+           pp / 65536.0, pm / 65536.0, qq0 / 65536.0, pq / 65536.0);
+    CHECK_LE(0.9 * 65536, pp);
+    CHECK_EQ(pp, pm);
+    CHECK_LE(pq, 0.6 * 65536);
+    /* the L observed: Q keeps its possibility */
+    {
+        const fl_landmark_t *l = NULL;
+        for (i = 0; i < fl_field_count_kind(f, FL_LM_L); i++) {
+            const fl_landmark_t *lm = fl_field_nth_kind(f, FL_LM_L, i);
+            if (lm->x_mm == 3900 && lm->y_mm == 1100)
+                l = lm;
+        }
+        CHECK(l != NULL);
+        if (l != NULL) {
+            fl_obs_t ol = make_obs(l, qx, qy, qh);
+            fl_obs_list_t l2 = list;
+            fl_obs_list_push(&l2, &ol);
+            fl_fuzzy_init(&G2, f, &p);
+            fl_fuzzy_update(&G2, &list);  /* the T alone, then the view */
+            fl_fuzzy_update_view(&G2, &l2, &v);
+            CHECK_LE(0.9 * 65536, fl_fuzzy_possibility_q16(&G2, qx, qy, qh));
+        }
+    }
+    /* an invalid view, or none: no negative information */
+    fl_fuzzy_init(&G, f, &p);
+    fl_fuzzy_init(&G2, f, &p);
+    fl_fuzzy_update(&G, &list);
+    v.valid = false;
+    fl_fuzzy_update_view(&G2, &list, &v);
+    CHECK(memcmp(G.cell, G2.cell, sizeof G.cell) == 0);
+    fl_fuzzy_init(&G2, f, &p);
+    fl_fuzzy_update_view(&G2, &list, NULL);
+    CHECK(memcmp(G.cell, G2.cell, sizeof G.cell) == 0);
+    v = make_view(o.bearing, DEG(25), 4000, 600);      /* near > far */
+    fl_fuzzy_init(&G2, f, &p);
+    fl_fuzzy_update_view(&G2, &list, &v);
+    CHECK(memcmp(G.cell, G2.cell, sizeof G.cell) == 0);
+    p.neg_track = 2;
+    CHECK_EQ(fl_fuzzy_params_check(&p), FL_ERR_RANGE);
+}
+
+/* neg_kidnap: a tracked robot whose frames stop showing the landmarks its
+ * tracked pose puts in view (teleported to where it sees nothing) detects
+ * the kidnap from the empty frames alone; without neg_kidnap it never
+ * does; frames showing those landmarks are no contradiction. */
+static void test_negative_kidnap(void)
+{
+    const fl_field_t *f = fl_field_find("spl2013");
+    fl_fuzzy_params_t p;
+    fl_fuzzy_estimate_t e;
+    fl_obs_list_t empty, seen;
+    fl_obs_view_t v = make_view(0, DEG(25), 600, 4000);
+    int32_t x = -2000, y = -1000;
+    fl_angle_t h = DEG(180);     /* facing the own goal: posts, box L and T */
+    int pass, k, at[2] = {-1, -1};
+    uint16_t i;
+    fl_obs_list_clear(&empty);
+    fl_obs_list_clear(&seen);
+    for (i = 0; i < f->n_landmarks; i++) {
+        fl_obs_t o = make_obs(&f->landmarks[i], x, y, h);
+        if (o.range_mm >= 800 && o.range_mm <= 3500 && o.bearing <= DEG(18) && o.bearing >= DEG(-18))
+            fl_obs_list_push(&seen, &o);
+    }
+    CHECK_LE(2, seen.n);
+    for (pass = 0; pass < 2; pass++) {
+        fl_fuzzy_params_default(&p);
+        p.neg_kidnap = (uint8_t)(pass == 0 ? 0 : 2);
+        p.kidnap_rate_q8 = 128;
+        fl_fuzzy_init(&G, f, &p);
+        fl_fuzzy_set_prior_half(&G, -1);
+        for (k = 0; k < 20; k++) {
+            frames_from(f, x, y, h, 1);
+            fl_fuzzy_estimate(&G, &e);
+        }
+        CHECK(G.track_valid);
+        /* the landmarks in view, seen: no contradiction */
+        for (k = 0; k < 10; k++) {
+            fl_fuzzy_predict(&G, 0, 0, 0);
+            fl_fuzzy_update_view(&G, &seen, &v);
+            fl_fuzzy_estimate(&G, &e);
+        }
+        CHECK(G.track_valid);
+        CHECK_EQ(G.stats.kidnaps, 0);
+        /* nothing seen any more */
+        for (k = 0; k < 30; k++) {
+            fl_fuzzy_predict(&G, 0, 0, 0);
+            fl_fuzzy_update_view(&G, &empty, &v);
+            fl_fuzzy_estimate(&G, &e);
+            if (at[pass] < 0 && G.stats.kidnaps > 0)
+                at[pass] = k;
+        }
+        CHECK(fl_fuzzy_check(&G));
+    }
+    t_info("fuzzy negative kidnap: empty frames where the tracked pose expects %d landmarks: "
+           "kidnap after %d frames (without neg_kidnap: %d)", seen.n, at[1], at[0]);
+    CHECK_EQ(at[0], -1);
+    CHECK(at[1] >= 1 && at[1] <= 10);
+}
+
+/* confuse_q8: a corner L read as a T (its stem along one of the L's arms,
+ * the other arm and a border edge taken for the bar).  Tracked (a pose
+ * reset with 3 m of uncertainty, so that the T's own arc 1.9 m away is
+ * alive): without it the T's arc takes the mode, with it the true pose
+ * stays the most possible.  From ignorance the other kind never gives a
+ * cell a heading: where a cell has one, it is the one the T alone leaves;
+ * flat cells stay flat; the true pose keeps more possibility.  Low confidence
+ * (confuse_conf): the other kind is as possible as the observed one.
+ * cross_max_mm: crossings farther are ignored, posts are not. */
+static void test_confusion(void)
+{
+    const fl_field_t *f = fl_field_find("spl2013");
+    const fl_landmark_t *corner = NULL;
+    fl_fuzzy_params_t p;
+    fl_obs_list_t list;
+    fl_obs_t o;
+    int32_t x = -3000, y = -1800;
+    fl_angle_t h = DEG(-150);
+    uint32_t poss[2], pign[2];
+    int pass;
+    uint16_t i;
+    for (i = 0; i < fl_field_count_kind(f, FL_LM_L); i++) {
+        const fl_landmark_t *lm = fl_field_nth_kind(f, FL_LM_L, i);
+        if (lm->x_mm == -4500 && lm->y_mm == -3000)
+            corner = lm;
+    }
+    CHECK(corner != NULL);
+    if (corner == NULL)
+        return;
+    o = make_obs(corner, x, y, h);
+    o.kind = FL_LM_T;                     /* stem: the arm along +x */
+    o.orientation = fl_angle_sub(corner->arm[0] == 0 ? corner->arm[0] : corner->arm[1], h);
+    fl_obs_list_clear(&list);
+    fl_obs_list_push(&list, &o);
+    for (pass = 0; pass < 2; pass++) {
+        fl_fuzzy_params_default(&p);
+        p.confuse_q8 = (uint8_t)(pass == 0 ? 0 : 160);
+        p.gate_q8 = 0;                    /* applied, not deferred */
+        fl_fuzzy_init(&G, f, &p);
+        fl_fuzzy_reset_pose(&G, x, y, h, 3000, DEG(10));
+        CHECK(G.track_valid);
+        fl_fuzzy_update(&G, &list);
+        poss[pass] = fl_fuzzy_possibility_q16(&G, x, y, h);
+        fl_fuzzy_init(&G2, f, &p);
+        fl_fuzzy_update(&G2, &list);
+        pign[pass] = fl_fuzzy_possibility_q16(&G2, x, y, h);
+    }
+    t_info("fuzzy confusion: a corner L read as a T: true pose %.2f without, %.2f with "
+           "confuse_q8 160 (tracked); from ignorance %.2f / %.2f", poss[0] / 65536.0,
+           poss[1] / 65536.0, pign[0] / 65536.0, pign[1] / 65536.0);
+    CHECK_LE(poss[0] + 0.3 * 65536, poss[1]);
+    CHECK_LE(0.9 * 65536, poss[1]);
+    CHECK_LE(pign[0] + 0.2 * 65536, pign[1]);
+    fl_fuzzy_init(&G, f, NULL);
+    fl_fuzzy_update(&G, &list);           /* G2: the same with confuse_q8 */
+    {
+        /* G: the T alone from ignorance, G2: with the confusion */
+        int k, diff_head = 0, unflat = 0;
+        for (k = 0; k < G.nx * G.ny; k++) {
+            const fl_fuzzy_cell_t *a = &G.cell[k], *b = &G2.cell[k];
+            if (a->height > a->bias && b->height > b->bias && a->centre != b->centre)
+                diff_head++;
+            if (a->height == a->bias && b->height != b->bias)
+                unflat++;
+        }
+        CHECK_EQ(diff_head, 0);
+        CHECK_EQ(unflat, 0);
+    }
+    /* low confidence */
+    fl_fuzzy_params_default(&p);
+    p.confuse_q8 = 60;
+    p.confuse_conf = 160;
+    p.gate_q8 = 0;
+    o.confidence = 150;
+    fl_obs_list_clear(&list);
+    fl_obs_list_push(&list, &o);
+    fl_fuzzy_init(&G, f, &p);
+    fl_fuzzy_reset_pose(&G, x, y, h, 3000, DEG(10));
+    fl_fuzzy_update(&G, &list);
+    CHECK_LE(0.99 * 65536, fl_fuzzy_possibility_q16(&G, x, y, h));
+    /* cross_max_mm */
+    fl_fuzzy_params_default(&p);
+    p.cross_max_mm = 1500;
+    fl_fuzzy_init(&G, f, &p);
+    o = make_obs(corner, x, y, h);
+    CHECK_LE(1500, o.range_mm);
+    CHECK(!fl_fuzzy_update_one(&G, &o));
+    CHECK_EQ(G.stats.obs_ignored, 1);
+    o = make_obs(fl_field_nth_kind(f, FL_LM_POST, 0), x, y, h);
+    CHECK_LE(1500, o.range_mm);
+    CHECK(fl_fuzzy_update_one(&G, &o));
+    p.cross_max_mm = -1;
+    CHECK_EQ(fl_fuzzy_params_check(&p), FL_ERR_RANGE);
+}
+
 /* ---- abuse ------------------------------------------------------------------ */
 
 /* ring_track_q8: while a mode is tracked the update uses rings scaled by
@@ -883,6 +1143,9 @@ void suite_fuzzy(void)
     t_run("fuzzy.heading_clusters", test_heading_clusters);
     t_run("fuzzy.kidnap", test_kidnap);
     t_run("fuzzy.ring_track", test_ring_track);
+    t_run("fuzzy.negative_info", test_negative_info);
+    t_run("fuzzy.negative_kidnap", test_negative_kidnap);
+    t_run("fuzzy.confusion", test_confusion);
     t_run("fuzzy.abuse", test_abuse);
     t_run("fuzzy.digest", test_digest);
     t_run("fuzzy.sim_walk", test_sim_walk);

@@ -2,6 +2,8 @@
 #include "test.h"
 #include "fieldloc/obs.h"
 
+#include <string.h>
+
 static void test_list(void)
 {
     static fl_obs_list_t list;
@@ -94,8 +96,91 @@ static void test_orientation(void)
     t_digest("obs.orientation", h);
 }
 
+/* fl_obs_view_from_camera: the sector lies inside the shrunk image (its
+ * corners and centre project at least the margin inside), follows the
+ * head yaw, and is invalid for a camera that sees no ground or bad
+ * arguments. */
+static bool view_point_inside(const fl_camera_t *cam, int32_t r, fl_angle_t b, int32_t m_px)
+{
+    int32_t u, v;
+    fl_point_t p = fl_point_from_polar(r, b);
+    if (!fl_camera_ground_to_pixel(cam, p, &u, &v))
+        return false;
+    /* a pixel of slack for the sampled (slightly curved) side edges */
+    return u >= (m_px - 1) * 16 && u <= (cam->model.width_px - m_px) * 16 &&
+           v >= (m_px - 1) * 16 && v <= (cam->model.height_px - m_px) * 16;
+}
+
+static void test_view(void)
+{
+    const char *models[] = {"nao4-top-320", "aibo-ers7"};
+    const double yaws[] = {0.0, 0.7, -1.2};
+    size_t mi, yi;
+    uint32_t h = t_hash_init();
+    for (mi = 0; mi < 2; mi++) {
+        const fl_camera_model_t *model = fl_camera_model_find(models[mi]);
+        int32_t m_px = model->width_px / 16;
+        for (yi = 0; yi < 3; yi++) {
+            fl_camera_pose_t pose;
+            fl_camera_t cam;
+            fl_obs_view_t v;
+            fl_angle_t yaw = fl_angle_from_urad((int32_t)(yaws[yi] * 1e6));
+            int32_t width, k, dc;
+            memset(&pose, 0, sizeof pose);
+            pose.neck_height_mm = model->default_neck_height_mm;
+            pose.head_pitch = fl_angle_from_urad(300000);
+            pose.head_yaw = yaw;
+            CHECK_EQ(fl_camera_init(&cam, model, &pose), FL_OK);
+            fl_obs_view_from_camera(&cam, m_px, 4000, &v);
+            CHECK(v.valid);
+            width = fl_angle_sub(v.bearing_left, v.bearing_right);
+            CHECK(width > fl_angle_from_mdeg(20000) && width < fl_angle_from_mdeg(65000));
+            /* centred on the yaw (no roll: the image is symmetric) */
+            dc = fl_angle_sub(fl_angle_add(v.bearing_right, (fl_angle_t)(width / 2)), yaw);
+            CHECK_LE(dc < 0 ? -dc : dc, fl_angle_from_mdeg(500));
+            CHECK(v.near_mm > 0 && v.near_mm < v.far_mm && v.far_mm <= 4000);
+            /* corners, edge midpoints and centre of the sector: in the image */
+            for (k = 0; k < 9; k++) {
+                int32_t r = v.near_mm + (v.far_mm - v.near_mm) * (k / 3) / 2;
+                fl_angle_t b = fl_angle_add(v.bearing_right, (fl_angle_t)(width * (k % 3) / 2));
+                CHECK(view_point_inside(&cam, r, b, m_px));
+            }
+            h = t_hash_i32(h, v.bearing_right);
+            h = t_hash_i32(h, v.bearing_left);
+            h = t_hash_i32(h, v.near_mm);
+            h = t_hash_i32(h, v.far_mm);
+        }
+        {
+            /* looking up: no ground in the shrunk image */
+            fl_camera_pose_t pose;
+            fl_camera_t cam;
+            fl_obs_view_t v;
+            memset(&pose, 0, sizeof pose);
+            pose.neck_height_mm = model->default_neck_height_mm;
+            pose.head_pitch = fl_angle_from_urad(-1200000);
+            CHECK_EQ(fl_camera_init(&cam, model, &pose), FL_OK);
+            fl_obs_view_from_camera(&cam, m_px, 4000, &v);
+            CHECK(!v.valid);
+            /* bad arguments */
+            pose.head_pitch = fl_angle_from_urad(300000);
+            CHECK_EQ(fl_camera_init(&cam, model, &pose), FL_OK);
+            fl_obs_view_from_camera(&cam, -1, 4000, &v);
+            CHECK(!v.valid);
+            fl_obs_view_from_camera(&cam, model->width_px, 4000, &v);
+            CHECK(!v.valid);
+            fl_obs_view_from_camera(&cam, m_px, 0, &v);
+            CHECK(!v.valid);
+            fl_obs_view_from_camera(NULL, m_px, 4000, &v);
+            CHECK(!v.valid);
+            fl_obs_view_from_camera(&cam, m_px, 4000, NULL);
+        }
+    }
+    t_digest("obs.view", h);
+}
+
 void suite_obs(void)
 {
+    t_run("obs.view_from_camera", test_view);
     t_run("obs.list_capacity", test_list);
     t_run("obs.landmark_orientation", test_orientation);
 }

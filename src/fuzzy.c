@@ -113,6 +113,14 @@ void fl_fuzzy_params_default(fl_fuzzy_params_t *p)
     p->cons_shift = 3;
     p->kidnap_q16 = 29491;
     p->kidnap_rate_q8 = 192;
+    p->neg_q8 = 0;
+    p->neg_max = 2;
+    p->neg_track = 0;
+    p->neg_kidnap = 0;
+    p->neg_margin_mm = 200;
+    p->neg_range_q8 = 26;
+    p->neg_bearing = 910;
+    p->neg_head_max = 5461;
 }
 
 fl_status_t fl_fuzzy_params_check(const fl_fuzzy_params_t *p)
@@ -134,7 +142,9 @@ fl_status_t fl_fuzzy_params_check(const fl_fuzzy_params_t *p)
         p->mode_radius_mm < FL_FUZZY_CELL_MM || p->mode_radius_mm > 2000 ||
         p->track_radius_mm < FL_FUZZY_CELL_MM || p->track_radius_mm > 5000 ||
         p->track_min_q16 == 0 || p->cons_shift > 8 || p->min_height_q8 < 1 ||
-        p->head_bias_outlier > 1)
+        p->head_bias_outlier > 1 || p->neg_track > 1 || p->neg_max > 8 ||
+        p->neg_margin_mm < 0 || p->cross_max_mm < 0 || p->neg_margin_mm > 5000 || p->neg_range_q8 > 256 ||
+        p->neg_bearing < 0 || p->neg_head_max < 0)
         return FL_ERR_RANGE;
     return FL_OK;
 }

@@ -259,83 +259,129 @@ static void sector_box(int32_t lx, int32_t ly, fl_angle_t phi, const obsp_t *q,
         *y1 = ay1 + 4;
 }
 
+/* Regions of one map landmark for observation o: with an orientation, one
+ * per orientation candidate om + j x period (the arcs), else the ring;
+ * ring values scaled by scale_q16 (65535 = 1).  Scaling and overflow:
+ * r + rw <= 3 * 30000; arc half size 2 (r + rw) sin(tol / 2) from a Q15
+ * sine in 64 bit. */
+static void landmark_regions(fl_fuzzy_t *g, int *n, const fl_landmark_t *lm,
+                             const obsp_t *q, bool oriented, fl_angle_t om,
+                             fl_angle_t orientation, int32_t period, uint16_t scale_q16)
+{
+    int32_t bx0 = lm->x_mm - q->rout - FZ_CELL, bx1 = lm->x_mm + q->rout + FZ_CELL;
+    int32_t by0 = lm->y_mm - q->rout - FZ_CELL, by1 = lm->y_mm + q->rout + FZ_CELL;
+    if (oriented) {
+        fl_angle_t base = fl_angle_sub(om, orientation);
+        int32_t j, nj = 65536 / period;
+        int32_t tol = q->ocore + q->oslope;
+        int32_t arc;
+        if (tol > HT)
+            tol = HT;
+        arc = (int32_t)(((int64_t)2 * (q->r + q->rw) * fl_sin_q15(fl_angle_wrap(tol / 2)) + 32767) >> 15);
+        arc += q->rw + FZ_CELL;
+        for (j = 0; j < nj; j++) {
+            fl_angle_t ho = fl_angle_wrap(base + j * period);
+            /* direction landmark -> robot = heading + bearing + 180 */
+            fl_angle_t phi = fl_angle_wrap((int32_t)ho + q->bearing + 32768);
+            int32_t px = lm->x_mm + (int32_t)(((int64_t)q->r * fl_cos_q15(phi) + 16384) >> 15);
+            int32_t py = lm->y_mm + (int32_t)(((int64_t)q->r * fl_sin_q15(phi) + 16384) >> 15);
+            int32_t x0 = px - arc > bx0 ? px - arc : bx0;
+            int32_t x1 = px + arc < bx1 ? px + arc : bx1;
+            int32_t y0 = py - arc > by0 ? py - arc : by0;
+            int32_t y1 = py + arc < by1 ? py + arc : by1;
+            bool sector = !q->no_bearing_heading && q->sector_cos_q15 > 0;
+            if (q->no_bearing_heading) {   /* no arc: the whole disc */
+                x0 = bx0;
+                x1 = bx1;
+                y0 = by0;
+                y1 = by1;
+            } else if (sector) {
+                sector_box(lm->x_mm, lm->y_mm, phi, q, &x0, &x1, &y0, &y1);
+            }
+            if (x0 <= x1 && y0 <= y1) {
+                fl_fuzzy_region_t r;
+                r.lx_mm = lm->x_mm;
+                r.ly_mm = lm->y_mm;
+                r.x0_mm = x0;
+                r.x1_mm = x1;
+                r.y0_mm = y0;
+                r.y1_mm = y1;
+                r.head_o = ho;
+                r.ux_q15 = fl_cos_q15(phi);
+                r.uy_q15 = fl_sin_q15(phi);
+                r.oriented = true;
+                r.sector = sector;
+                r.scale_q16 = scale_q16;
+                add_region(g, n, &r);
+            }
+        }
+    } else {
+        fl_fuzzy_region_t r;
+        r.lx_mm = lm->x_mm;
+        r.ly_mm = lm->y_mm;
+        r.x0_mm = bx0;
+        r.x1_mm = bx1;
+        r.y0_mm = by0;
+        r.y1_mm = by1;
+        r.head_o = 0;
+        r.ux_q15 = 0;
+        r.uy_q15 = 0;
+        r.oriented = false;
+        r.sector = false;
+        r.scale_q16 = scale_q16;
+        add_region(g, n, &r);
+    }
+}
+
 /* Regions of an observation: one per matching landmark and orientation
- * candidate.  Scaling and overflow: r + rw <= 3 * 30000; arc half size
- * 2 (r + rw) sin(tol / 2) from a Q15 sine in 64 bit. */
+ * candidate; with params.confuse_q8, an L observation is also a T seen
+ * as an L (the L of the stem and one bar arm: bisector = stem +- 45 deg)
+ * and a T observation an L seen as a T (a third arm found along one of
+ * the L's arms, the stem being the other: stem = either arm), those
+ * regions scaled by confuse_q8. */
 static int build_regions(fl_fuzzy_t *g, const fl_obs_t *o, const obsp_t *q)
 {
     const fl_field_t *f = g->field;
     uint16_t i, nk = fl_field_count_kind(f, o->kind);
     int32_t period = orientation_period(o->kind);
+    uint8_t cq = g->params.confuse_q8;
     int n = 0;
     for (i = 0; i < nk; i++) {
         const fl_landmark_t *lm = fl_field_nth_kind(f, o->kind, i);
-        fl_angle_t om;
-        int32_t bx0, bx1, by0, by1;
+        fl_angle_t om = 0;
+        bool oriented;
         if (lm == NULL || !post_matches(lm, o))
             continue;
-        bx0 = lm->x_mm - q->rout - FZ_CELL;
-        bx1 = lm->x_mm + q->rout + FZ_CELL;
-        by0 = lm->y_mm - q->rout - FZ_CELL;
-        by1 = lm->y_mm + q->rout + FZ_CELL;
-        if (o->has_orientation && period > 0 && fl_landmark_orientation(lm, &om)) {
-            fl_angle_t base = fl_angle_sub(om, o->orientation);
-            int32_t j, nj = 65536 / period;
-            int32_t tol = q->ocore + q->oslope;
-            int32_t arc;
-            if (tol > HT)
-                tol = HT;
-            arc = (int32_t)(((int64_t)2 * (q->r + q->rw) * fl_sin_q15(fl_angle_wrap(tol / 2)) + 32767) >> 15);
-            arc += q->rw + FZ_CELL;
-            for (j = 0; j < nj; j++) {
-                fl_angle_t ho = fl_angle_wrap(base + j * period);
-                /* direction landmark -> robot = heading + bearing + 180 */
-                fl_angle_t phi = fl_angle_wrap((int32_t)ho + q->bearing + 32768);
-                int32_t px = lm->x_mm + (int32_t)(((int64_t)q->r * fl_cos_q15(phi) + 16384) >> 15);
-                int32_t py = lm->y_mm + (int32_t)(((int64_t)q->r * fl_sin_q15(phi) + 16384) >> 15);
-                int32_t x0 = px - arc > bx0 ? px - arc : bx0;
-                int32_t x1 = px + arc < bx1 ? px + arc : bx1;
-                int32_t y0 = py - arc > by0 ? py - arc : by0;
-                int32_t y1 = py + arc < by1 ? py + arc : by1;
-                bool sector = !q->no_bearing_heading && q->sector_cos_q15 > 0;
-                if (q->no_bearing_heading) {   /* no arc: the whole disc */
-                    x0 = bx0;
-                    x1 = bx1;
-                    y0 = by0;
-                    y1 = by1;
-                } else if (sector) {
-                    sector_box(lm->x_mm, lm->y_mm, phi, q, &x0, &x1, &y0, &y1);
-                }
-                if (x0 <= x1 && y0 <= y1) {
-                    fl_fuzzy_region_t r;
-                    r.lx_mm = lm->x_mm;
-                    r.ly_mm = lm->y_mm;
-                    r.x0_mm = x0;
-                    r.x1_mm = x1;
-                    r.y0_mm = y0;
-                    r.y1_mm = y1;
-                    r.head_o = ho;
-                    r.ux_q15 = fl_cos_q15(phi);
-                    r.uy_q15 = fl_sin_q15(phi);
-                    r.oriented = true;
-                    r.sector = sector;
-                    add_region(g, &n, &r);
-                }
+        oriented = o->has_orientation && period > 0 && fl_landmark_orientation(lm, &om);
+        landmark_regions(g, &n, lm, q, oriented, om, o->orientation, period, 65535u);
+    }
+    if (cq > 0 && (o->kind == FL_LM_L || o->kind == FL_LM_T)) {
+        fl_landmark_kind_t other = o->kind == FL_LM_L ? FL_LM_T : FL_LM_L;
+        uint32_t cc = g->params.confuse_conf, s8 = cq;
+        uint16_t scale;
+        /* vision's low-confidence crossings are often of the other kind:
+         * the possibility rises to 1 at confidence confuse_conf */
+        if (cc > 0 && cc < 255u && o->confidence < 255u)
+            s8 = o->confidence <= cc ? 255u
+                                     : cq + ((255u - cq) * (255u - o->confidence)) / (255u - cc);
+        scale = (uint16_t)(s8 * 257u);              /* <= 65535 */
+        nk = fl_field_count_kind(f, other);
+        for (i = 0; i < nk; i++) {
+            const fl_landmark_t *lm = fl_field_nth_kind(f, other, i);
+            fl_angle_t om;
+            int k;
+            if (lm == NULL)
+                continue;
+            if (!o->has_orientation) {
+                landmark_regions(g, &n, lm, q, false, 0, 0, 65536, scale);
+            } else if (other == FL_LM_L && lm->n_arms == 2) {
+                for (k = 0; k < 2; k++)
+                    landmark_regions(g, &n, lm, q, true, lm->arm[k], o->orientation, 65536, scale);
+            } else if (other == FL_LM_T && fl_landmark_orientation(lm, &om)) {
+                for (k = -1; k <= 1; k += 2)
+                    landmark_regions(g, &n, lm, q, true, fl_angle_wrap((int32_t)om + k * 8192),
+                                     o->orientation, 65536, scale);
             }
-        } else {
-            fl_fuzzy_region_t r;
-            r.lx_mm = lm->x_mm;
-            r.ly_mm = lm->y_mm;
-            r.x0_mm = bx0;
-            r.x1_mm = bx1;
-            r.y0_mm = by0;
-            r.y1_mm = by1;
-            r.head_o = 0;
-            r.ux_q15 = 0;
-            r.uy_q15 = 0;
-            r.oriented = false;
-            r.sector = false;
-            add_region(g, &n, &r);
         }
     }
     return n;
@@ -387,6 +433,19 @@ static void eval_cells(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
             if (reg->oriented) {
                 uint32_t agree = tpos(iabs(asub(head, reg->head_o)), q->ocore, q->oslope);
                 m = (uint32_t)(((uint64_t)m * agree) >> 16);
+            }
+        }
+        if (reg->scale_q16 < 65535u) {
+            m = (m * reg->scale_q16) >> 16;
+            if (!g->track_valid) {
+                /* the other kind (confuse_q8) without a track: never a
+                 * heading hypothesis of its own, only "a pose here stays
+                 * this possible" (r3: the cell's own shape scaled): from
+                 * ignorance the union of its heading with the observed
+                 * kind's would widen and move the cells' headings */
+                if (m > acc[ix].r3_q16)
+                    acc[ix].r3_q16 = (uint16_t)m;
+                continue;
             }
         }
         if (m == 0)
@@ -639,9 +698,14 @@ static void cell_product(const prodctx_t *x, const fl_fuzzy_acc_t *a,
     int32_t hmin_core = clamp32(g->params.head_min_core, 0, HT);
     int32_t hmin_slope = clamp32(g->params.head_min_slope, 0, HT);
     if (a->r1_q16 == 0) {
+        /* off every ring: x bP; only the other kind's ring (confuse_q8):
+         * x rho(r3) >= bP, the cell's shape kept */
+        uint32_t f8 = q->bias_q8;
+        if (a->r3_q16 != 0)
+            f8 = (rho(q, a->r3_q16) * 255u + 65535u) >> 16;
         *out = *c;
-        out->height = fz_mul8_ceil(c->height, q->bias_q8);
-        out->bias = fz_mul8_ceil(c->bias, q->bias_q8);
+        out->height = fz_mul8_ceil(c->height, f8);
+        out->bias = fz_mul8_ceil(c->bias, f8);
         return;
     }
     fl_fuzzy_trap_from_cell(c, &ct);
@@ -776,6 +840,8 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
     g->stats.updates = fz_sat_inc(g->stats.updates);
     if (o == NULL || o->confidence == 0 || (unsigned)o->kind >= (unsigned)FL_LM_KIND_COUNT ||
         o->range_mm < 0 || o->range_mm > clamp32(p->max_range_mm, 100, 30000) ||
+        (p->cross_max_mm > 0 && o->range_mm > p->cross_max_mm && o->kind != FL_LM_POST &&
+         o->kind != FL_LM_BEACON && o->kind != FL_LM_CENTRE_CIRCLE) ||
         fl_field_count_kind(g->field, o->kind) == 0) {
         g->stats.obs_ignored = fz_sat_inc(g->stats.obs_ignored);
         return false;
@@ -867,5 +933,154 @@ uint16_t fl_fuzzy_update(fl_fuzzy_t *g, const fl_obs_list_t *obs)
     for (i = 0; i < n; i++)
         if (fl_fuzzy_update_one(g, &obs->obs[i]))
             used++;
+    return used;
+}
+
+/* ---- negative information (fl_fuzzy_update_view) ---------------------- */
+
+typedef struct {
+    const fl_obs_list_t *obs;    /* the frame's observations (may be NULL) */
+    int32_t near_mm, far_mm;     /* the view's range interval */
+    fl_angle_t mid;              /* the view's centre bearing */
+    int32_t half;                /* its half width (binary angle, < 90 deg) */
+} negctx_t;
+
+/* Posts and beacons are told apart from line features; within each group
+ * any kind explains any (vision confuses L, T and X). */
+static bool neg_line_kind(fl_landmark_kind_t k)
+{
+    return k != FL_LM_POST && k != FL_LM_BEACON;
+}
+
+/* Landmarks of the map that pose (px, py, h) puts inside the view (range
+ * margin neg_margin + neg_range x distance, bearing margin neg_bearing +
+ * tol) in *expected, and how many of them no observation explains
+ * (returned; counting stops at cap).  Scaling: |dx|, |dy| <= far_mm <=
+ * 20000 before squaring, so dx^2 + dy^2 < 2^30; the margins < 2^16. */
+static int neg_count(const fl_fuzzy_t *g, const negctx_t *x, int32_t px, int32_t py,
+                     fl_angle_t h, int32_t tol, int cap, int *expected)
+{
+    const fl_field_t *f = g->field;
+    const fl_fuzzy_params_t *p = &g->params;
+    int32_t bt = clamp32(p->neg_bearing, 0, HT) + tol;
+    uint32_t far2 = (uint32_t)x->far_mm * (uint32_t)x->far_mm;
+    uint16_t i, k, nobs = 0;
+    int n = 0, e = 0;
+    if (x->obs != NULL)
+        nobs = x->obs->n > FL_OBS_MAX ? (uint16_t)FL_OBS_MAX : x->obs->n;
+    if (bt >= x->half)
+        return 0;                      /* nothing lies surely inside */
+    for (i = 0; i < f->n_landmarks && n < cap; i++) {
+        const fl_landmark_t *lm = &f->landmarks[i];
+        int32_t dx = lm->x_mm - px, dy = lm->y_mm - py, d, mr;
+        uint32_t s2;
+        fl_angle_t b;
+        bool explained = false;
+        if (iabs(dx) > x->far_mm || iabs(dy) > x->far_mm)
+            continue;
+        s2 = (uint32_t)(dx * dx) + (uint32_t)(dy * dy);
+        if (s2 > far2)
+            continue;
+        d = (int32_t)fl_isqrt32(s2);
+        mr = clamp32(p->neg_margin_mm, 0, 5000) +
+             (int32_t)(((uint32_t)d * (p->neg_range_q8 > 256 ? 256u : p->neg_range_q8)) >> 8);
+        if (d < x->near_mm + mr || d > x->far_mm - mr)
+            continue;
+        b = asub(fl_atan2(dy, dx), h);
+        if (iabs(asub(b, x->mid)) > x->half - bt)
+            continue;
+        e++;
+        for (k = 0; k < nobs && !explained; k++) {
+            const fl_obs_t *o = &x->obs->obs[k];
+            explained = o->confidence != 0 && (unsigned)o->kind < (unsigned)FL_LM_KIND_COUNT &&
+                        neg_line_kind(o->kind) == neg_line_kind(lm->kind) &&
+                        o->range_mm >= 0 && o->range_mm <= 2 * FL_CAMERA_MAX_RANGE_MM &&
+                        iabs(o->range_mm - d) <= mr && iabs(asub(o->bearing, b)) <= bt;
+        }
+        if (!explained)
+            n++;
+    }
+    *expected = e;
+    return n;
+}
+
+/* Every live cell with a known heading: height x (1 - neg_q8)^n, at least
+ * the bias (n unexplained landmarks, at most neg_max); then normalized.
+ * On an exactly symmetric belief the first half of the rows is done and
+ * mirrored (the map is symmetric, so the mirror pose expects the mirrored
+ * landmarks).  Cost: live cells with a narrow heading x landmarks within
+ * the view's range (one isqrt and one atan2 each) x observations. */
+static void neg_apply(fl_fuzzy_t *g, const negctx_t *x)
+{
+    const fl_fuzzy_params_t *p = &g->params;
+    int32_t hmax = clamp32(p->neg_head_max, 0, HT);
+    uint32_t keep = 256u - p->neg_q8, maxh = 0;
+    int iy, ix, ny_upd = g->sym_exact ? (g->ny + 1) / 2 : g->ny;
+    int cap = p->neg_max;
+    for (iy = 0; iy < ny_upd; iy++) {
+        fl_fuzzy_cell_t *row = &g->cell[(size_t)iy * g->nx];
+        int32_t cy = g->y0_mm + iy * FZ_CELL + FZ_HALF;
+        for (ix = g->row_lo[iy]; ix <= g->row_hi[iy]; ix++) {
+            fl_fuzzy_cell_t *c = &row[ix];
+            int32_t tol;
+            int e, n, k;
+            uint32_t hh;
+            if (c->height == 0)
+                continue;
+            /* the heading is within the core, or not far into the slope */
+            tol = (int32_t)(c->core >= FL_FUZZY_WFULL || c->slope >= FL_FUZZY_WFULL
+                                ? HT : ((int32_t)c->core + (int32_t)c->slope / 2) * FL_FUZZY_AUNIT);
+            if (c->height > c->bias && tol <= hmax && cap > 0) {
+                n = neg_count(g, x, g->x0_mm + ix * FZ_CELL + FZ_HALF + c->off_x_mm,
+                              cy + c->off_y_mm, c->centre, tol, cap, &e);
+                hh = c->height;
+                for (k = 0; k < n; k++)
+                    hh = (hh * keep) >> 8;
+                c->height = (uint8_t)(hh > c->bias ? hh : c->bias);
+            }
+            if (c->height > maxh)
+                maxh = c->height;
+        }
+    }
+    if (g->sym_exact)
+        fl_fuzzy_internal_mirror_copy(g);
+    fl_fuzzy_internal_normalize(g, maxh);
+}
+
+uint16_t fl_fuzzy_update_view(fl_fuzzy_t *g, const fl_obs_list_t *obs,
+                              const fl_obs_view_t *view)
+{
+    const fl_fuzzy_params_t *p;
+    uint16_t used = fl_fuzzy_update(g, obs);
+    negctx_t x;
+    int32_t width;
+    if (!ready(g) || view == NULL || !view->valid)
+        return used;
+    p = &g->params;
+    width = fl_angle_sub(view->bearing_left, view->bearing_right);
+    if (width <= 0 || view->near_mm < 0 || view->far_mm <= view->near_mm ||
+        view->far_mm > FL_CAMERA_MAX_RANGE_MM)
+        return used;                   /* not a view: ignored */
+    x.obs = obs;
+    x.near_mm = view->near_mm;
+    x.far_mm = view->far_mm;
+    x.half = width / 2;
+    x.mid = fl_angle_add(view->bearing_right, (fl_angle_t)x.half);
+    if (g->track_valid && p->neg_kidnap > 0) {
+        int e = 0, n = neg_count(g, &x, g->track_x_mm, g->track_y_mm, g->track_heading, 0,
+                                 255, &e);
+        if (e >= p->neg_kidnap && n == e) {
+            /* the tracked pose should see landmarks and the frame shows
+             * none of them: a contradiction, as a deferred observation */
+            update_consistency(g, 0);
+            if (g->contra_run < UINT8_MAX)
+                g->contra_run++;
+            if (g->contra_rate_q8 < UINT16_MAX - 32u)
+                g->contra_rate_q8 = (uint16_t)(g->contra_rate_q8 + 32u);
+            (void)kidnapped(g);
+        }
+    }
+    if (p->neg_q8 > 0 && (!g->track_valid || p->neg_track))
+        neg_apply(g, &x);
     return used;
 }

@@ -56,6 +56,11 @@ typedef struct {
     int32_t obs_used;           /* of the last frame */
     int ignore_post_sides;      /* 1: post sides from vision are dropped
                                    (FL_SIDE_UNKNOWN) before the update */
+    fl_obs_view_t view;         /* the last frame's view (negative
+                                   information, fl_fuzzy_update_view) */
+    int32_t view_margin_px;     /* the view: the image shrunk by this */
+    int32_t view_range_mm;      /* ... up to this range (lr_init: by the
+                                   camera's resolution) */
     double carry_x, carry_y, carry_a;   /* predict rounding remainders */
     uint32_t frames;            /* lr_frame calls that ran vision */
 } lr_t;

@@ -34,11 +34,11 @@
  *     cells    8 B x 7,696          = 61,568 B (layout: fl_fuzzy_cell_t)
  *     scratch  the larger of predict's row ring buffer (3 rows x 104 x
  *              8 B = 2,496 B) and the update's row accumulator with its
- *              region list (104 x 10 B + 48 x 32 B = 2,576 B): 2,576 B
+ *              region list (104 x 10 B + 48 x 36 B = 2,768 B): 2,768 B
  *     live column range per row    2 x 74 B =    148 B
- *     the rest (params, prior, track, counters)   212 B (204 on 32-bit)
- *     sizeof(fl_fuzzy_t) = 64,504 B on x86-64 (64,496 on 32-bit targets),
- *     < 64 KiB (printed by the fuzzy suite).
+ *     the rest (params, prior, track, counters)   236 B on x86-64
+ *     sizeof(fl_fuzzy_t) = 64,720 B on x86-64, < 64 KiB (printed by the
+ *     fuzzy suite).
  *     No heap; stack at most about 1 KB per call (make stack).
  * Cost (tools/bench_fuzzy.c, x86-64 host, gcc -O2): one predict + 5
  * observation updates on the SPL grid: about 0.14 ms (2.2 M instructions)
@@ -171,7 +171,20 @@ typedef struct {
                                     0: head_bias alone (the default; 1 with
                                     head_bias 0 for the vision path,
                                     tools/locrun.c) */
+    uint8_t confuse_q8;          /* L and T confusion (0 = none, the
+                                    default): an L observation is also a T
+                                    and a T an L, with this possibility
+                                    (fuzzy_update.c build_regions) */
+    uint8_t confuse_conf;        /* ... rising linearly to 1 at this
+                                    confidence and below (0 = constant):
+                                    vision's low-confidence crossings are
+                                    often of the other kind */
     int32_t max_range_mm;        /* observations farther are ignored (12000) */
+    int32_t cross_max_mm;        /* crossings and marks (L, T, X, penalty
+                                    and centre marks) farther are ignored
+                                    (0 = max_range_mm, the default): a
+                                    low-resolution camera measures them
+                                    badly far away (tools/locrun.c) */
     /* normalization */
     uint8_t min_height_q8;       /* heights below this after normalization
                                     are zero (2/255) */
@@ -193,6 +206,33 @@ typedef struct {
                                     contradictions at kidnap_rate_q8 per
                                     predict call or more: kidnap (0.45) */
     uint16_t kidnap_rate_q8;     /* (0.75) */
+    /* negative information (fl_fuzzy_update_view) */
+    uint8_t neg_q8;              /* a cell's core loses this fraction of its
+                                    height per landmark its pose puts in
+                                    the frame's view that no observation
+                                    explains (0 = off, the default; the
+                                    vision path: tools/locrun.c) */
+    uint8_t neg_max;             /* at most this many such landmarks count
+                                    per cell and frame (2) */
+    uint8_t neg_track;           /* 1: also while a mode is tracked; 0: only
+                                    without a track (the default), when
+                                    the belief has several modes */
+    uint8_t neg_kidnap;          /* while tracked: a frame in which the
+                                    tracked pose expects at least this many
+                                    landmarks (2; 0 = off) and none is
+                                    explained counts as a contradiction */
+    int32_t neg_margin_mm;       /* position margin: a landmark counts when
+                                    it is this far (plus neg_range_q8 of its
+                                    distance) inside the view's range
+                                    interval (200) */
+    uint16_t neg_range_q8;       /* (0.1); an observation explains it
+                                    within the same margin of its range */
+    fl_angle_t neg_bearing;      /* bearing margin (5 deg) inside the view's
+                                    sides, plus the cell's heading core and
+                                    slope; an observation explains it
+                                    within the same margin of its bearing */
+    fl_angle_t neg_head_max;     /* cells whose heading core + slope is
+                                    wider than this are skipped (30 deg) */
 } fl_fuzzy_params_t;
 
 /* What decides between symmetric modes until a mode is tracked.  A
@@ -245,6 +285,8 @@ typedef struct {
     fl_angle_t head_o;           /* heading implied by the orientation */
     int16_t ux_q15, uy_q15;      /* oriented: unit vector landmark -> the
                                     arc's centre (cos, sin Q15) */
+    uint16_t scale_q16;          /* ring values x this (65535 = 1: the
+                                    observed kind; confuse_q8: the other) */
     bool oriented;
     bool sector;                 /* oriented with a narrow sector: cells
                                     whose direction from the landmark is
@@ -362,6 +404,25 @@ void fl_fuzzy_predict(fl_fuzzy_t *g, int32_t dx_mm, int32_t dy_mm,
 bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *obs);
 /* Every observation of a frame in turn; returns how many were applied. */
 uint16_t fl_fuzzy_update(fl_fuzzy_t *g, const fl_obs_list_t *obs);
+/* fl_fuzzy_update, then negative information from the frame's view
+ * (obs.h; NULL or !valid: none): for every live cell whose heading is known
+ * to within neg_head_max, every map landmark that the pose (the cell's
+ * content position, its trapezoid centre) puts inside the view (with the
+ * margins above, widened by the cell's heading core and slope) and that
+ * no observation of the list explains (an observation of a compatible
+ * kind near the expected range and bearing: posts and beacons explain
+ * posts and beacons, any line feature explains any line feature; kind
+ * confusions happen) lowers the cell's height by neg_q8, at most neg_max
+ * times: height' = max(height x (1 - neg_q8)^n, bias), i.e. the headings
+ * of the core lose possibility, the others keep the bias.  Applied while
+ * no mode is tracked (or always with neg_track); then normalized.  While
+ * tracked, with neg_kidnap, the tracked pose is tested the same way
+ * (heading known exactly): neg_kidnap or more expected landmarks and none
+ * explained counts as a contradiction (consistency and kidnap detection,
+ * fuzzy_update.c).  neg_q8 = 0 and neg_kidnap = 0: exactly
+ * fl_fuzzy_update.  Returns how many observations were applied. */
+uint16_t fl_fuzzy_update_view(fl_fuzzy_t *g, const fl_obs_list_t *obs,
+                              const fl_obs_view_t *view);
 
 /* The estimate: centre of gravity of the dominant mode (the tracked mode or
  * the prior's while its peak is at least switch_q8 x the global peak),
