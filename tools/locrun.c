@@ -56,6 +56,11 @@ int lr_init(lr_t *r, const fl_field_t *field, const fl_camera_model_t *model,
          * this value is left alone. */
         pw = *params;
         pw.ring_track_q8 = 256;
+        /* its crossings beyond 2.5 m are 5-15 % short and often of
+         * the wrong kind (aibo2004 seed 3, --frames: rms range error
+         * 114 mm at 2-2.5 m, 576 mm at 3.5-4 m): ignored */
+        if (pw.cross_max_mm == 0)
+            pw.cross_max_mm = 2500;
         params = &pw;
     }
     if (fl_fuzzy_init(r->grid, field, params) != FL_OK) {
@@ -1154,6 +1159,24 @@ void lr_walk_print_vdiag(FILE *f, const lr_walk_result_t *res)
  * 51.6/73.2/57.9), kidnap recovery 3.3/3.0/3.2 s, one kidnap detected per
  * walk as before (cons_shift 2 or kidnap_q16 >= 33000 bring false kidnaps
  * and mirror flips).  aibo2004 unchanged (wide rings, lr_init).
+ * Then (fuzzy.h, fl_fuzzy_update_view): after the spl2013 kidnap the head
+ * looks at a touchline and vision sees nothing for 2.2 s; the tracked
+ * pose expected 2-4 landmarks in those frames: neg_kidnap 2 counts such
+ * frames as contradictions (kidnap detected at 55.8 instead of 57.9 s on
+ * seed 3), and neg_q8 0.39 lowers, without a track, the candidate poses
+ * of the first T (one per T of the map) that should see something else.
+ * The first converged frames after that are less precise (one far T):
+ * track_min_q16 0.2 instead of 0.3 starts tracking (precise rings,
+ * gate) sooner.  Vision's crossings of confidence <= 160 are of the
+ * other kind (L <-> T) 50-74 % of the time (confidence >= 200: 1-9 %;
+ * spl2013 seed 1, aibo2004 seed 3): confuse_q8 0.39 rising to 1 at
+ * confidence 160.  aibo2004: crossings beyond 2.5 m ignored (lr_init).
+ * simulate --frames (obs-cached), seeds 1-3, before -> after: spl2013
+ * 51.0/58.3/47.0 -> 41.4/44.4/41.1 mm, 1.39/1.50/1.25 -> 1.48/1.42/1.33
+ * deg, kidnap recovery 3.3/3.0/3.2 -> 2.7/2.5/2.5 s; aibo2004
+ * 60.0/58.1/120.4 -> 58.6/51.0/69.0 mm, 2.71/2.65/2.89 -> 2.78/2.85/2.67
+ * deg; uva2013 37.4/35.1/35.3 -> 37.4/33.4/37.3 mm, 1.09/1.46/1.03 ->
+ * 1.16/1.09/1.43 deg; one kidnap detected per walk, 0 flips.
  */
 void lr_params_frames(fl_fuzzy_params_t *p)
 {
@@ -1165,6 +1188,11 @@ void lr_params_frames(fl_fuzzy_params_t *p)
     p->head_bias_outlier = 1;
     p->ring_track_q8 = LR_RING_TRACK_FRAMES;
     p->kidnap_rate_q8 = 128;
+    p->neg_q8 = 100;
+    p->neg_kidnap = 2;
+    p->track_min_q16 = 13107;
+    p->confuse_q8 = 100;
+    p->confuse_conf = 160;
 }
 
 int lr_param_set(fl_fuzzy_params_t *p, const char *assign)
