@@ -943,6 +943,9 @@ typedef struct {
     int32_t near_mm, far_mm;     /* the view's range interval */
     fl_angle_t mid;              /* the view's centre bearing */
     int32_t half;                /* its half width (binary angle, < 90 deg) */
+    int32_t r_hi;                /* distances d with near + mr(d) <= d <= */
+    uint32_t s_lo, s_hi;         /* far - mr(d), mr(d) = margin + neg_range
+                                    x d: r_lo^2 <= d^2 <= r_hi^2 */
 } negctx_t;
 
 /* Posts and beacons are told apart from line features; within each group
@@ -955,47 +958,63 @@ static bool neg_line_kind(fl_landmark_kind_t k)
 /* Landmarks of the map that pose (px, py, h) puts inside the view (range
  * margin neg_margin + neg_range x distance, bearing margin neg_bearing +
  * tol) in *expected, and how many of them no observation explains
- * (returned; counting stops at cap).  Scaling: |dx|, |dy| <= far_mm <=
- * 20000 before squaring, so dx^2 + dy^2 < 2^30; the margins < 2^16. */
+ * (returned; counting stops at cap).  The tests avoid roots and atan2:
+ * the distance by its square against the frame's bounds (negctx_t), the
+ * bearing by the landmark vector turned into the view's centre direction
+ * (x' > 0 and |y'| cos A <= x' sin A, A = half - margin); the root and the
+ * atan2 only for an expected landmark that an observation may explain.
+ * Scaling: |dx|, |dy| <= r_hi <= 20000 before squaring, so dx^2 + dy^2 <
+ * 2^30; x', y' (Q15) < 2^31 in int64, times a Q15 sine < 2^46. */
 static int neg_count(const fl_fuzzy_t *g, const negctx_t *x, int32_t px, int32_t py,
                      fl_angle_t h, int32_t tol, int cap, int *expected)
 {
     const fl_field_t *f = g->field;
     const fl_fuzzy_params_t *p = &g->params;
     int32_t bt = clamp32(p->neg_bearing, 0, HT) + tol;
-    uint32_t far2 = (uint32_t)x->far_mm * (uint32_t)x->far_mm;
+    int64_t c, sn, ca, sa;
+    fl_angle_t dir;
     uint16_t i, k, nobs = 0;
     int n = 0, e = 0;
+    *expected = 0;
     if (x->obs != NULL)
         nobs = x->obs->n > FL_OBS_MAX ? (uint16_t)FL_OBS_MAX : x->obs->n;
-    if (bt >= x->half)
+    if (bt >= x->half || x->s_lo > x->s_hi)
         return 0;                      /* nothing lies surely inside */
+    dir = fl_angle_add(h, x->mid);     /* the view's centre, field frame */
+    c = fl_cos_q15(dir);
+    sn = fl_sin_q15(dir);
+    ca = fl_cos_q15((fl_angle_t)(x->half - bt));
+    sa = fl_sin_q15((fl_angle_t)(x->half - bt));
     for (i = 0; i < f->n_landmarks && n < cap; i++) {
         const fl_landmark_t *lm = &f->landmarks[i];
         int32_t dx = lm->x_mm - px, dy = lm->y_mm - py, d, mr;
+        int64_t xr, yr;
         uint32_t s2;
         fl_angle_t b;
         bool explained = false;
-        if (iabs(dx) > x->far_mm || iabs(dy) > x->far_mm)
+        if (iabs(dx) > x->r_hi || iabs(dy) > x->r_hi)
             continue;
         s2 = (uint32_t)(dx * dx) + (uint32_t)(dy * dy);
-        if (s2 > far2)
+        if (s2 < x->s_lo || s2 > x->s_hi)
             continue;
-        d = (int32_t)fl_isqrt32(s2);
-        mr = clamp32(p->neg_margin_mm, 0, 5000) +
-             (int32_t)(((uint32_t)d * (p->neg_range_q8 > 256 ? 256u : p->neg_range_q8)) >> 8);
-        if (d < x->near_mm + mr || d > x->far_mm - mr)
-            continue;
-        b = asub(fl_atan2(dy, dx), h);
-        if (iabs(asub(b, x->mid)) > x->half - bt)
+        xr = dx * c + dy * sn;
+        yr = dy * c - dx * sn;
+        if (xr <= 0 || (yr < 0 ? -yr : yr) * ca > xr * sa)
             continue;
         e++;
-        for (k = 0; k < nobs && !explained; k++) {
-            const fl_obs_t *o = &x->obs->obs[k];
-            explained = o->confidence != 0 && (unsigned)o->kind < (unsigned)FL_LM_KIND_COUNT &&
-                        neg_line_kind(o->kind) == neg_line_kind(lm->kind) &&
-                        o->range_mm >= 0 && o->range_mm <= 2 * FL_CAMERA_MAX_RANGE_MM &&
-                        iabs(o->range_mm - d) <= mr && iabs(asub(o->bearing, b)) <= bt;
+        if (nobs > 0) {
+            d = (int32_t)fl_isqrt32(s2);
+            mr = clamp32(p->neg_margin_mm, 0, 5000) +
+                 (int32_t)(((uint32_t)d * (p->neg_range_q8 > 256 ? 256u : p->neg_range_q8)) >> 8);
+            b = asub(fl_atan2(dy, dx), h);
+            for (k = 0; k < nobs && !explained; k++) {
+                const fl_obs_t *o = &x->obs->obs[k];
+                explained = o->confidence != 0 &&
+                            (unsigned)o->kind < (unsigned)FL_LM_KIND_COUNT &&
+                            neg_line_kind(o->kind) == neg_line_kind(lm->kind) &&
+                            o->range_mm >= 0 && o->range_mm <= 2 * FL_CAMERA_MAX_RANGE_MM &&
+                            iabs(o->range_mm - d) <= mr && iabs(asub(o->bearing, b)) <= bt;
+            }
         }
         if (!explained)
             n++;
@@ -1066,6 +1085,22 @@ uint16_t fl_fuzzy_update_view(fl_fuzzy_t *g, const fl_obs_list_t *obs,
     x.far_mm = view->far_mm;
     x.half = width / 2;
     x.mid = fl_angle_add(view->bearing_right, (fl_angle_t)x.half);
+    {
+        /* d >= near + m + rq d  <=>  d >= (near + m) / (1 - rq);
+         * d <= far - m - rq d   <=>  d <= (far - m) / (1 + rq) (Q8) */
+        uint32_t rq = p->neg_range_q8 > 255 ? 255u : p->neg_range_q8;
+        int32_t m = clamp32(p->neg_margin_mm, 0, 5000);
+        int32_t lo = (int32_t)((((uint32_t)(view->near_mm + m) << 8) + (255u - rq)) / (256u - rq));
+        int32_t hi = view->far_mm - m < 0
+                         ? -1 : (int32_t)(((uint32_t)(view->far_mm - m) << 8) / (256u + rq));
+        x.r_hi = hi;
+        x.s_lo = (uint32_t)lo * (uint32_t)lo;
+        x.s_hi = hi < 0 ? 0u : (uint32_t)hi * (uint32_t)hi;
+        if (hi < lo) {
+            x.s_lo = 1u;
+            x.s_hi = 0u;
+        }
+    }
     if (g->track_valid && p->neg_kidnap > 0) {
         int e = 0, n = neg_count(g, &x, g->track_x_mm, g->track_y_mm, g->track_heading, 0,
                                  255, &e);

@@ -11,6 +11,12 @@
  *              the update, no gating), the same odometry and observations.
  * Rows: fuzzy_frame_tracking, fuzzy_frame_ignorance (ns per predict + 5
  * updates), and their parts (predict alone, 5 updates alone).  No peer.
+ * fuzzy_negative_ignorance: the negative-information pass of
+ * fl_fuzzy_update_view alone (neg_q8 0.39, an empty observation list, a
+ * view 50 deg wide and 0.6-4 m deep ahead) on the grid that ignorance and
+ * the 5 updates leave (many cells with a narrow heading on the arcs);
+ * fuzzy_negative_worst: the same on a grid whose every cell has a narrow
+ * heading and which is not exactly symmetric (the whole grid is done).
  *
  * Instruction counts (stable, machine independent): run the walk under
  * callgrind collecting only the localizer, e.g.
@@ -116,4 +122,49 @@ void bench_fuzzy(bench_ctx_t *ctx)
               "predict + 5 updates from total ignorance (worst case)");
     bench_row(ctx, "fuzzy_predict_ignorance", bfz_time(&in, reps, 1, 0), 0, "predict alone");
     bench_row(ctx, "fuzzy_update5_ignorance", bfz_time(&in, reps, 0, 1), 0, "5 updates alone");
+    {
+        static fl_obs_list_t empty;
+        fl_obs_view_t v;
+        double best = 1e30;
+        int r, pass;
+        fl_obs_list_clear(&empty);
+        v.valid = true;
+        v.bearing_right = fl_angle_from_mdeg(-25000);
+        v.bearing_left = fl_angle_from_mdeg(25000);
+        v.near_mm = 600;
+        v.far_mm = 4000;
+        bfz_saved.params.neg_q8 = 100;
+        for (i = 0; i < in.n; i++)
+            fl_fuzzy_update_one(&bfz_saved, &in.obs[i]);
+        for (pass = 0; pass < 2; pass++) {
+            if (pass == 1) {
+                for (i = 0; i < bfz_saved.nx * bfz_saved.ny; i++) {
+                    fl_fuzzy_cell_t *c = &bfz_saved.cell[i];
+                    c->height = 255;
+                    c->bias = 0;
+                    c->core = 3;
+                    c->slope = 6;
+                    c->centre = (fl_angle_t)(i * 2731);
+                }
+                for (i = 0; i < bfz_saved.ny; i++) {
+                    bfz_saved.row_lo[i] = 0;
+                    bfz_saved.row_hi[i] = (uint8_t)(bfz_saved.nx - 1);
+                }
+                bfz_saved.sym_exact = false;
+            }
+            best = 1e30;
+            for (r = 0; r < reps; r++) {
+                double t0, t;
+                memcpy(&bfz_grid, &bfz_saved, sizeof bfz_grid);
+                t0 = bench_now_ns();
+                fl_fuzzy_update_view(&bfz_grid, &empty, &v);
+                t = bench_now_ns() - t0;
+                if (t < best)
+                    best = t;
+            }
+            bench_row(ctx, pass == 0 ? "fuzzy_negative_ignorance" : "fuzzy_negative_worst", best, 0,
+                      pass == 0 ? "negative information pass after ignorance + 5 updates"
+                                : "negative information pass, every cell narrow");
+        }
+    }
 }
