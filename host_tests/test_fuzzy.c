@@ -710,6 +710,36 @@ static void test_negative_info(void)
     CHECK(memcmp(G.cell, G2.cell, sizeof G.cell) == 0);
     p.neg_track = 2;
     CHECK_EQ(fl_fuzzy_params_check(&p), FL_ERR_RANGE);
+    /* one observation explains one landmark: after the spl2013 kidnap
+     * (seed 6, 57.9 s) the halfway T seen from P2 also fits Q2 at the
+     * goal-area T (-4500, -1100), where the penalty-area L (-3900, -1100)
+     * lies 9 degrees beside that T in the view: the T observation is the
+     * T's, the L is unexplained, Q2 loses possibility */
+    {
+        int32_t p2x = 2550, p2y = -1274, q2x = -2384, q2y = -3510;
+        fl_angle_t p2h = DEG(-95.2), q2h = DEG(-178.1);
+        o = make_obs(t, p2x, p2y, p2h);
+        fl_obs_list_clear(&list);
+        fl_obs_list_push(&list, &o);
+        v.valid = true;
+        v.bearing_right = DEG(-78.1);
+        v.bearing_left = DEG(-25.1);
+        v.near_mm = 887;
+        v.far_mm = 4000;
+        p.neg_track = 0;
+        fl_fuzzy_init(&G, f, NULL);
+        fl_fuzzy_update(&G, &list);
+        fl_fuzzy_init(&G2, f, &p);
+        fl_fuzzy_update_view(&G2, &list, &v);
+        t_info("fuzzy negative information, one observation per landmark: the pose at the "
+               "goal-area T %.2f -> %.2f, the true pose %.2f",
+               fl_fuzzy_possibility_q16(&G, q2x, q2y, q2h) / 65536.0,
+               fl_fuzzy_possibility_q16(&G2, q2x, q2y, q2h) / 65536.0,
+               fl_fuzzy_possibility_q16(&G2, p2x, p2y, p2h) / 65536.0);
+        CHECK_LE(0.9 * 65536, fl_fuzzy_possibility_q16(&G, q2x, q2y, q2h));
+        CHECK_LE(fl_fuzzy_possibility_q16(&G2, q2x, q2y, q2h), 0.7 * 65536);
+        CHECK_LE(0.9 * 65536, fl_fuzzy_possibility_q16(&G2, p2x, p2y, p2h));
+    }
 }
 
 /* neg_kidnap: a tracked robot whose frames stop showing the landmarks its

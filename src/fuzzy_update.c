@@ -215,9 +215,10 @@ static void add_region(fl_fuzzy_t *g, int *n, const fl_fuzzy_region_t *r)
  * Scaling and overflow: R <= rout <= 3 x 30000 mm, R x Q15 < 2^32 in
  * int64; each point rounded to the nearest mm, the box widened by 4 mm
  * for the rounding and the table error (R x 2^-15 < 3 mm). */
-static void sector_box(int32_t lx, int32_t ly, fl_angle_t phi, const obsp_t *q,
-                       int32_t *x0, int32_t *x1, int32_t *y0, int32_t *y1)
+static void sector_box(fl_fuzzy_region_t *rg, fl_angle_t phi, const obsp_t *q)
 {
+    int32_t lx = rg->lx_mm, ly = rg->ly_mm;
+    int32_t *x0 = &rg->x0_mm, *x1 = &rg->x1_mm, *y0 = &rg->y0_mm, *y1 = &rg->y1_mm;
     int32_t rad[2], ax0 = INT32_MAX, ax1 = INT32_MIN, ay0 = INT32_MAX, ay1 = INT32_MIN;
     fl_angle_t ang[2];
     int i, j, k;
@@ -264,10 +265,25 @@ static void sector_box(int32_t lx, int32_t ly, fl_angle_t phi, const obsp_t *q,
  * ring values scaled by scale_q16 (65535 = 1).  Scaling and overflow:
  * r + rw <= 3 * 30000; arc half size 2 (r + rw) sin(tol / 2) from a Q15
  * sine in 64 bit. */
-static void landmark_regions(fl_fuzzy_t *g, int *n, const fl_landmark_t *lm,
-                             const obsp_t *q, bool oriented, fl_angle_t om,
-                             fl_angle_t orientation, int32_t period, uint16_t scale_q16)
+typedef struct {
+    bool oriented;
+    fl_angle_t om;               /* the landmark's orientation (map) */
+    fl_angle_t orientation;      /* the observation's */
+    int32_t period;              /* of the orientation (65536: one candidate) */
+    uint16_t scale_q16;
+    int n;                       /* regions so far (in and out: the callee
+                                    writes *sp, so gcc passes the pointer,
+                                    not its fields on the stack) */
+} regspec_t;
+
+static void landmark_regions(fl_fuzzy_t *g, const fl_landmark_t *lm, const obsp_t *q,
+                             regspec_t *sp)
 {
+    int *n = &sp->n;
+    bool oriented = sp->oriented;
+    fl_angle_t om = sp->om, orientation = sp->orientation;
+    int32_t period = sp->period;
+    uint16_t scale_q16 = sp->scale_q16;
     int32_t bx0 = lm->x_mm - q->rout - FZ_CELL, bx1 = lm->x_mm + q->rout + FZ_CELL;
     int32_t by0 = lm->y_mm - q->rout - FZ_CELL, by1 = lm->y_mm + q->rout + FZ_CELL;
     if (oriented) {
@@ -290,22 +306,22 @@ static void landmark_regions(fl_fuzzy_t *g, int *n, const fl_landmark_t *lm,
             int32_t y0 = py - arc > by0 ? py - arc : by0;
             int32_t y1 = py + arc < by1 ? py + arc : by1;
             bool sector = !q->no_bearing_heading && q->sector_cos_q15 > 0;
+            fl_fuzzy_region_t r;
+            r.lx_mm = lm->x_mm;
+            r.ly_mm = lm->y_mm;
+            r.x0_mm = x0;
+            r.x1_mm = x1;
+            r.y0_mm = y0;
+            r.y1_mm = y1;
             if (q->no_bearing_heading) {   /* no arc: the whole disc */
-                x0 = bx0;
-                x1 = bx1;
-                y0 = by0;
-                y1 = by1;
+                r.x0_mm = bx0;
+                r.x1_mm = bx1;
+                r.y0_mm = by0;
+                r.y1_mm = by1;
             } else if (sector) {
-                sector_box(lm->x_mm, lm->y_mm, phi, q, &x0, &x1, &y0, &y1);
+                sector_box(&r, phi, q);
             }
-            if (x0 <= x1 && y0 <= y1) {
-                fl_fuzzy_region_t r;
-                r.lx_mm = lm->x_mm;
-                r.ly_mm = lm->y_mm;
-                r.x0_mm = x0;
-                r.x1_mm = x1;
-                r.y0_mm = y0;
-                r.y1_mm = y1;
+            if (r.x0_mm <= r.x1_mm && r.y0_mm <= r.y1_mm) {
                 r.head_o = ho;
                 r.ux_q15 = fl_cos_q15(phi);
                 r.uy_q15 = fl_sin_q15(phi);
@@ -345,7 +361,8 @@ static int build_regions(fl_fuzzy_t *g, const fl_obs_t *o, const obsp_t *q)
     uint16_t i, nk = fl_field_count_kind(f, o->kind);
     int32_t period = orientation_period(o->kind);
     uint8_t cq = g->params.confuse_q8;
-    int n = 0;
+    regspec_t sp;
+    sp.n = 0;
     for (i = 0; i < nk; i++) {
         const fl_landmark_t *lm = fl_field_nth_kind(f, o->kind, i);
         fl_angle_t om = 0;
@@ -353,7 +370,12 @@ static int build_regions(fl_fuzzy_t *g, const fl_obs_t *o, const obsp_t *q)
         if (lm == NULL || !post_matches(lm, o))
             continue;
         oriented = o->has_orientation && period > 0 && fl_landmark_orientation(lm, &om);
-        landmark_regions(g, &n, lm, q, oriented, om, o->orientation, period, 65535u);
+        sp.oriented = oriented;
+        sp.om = om;
+        sp.orientation = o->orientation;
+        sp.period = period;
+        sp.scale_q16 = 65535u;
+        landmark_regions(g, lm, q, &sp);
     }
     if (cq > 0 && (o->kind == FL_LM_L || o->kind == FL_LM_T)) {
         fl_landmark_kind_t other = o->kind == FL_LM_L ? FL_LM_T : FL_LM_L;
@@ -372,19 +394,27 @@ static int build_regions(fl_fuzzy_t *g, const fl_obs_t *o, const obsp_t *q)
             int k;
             if (lm == NULL)
                 continue;
+            sp.oriented = o->has_orientation;
+            sp.om = 0;
+            sp.orientation = o->orientation;
+            sp.period = 65536;
+            sp.scale_q16 = scale;
             if (!o->has_orientation) {
-                landmark_regions(g, &n, lm, q, false, 0, 0, 65536, scale);
+                landmark_regions(g, lm, q, &sp);
             } else if (other == FL_LM_L && lm->n_arms == 2) {
-                for (k = 0; k < 2; k++)
-                    landmark_regions(g, &n, lm, q, true, lm->arm[k], o->orientation, 65536, scale);
+                for (k = 0; k < 2; k++) {
+                    sp.om = lm->arm[k];
+                    landmark_regions(g, lm, q, &sp);
+                }
             } else if (other == FL_LM_T && fl_landmark_orientation(lm, &om)) {
-                for (k = -1; k <= 1; k += 2)
-                    landmark_regions(g, &n, lm, q, true, fl_angle_wrap((int32_t)om + k * 8192),
-                                     o->orientation, 65536, scale);
+                for (k = -1; k <= 1; k += 2) {
+                    sp.om = fl_angle_wrap((int32_t)om + k * 8192);
+                    landmark_regions(g, lm, q, &sp);
+                }
             }
         }
     }
-    return n;
+    return sp.n;
 }
 
 /* Offer region reg's ring to the live cells ix0..ix1 of row iy.
@@ -955,26 +985,49 @@ static bool neg_line_kind(fl_landmark_kind_t k)
     return k != FL_LM_POST && k != FL_LM_BEACON;
 }
 
+/* At most this many expected landmarks of one pose are matched against
+ * the observations (more are not counted; the maps have at most 25). */
+#define NEG_MAX_EXPECTED 32
+
 /* Landmarks of the map that pose (px, py, h) puts inside the view (range
  * margin neg_margin + neg_range x distance, bearing margin neg_bearing +
  * tol) in *expected, and how many of them no observation explains
- * (returned; counting stops at cap).  The tests avoid roots and atan2:
- * the distance by its square against the frame's bounds (negctx_t), the
- * bearing by the landmark vector turned into the view's centre direction
- * (x' > 0 and |y'| cos A <= x' sin A, A = half - margin); the root and the
- * atan2 only for an expected landmark that an observation may explain.
- * Scaling: |dx|, |dy| <= r_hi <= 20000 before squaring, so dx^2 + dy^2 <
- * 2^30; x', y' (Q15) < 2^31 in int64, times a Q15 sine < 2^46. */
-static int neg_count(const fl_fuzzy_t *g, const negctx_t *x, int32_t px, int32_t py,
-                     fl_angle_t h, int32_t tol, int cap, int *expected)
+ * (returned, at most cap).  Each observation explains at most one of
+ * them, the nearest in bearing within its tolerances (kind group, range
+ * within the range margin, bearing within the bearing margin), so that a
+ * T seen explains the T a hypothesis put it on, not also the L 9 degrees
+ * beside it.  The view tests avoid roots and atan2: the distance by its
+ * square against the frame's bounds (negctx_t), the bearing by the
+ * landmark vector turned into the view's centre direction (x' > 0 and
+ * |y'| cos A <= x' sin A, A = half - margin); root and atan2 only for
+ * expected landmarks when there are observations.  Scaling: |dx|, |dy|
+ * <= r_hi <= 20000 before squaring, so dx^2 + dy^2 < 2^30; x', y' (Q15)
+ * < 2^31 in int64, times a Q15 sine < 2^46.  Stack: NEG_MAX_EXPECTED x
+ * 12 B. */
+typedef struct {
+    int32_t x_mm, y_mm;          /* the pose */
+    fl_angle_t h;
+    int32_t tol;                 /* its heading uncertainty */
+    int cap;
+} negpose_t;
+
+static int neg_count(const fl_fuzzy_t *g, const negctx_t *x, const negpose_t *ps, int *expected)
 {
+    int32_t px = ps->x_mm, py = ps->y_mm, tol = ps->tol;
+    fl_angle_t h = ps->h;
+    int cap = ps->cap;
     const fl_field_t *f = g->field;
     const fl_fuzzy_params_t *p = &g->params;
     int32_t bt = clamp32(p->neg_bearing, 0, HT) + tol;
     int64_t c, sn, ca, sa;
     fl_angle_t dir;
+    struct {
+        int32_t d, mr;
+        fl_angle_t b;
+        bool line, explained;
+    } ex[NEG_MAX_EXPECTED];
     uint16_t i, k, nobs = 0;
-    int n = 0, e = 0;
+    int n = 0, e = 0, j;
     *expected = 0;
     if (x->obs != NULL)
         nobs = x->obs->n > FL_OBS_MAX ? (uint16_t)FL_OBS_MAX : x->obs->n;
@@ -985,13 +1038,11 @@ static int neg_count(const fl_fuzzy_t *g, const negctx_t *x, int32_t px, int32_t
     sn = fl_sin_q15(dir);
     ca = fl_cos_q15((fl_angle_t)(x->half - bt));
     sa = fl_sin_q15((fl_angle_t)(x->half - bt));
-    for (i = 0; i < f->n_landmarks && n < cap; i++) {
+    for (i = 0; i < f->n_landmarks && e < NEG_MAX_EXPECTED; i++) {
         const fl_landmark_t *lm = &f->landmarks[i];
-        int32_t dx = lm->x_mm - px, dy = lm->y_mm - py, d, mr;
+        int32_t dx = lm->x_mm - px, dy = lm->y_mm - py;
         int64_t xr, yr;
         uint32_t s2;
-        fl_angle_t b;
-        bool explained = false;
         if (iabs(dx) > x->r_hi || iabs(dy) > x->r_hi)
             continue;
         s2 = (uint32_t)(dx * dx) + (uint32_t)(dy * dy);
@@ -1001,24 +1052,37 @@ static int neg_count(const fl_fuzzy_t *g, const negctx_t *x, int32_t px, int32_t
         yr = dy * c - dx * sn;
         if (xr <= 0 || (yr < 0 ? -yr : yr) * ca > xr * sa)
             continue;
-        e++;
+        ex[e].explained = false;
         if (nobs > 0) {
-            d = (int32_t)fl_isqrt32(s2);
-            mr = clamp32(p->neg_margin_mm, 0, 5000) +
-                 (int32_t)(((uint32_t)d * (p->neg_range_q8 > 256 ? 256u : p->neg_range_q8)) >> 8);
-            b = asub(fl_atan2(dy, dx), h);
-            for (k = 0; k < nobs && !explained; k++) {
-                const fl_obs_t *o = &x->obs->obs[k];
-                explained = o->confidence != 0 &&
-                            (unsigned)o->kind < (unsigned)FL_LM_KIND_COUNT &&
-                            neg_line_kind(o->kind) == neg_line_kind(lm->kind) &&
-                            o->range_mm >= 0 && o->range_mm <= 2 * FL_CAMERA_MAX_RANGE_MM &&
-                            iabs(o->range_mm - d) <= mr && iabs(asub(o->bearing, b)) <= bt;
+            ex[e].d = (int32_t)fl_isqrt32(s2);
+            ex[e].mr = clamp32(p->neg_margin_mm, 0, 5000) +
+                       (int32_t)(((uint32_t)ex[e].d *
+                                  (p->neg_range_q8 > 256 ? 256u : p->neg_range_q8)) >> 8);
+            ex[e].b = asub(fl_atan2(dy, dx), h);
+            ex[e].line = neg_line_kind(lm->kind);
+        }
+        e++;
+    }
+    for (k = 0; k < nobs; k++) {
+        const fl_obs_t *o = &x->obs->obs[k];
+        int32_t best = bt + 1;
+        int jb = -1;
+        if (o->confidence == 0 || (unsigned)o->kind >= (unsigned)FL_LM_KIND_COUNT ||
+            o->range_mm < 0 || o->range_mm > 2 * FL_CAMERA_MAX_RANGE_MM)
+            continue;
+        for (j = 0; j < e; j++) {
+            int32_t db = iabs(asub(o->bearing, ex[j].b));
+            if (ex[j].line == neg_line_kind(o->kind) && db < best &&
+                iabs(o->range_mm - ex[j].d) <= ex[j].mr) {
+                best = db;
+                jb = j;
             }
         }
-        if (!explained)
-            n++;
+        if (jb >= 0)
+            ex[jb].explained = true;
     }
+    for (j = 0; j < e && n < cap; j++)
+        n += !ex[j].explained;
     *expected = e;
     return n;
 }
@@ -1050,8 +1114,13 @@ static void neg_apply(fl_fuzzy_t *g, const negctx_t *x)
             tol = (int32_t)(c->core >= FL_FUZZY_WFULL || c->slope >= FL_FUZZY_WFULL
                                 ? HT : ((int32_t)c->core + (int32_t)c->slope / 2) * FL_FUZZY_AUNIT);
             if (c->height > c->bias && tol <= hmax && cap > 0) {
-                n = neg_count(g, x, g->x0_mm + ix * FZ_CELL + FZ_HALF + c->off_x_mm,
-                              cy + c->off_y_mm, c->centre, tol, cap, &e);
+                negpose_t ps;
+                ps.x_mm = g->x0_mm + ix * FZ_CELL + FZ_HALF + c->off_x_mm;
+                ps.y_mm = cy + c->off_y_mm;
+                ps.h = c->centre;
+                ps.tol = tol;
+                ps.cap = cap;
+                n = neg_count(g, x, &ps, &e);
                 hh = c->height;
                 for (k = 0; k < n; k++)
                     hh = (hh * keep) >> 8;
@@ -1102,8 +1171,14 @@ uint16_t fl_fuzzy_update_view(fl_fuzzy_t *g, const fl_obs_list_t *obs,
         }
     }
     if (g->track_valid && p->neg_kidnap > 0) {
-        int e = 0, n = neg_count(g, &x, g->track_x_mm, g->track_y_mm, g->track_heading, 0,
-                                 255, &e);
+        int e = 0, n;
+        negpose_t ps;
+        ps.x_mm = g->track_x_mm;
+        ps.y_mm = g->track_y_mm;
+        ps.h = g->track_heading;
+        ps.tol = 0;
+        ps.cap = 255;
+        n = neg_count(g, &x, &ps, &e);
         if (e >= p->neg_kidnap && n == e) {
             /* the tracked pose should see landmarks and the frame shows
              * none of them: a contradiction, as a deferred observation */
