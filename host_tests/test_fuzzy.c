@@ -675,6 +675,22 @@ static void test_negative_info(void)
     CHECK_LE(0.9 * 65536, pp);
     CHECK_EQ(pp, pm);
     CHECK_LE(pq, 0.6 * 65536);
+    /* neg_min_q8: cells lower than it are left alone */
+    {
+        int k, changed_low = 0, low = 0;
+        p.neg_min_q8 = 255;
+        fl_fuzzy_init(&G2, f, &p);
+        fl_fuzzy_update_view(&G2, &list, &v);
+        CHECK_LE(fl_fuzzy_possibility_q16(&G2, qx, qy, qh), 0.6 * 65536);
+        for (k = 0; k < G.nx * G.ny; k++)
+            if (G.cell[k].height < 255 && G.cell[k].height > G.cell[k].bias) {
+                low++;
+                changed_low += memcmp(&G.cell[k], &G2.cell[k], sizeof G.cell[k]) != 0;
+            }
+        CHECK_LE(100, low);
+        CHECK_EQ(changed_low, 0);
+        p.neg_min_q8 = 0;
+    }
     /* the L observed: Q keeps its possibility */
     {
         const fl_landmark_t *l = NULL;

@@ -992,7 +992,9 @@ static bool neg_line_kind(fl_landmark_kind_t k)
 /* Landmarks of the map that pose (px, py, h) puts inside the view (range
  * margin neg_margin + neg_range x distance, bearing margin neg_bearing +
  * tol) in *expected, and how many of them no observation explains
- * (returned, at most cap).  Each observation explains at most one of
+ * (returned, at most cap; without observations the search stops at cap
+ * expected landmarks, *expected then counts only those).  Each
+ * observation explains at most one of
  * them, the nearest in bearing within its tolerances (kind group, range
  * within the range margin, bearing within the bearing margin), so that a
  * T seen explains the T a hypothesis put it on, not also the L 9 degrees
@@ -1038,7 +1040,7 @@ static int neg_count(const fl_fuzzy_t *g, const negctx_t *x, const negpose_t *ps
     sn = fl_sin_q15(dir);
     ca = fl_cos_q15((fl_angle_t)(x->half - bt));
     sa = fl_sin_q15((fl_angle_t)(x->half - bt));
-    for (i = 0; i < f->n_landmarks && e < NEG_MAX_EXPECTED; i++) {
+    for (i = 0; i < f->n_landmarks && e < NEG_MAX_EXPECTED && (nobs > 0 || e < cap); i++) {
         const fl_landmark_t *lm = &f->landmarks[i];
         int32_t dx = lm->x_mm - px, dy = lm->y_mm - py;
         int64_t xr, yr;
@@ -1113,7 +1115,7 @@ static void neg_apply(fl_fuzzy_t *g, const negctx_t *x)
             /* the heading is within the core, or not far into the slope */
             tol = (int32_t)(c->core >= FL_FUZZY_WFULL || c->slope >= FL_FUZZY_WFULL
                                 ? HT : ((int32_t)c->core + (int32_t)c->slope / 2) * FL_FUZZY_AUNIT);
-            if (c->height > c->bias && tol <= hmax && cap > 0) {
+            if (c->height > c->bias && c->height >= p->neg_min_q8 && tol <= hmax && cap > 0) {
                 negpose_t ps;
                 ps.x_mm = g->x0_mm + ix * FZ_CELL + FZ_HALF + c->off_x_mm;
                 ps.y_mm = cy + c->off_y_mm;

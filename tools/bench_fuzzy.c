@@ -12,7 +12,8 @@
  * Rows: fuzzy_frame_tracking, fuzzy_frame_ignorance (ns per predict + 5
  * updates), and their parts (predict alone, 5 updates alone).  No peer.
  * fuzzy_negative_ignorance: the negative-information pass of
- * fl_fuzzy_update_view alone (neg_q8 0.39, an empty observation list, a
+ * fl_fuzzy_update_view alone (neg_q8 0.39 on cells at least 1/2 high, as
+ * tools/locrun.c lr_params_frames; an empty observation list, a
  * view 50 deg wide and 0.6-4 m deep ahead) on the grid that ignorance and
  * the 5 updates leave (many cells with a narrow heading on the arcs);
  * fuzzy_negative_worst: the same on a grid whose every cell has a narrow
@@ -133,7 +134,8 @@ void bench_fuzzy(bench_ctx_t *ctx)
         v.bearing_left = fl_angle_from_mdeg(25000);
         v.near_mm = 600;
         v.far_mm = 4000;
-        bfz_saved.params.neg_q8 = 100;
+        bfz_saved.params.neg_q8 = 100;        /* as lr_params_frames */
+        bfz_saved.params.neg_min_q8 = 128;
         for (i = 0; i < in.n; i++)
             fl_fuzzy_update_one(&bfz_saved, &in.obs[i]);
         for (pass = 0; pass < 2; pass++) {

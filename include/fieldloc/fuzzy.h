@@ -46,9 +46,10 @@
  * ignorance (every cell possible: the worst case, for a fraction of a
  * second after a reset; goal 0.5 ms); on a symmetric field (SPL 2013)
  * the update works on half the grid (fuzzy_update.c).  The negative
- * information pass of fl_fuzzy_update_view (only without a track): about
- * 0.1 ms after ignorance and 5 updates, about 0.6 ms when every cell has
- * a narrow heading (bench rows fuzzy_negative_*).  callgrind: about 2.0 M
+ * information pass of fl_fuzzy_update_view (only without a track; with
+ * neg_min_q8 1/2): about 0.03 ms after ignorance and 5 updates, about
+ * 0.65 ms when every cell is at the peak with a narrow heading (bench rows
+ * fuzzy_negative_*).  callgrind: about 2.0 M
  * instructions per 30 Hz frame of the spl2013 walk once tracked (predict,
  * the frame's ~3 observations, estimate).
  */
@@ -236,6 +237,8 @@ typedef struct {
                                     within the same margin of its bearing */
     fl_angle_t neg_head_max;     /* cells whose heading core + slope is
                                     wider than this are skipped (30 deg) */
+    uint8_t neg_min_q8;          /* ... and cells lower than this (0: none;
+                                    they do not compete for the estimate) */
 } fl_fuzzy_params_t;
 
 /* What decides between symmetric modes until a mode is tracked.  A
