@@ -726,6 +726,32 @@ static void test_negative_info(void)
     CHECK(memcmp(G.cell, G2.cell, sizeof G.cell) == 0);
     p.neg_track = 2;
     CHECK_EQ(fl_fuzzy_params_check(&p), FL_ERR_RANGE);
+    /* extreme settings and views: the grid stays valid */
+    {
+        static const int32_t ranges[][2] = {{0, 20000}, {0, 1}, {19999, 20000}, {5000, 6000}};
+        int k, r;
+        for (k = 0; k < 4; k++)
+            for (r = 0; r < 4; r++) {
+                fl_fuzzy_params_default(&p);
+                p.neg_q8 = 255;
+                p.neg_max = 8;
+                p.neg_track = 1;
+                p.neg_kidnap = 1;
+                p.neg_range_q8 = (uint16_t)(k == 0 ? 256 : k * 60);
+                p.neg_margin_mm = k == 1 ? 5000 : 0;
+                p.neg_bearing = (fl_angle_t)(k == 2 ? 32767 : 0);
+                p.neg_head_max = (fl_angle_t)32767;
+                CHECK_EQ(fl_fuzzy_params_check(&p), FL_OK);
+                fl_fuzzy_init(&G2, f, &p);
+                frames_from(f, px, py, ph, 1);
+                v = make_view(DEG(10 * r), DEG(r == 3 ? 89 : 20), ranges[r][0], ranges[r][1]);
+                fl_fuzzy_update_view(&G2, &list, &v);
+                fl_fuzzy_update_view(&G2, NULL, &v);
+                CHECK(fl_fuzzy_check(&G2));
+            }
+    }
+    fl_fuzzy_params_default(&p);
+    p.neg_q8 = 128;
     /* one observation explains one landmark: after the spl2013 kidnap
      * (seed 6, 57.9 s) the halfway T seen from P2 also fits Q2 at the
      * goal-area T (-4500, -1100), where the penalty-area L (-3900, -1100)

@@ -67,6 +67,22 @@
  * report in fuzzy.h.  Memory: the row accumulator and the region list live
  * in g->scratch; stack < 400 B.
  *
+ * Kind confusion (params.confuse_q8, build_regions): an L observation is
+ * also a T seen as an L and a T an L seen as a T, their regions scaled by
+ * a possibility that rises to 1 at low confidence; without a track those
+ * regions only keep a cell possible (r3), never give it a heading.
+ *
+ * Negative information (fl_fuzzy_update_view, after the observations):
+ * the frame's view (obs.h) is a ground sector in which every landmark
+ * would have been seen.  Without a track, every live cell at least
+ * neg_min_q8 high with a narrow heading loses neg_q8 of its height per
+ * map landmark its pose puts in the sector that no observation explains
+ * (at most neg_max, never below its bias: the other headings keep their
+ * possibility); while tracked, the tracked pose is tested and a frame
+ * that explains none of its neg_kidnap or more expected landmarks counts
+ * as a contradiction.  Cost: live cells x landmarks (integer tests, no
+ * root or atan2 unless observations may explain a landmark).
+ *
  * Invariant: the grid is valid after every call (never empty, bias <=
  * height); ignored and deferred observations leave the cells untouched.
  */
@@ -1164,6 +1180,8 @@ uint16_t fl_fuzzy_update_view(fl_fuzzy_t *g, const fl_obs_list_t *obs,
         int32_t lo = (int32_t)((((uint32_t)(view->near_mm + m) << 8) + (255u - rq)) / (256u - rq));
         int32_t hi = view->far_mm - m < 0
                          ? -1 : (int32_t)(((uint32_t)(view->far_mm - m) << 8) / (256u + rq));
+        if (lo > 30000)                /* (rq near 1): nothing; no wrap */
+            lo = 30000;
         x.r_hi = hi;
         x.s_lo = (uint32_t)lo * (uint32_t)lo;
         x.s_hi = hi < 0 ? 0u : (uint32_t)hi * (uint32_t)hi;
