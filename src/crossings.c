@@ -63,6 +63,8 @@
 #define CR_MARK_CLUSTERS_MAX 256 /* mark candidates looked at per frame */
 #define CR_MARK_CLUSTERS_CLUTTER 64 /* ... once the line points overflowed */
 #define CR_LUMA_PROBES 128    /* probes per frame that may read the luma */
+#define CR_FAR_MM 3000u       /* the ground check's tolerance grows beyond */
+#define CR_FAR_TOL_MDEG 15000u /* ... by this much at twice that range */
 
 void fl_crossings_params_default(fl_crossings_params_t *p)
 {
@@ -497,8 +499,21 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
         /* deviation from square: sin(90 - between) = cos(between) */
         f = fl_cos_q15((fl_angle_t)between);
         if (f > sin_tol_q15) {
-            c->rejected_ground++;
-            return;
+            /* beyond CR_FAR_MM the ground angles depend on the camera
+             * pitch (1 degree moves a point 5 m away by about 1 m): the
+             * tolerance grows linearly by CR_FAR_TOL_MDEG up to twice
+             * that range (u32 range clamped first: products < 2^26) */
+            uint32_t rg = fl_hypot(gx.x_mm, gx.y_mm);
+            int32_t tm = c->params.ground_tol_mdeg;
+            if (rg > CR_FAR_MM)
+                tm += (int32_t)((rg > 2 * CR_FAR_MM ? CR_FAR_MM : rg - CR_FAR_MM) *
+                                CR_FAR_TOL_MDEG / CR_FAR_MM);
+            if (tm > 45000)
+                tm = 45000;
+            if (f > fl_sin_q15(fl_angle_from_mdeg(tm))) {
+                c->rejected_ground++;
+                return;
+            }
         }
         ground = true;
         it.ground = true;
