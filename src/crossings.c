@@ -378,7 +378,10 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     num = ((int64_t)B->u0_q4 - A->u0_q4) * by - ((int64_t)B->v0_q4 - A->v0_q4) * bx;
     xu = A->u0_q4 + fl_div_round(ax * num, den);
     xv = A->v0_q4 + fl_div_round(ay * num, den);
-    if (xu < 0 || xv < 0 || xu > 16 * (l->width - 1) || xv > 16 * (l->height - 1))
+    /* X may lie up to 2 steps outside the image: a corner at the image
+     * edge whose lines come in from it (its arms point inward) */
+    if (xu < -2 * step_q4 || xv < -2 * step_q4 || xu > 16 * (l->width - 1) + 2 * step_q4 ||
+        xv > 16 * (l->height - 1) + 2 * step_q4)
         return;
     ta = fl_rshift_round(((int64_t)xu - A->u0_q4) * ca + ((int64_t)xv - A->v0_q4) * sa, 15);
     tb = fl_rshift_round(((int64_t)xu - B->u0_q4) * cb + ((int64_t)xv - B->v0_q4) * sb, 15);
@@ -465,8 +468,9 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     memset(&it, 0, sizeof it);
     it.x.seg_a = (int16_t)ia;
     it.x.seg_b = (int16_t)ib;
-    it.x.u_q4 = xu;
-    it.x.v_q4 = xv;
+    /* the image position inside the image (ground from the true X) */
+    it.x.u_q4 = xu < 0 ? 0 : xu > 16 * (l->width - 1) ? 16 * (l->width - 1) : xu;
+    it.x.v_q4 = xv < 0 ? 0 : xv > 16 * (l->height - 1) ? 16 * (l->height - 1) : xv;
     for (k = 0; k < 4; k++)
         if (pres[k])
             it.x.arm[it.x.n_arms++] = fl_atan2(dirs[k], dirc[k]);

@@ -3,7 +3,10 @@
  * centre marks (seed 000, section 3.7).
  *
  * Pairs.  Every pair of segments (lines.h) at least min_angle apart in the
- * image whose (infinite) lines meet inside the image is a candidate.  For
+ * image whose (infinite) lines meet inside the image (or at most 2 line
+ * steps outside it: a corner at the image edge; its pixel is then clamped
+ * into the image, its ground position is the true meeting point's) is a
+ * candidate.  For
  * each segment the meeting point X is placed along it: an arm leaves X
  * where the segment goes on past X by at least arm_px (half of it where
  * the segment ends within a line step of the image border: the arm is cut
