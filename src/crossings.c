@@ -196,10 +196,26 @@ typedef struct {
     bool ground;
 } cr_item_t;
 
+/* Do two crossings of straight segments (no circle chord) share one? */
+static bool cr_shared(const fl_lines_t *l, const fl_crossing_t *e, const fl_crossing_t *x)
+{
+    int16_t s[4];
+    int32_t k;
+    s[0] = e->seg_a;
+    s[1] = e->seg_b;
+    s[2] = x->seg_a;
+    s[3] = x->seg_b;
+    for (k = 0; k < 4; k++)
+        if (s[k] < 0 || s[k] >= l->n_segments || (l->segments[s[k]].flags & FL_SEG_CIRCLE))
+            return false;
+    return s[0] == s[2] || s[0] == s[3] || s[1] == s[2] || s[1] == s[3];
+}
+
 /* Insert with merging.  Ground arms of stored crossings are kept in
  * garm_store (parallel to c->c). */
 static void cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
-                   const cr_item_t *it, int32_t merge_q4)
+                   const cr_item_t *it, int32_t merge_q4,
+                   const fl_lines_t *l)
 {
     int32_t k, a, b;
     for (k = 0; k < c->n; k++) {
@@ -207,7 +223,13 @@ static void cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         int64_t du = (int64_t)e->u_q4 - it->x.u_q4, dv = (int64_t)e->v_q4 - it->x.v_q4;
         bool emark = e->kind == FL_LM_PENALTY_MARK || e->kind == FL_LM_CENTRE_MARK;
         bool imark = it->x.kind == FL_LM_PENALTY_MARK || it->x.kind == FL_LM_CENTRE_MARK;
-        if (du * du + dv * dv > (int64_t)merge_q4 * merge_q4)
+        int64_t m = merge_q4;
+        /* two crossings of one segment with two others (a goal box's side
+         * with the goal line and the front line) are distinct unless they
+         * nearly coincide (two pieces of one line broken at the segment) */
+        if (cr_shared(l, e, &it->x))
+            m = merge_q4 / 2;
+        if (du * du + dv * dv > m * m)
             continue;
         /* union of the arms */
         for (a = 0; a < it->x.n_arms; a++) {
@@ -332,6 +354,14 @@ static int32_t cr_width_q4(const fl_lines_t *l, int32_t v_q4)
     return w;
 }
 
+/* Does a segment end within a line step of the image edge? */
+static bool cr_cut(const fl_lines_t *l, const fl_segment_t *s)
+{
+    int32_t e = 16 * l->step_px, um = 16 * (l->width - 1) - e, vm = 16 * (l->height - 1) - e;
+    return s->u0_q4 < e || s->v0_q4 < e || s->u0_q4 > um || s->v0_q4 > vm || s->u1_q4 < e ||
+           s->v1_q4 < e || s->u1_q4 > um || s->v1_q4 > vm;
+}
+
 /* What every pair test of a frame shares. */
 typedef struct {
     fl_crossings_t *c;
@@ -356,7 +386,7 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     int64_t ax = (int64_t)A->u1_q4 - A->u0_q4, ay = (int64_t)A->v1_q4 - A->v0_q4;
     int64_t bx = (int64_t)B->u1_q4 - B->u0_q4, by = (int64_t)B->v1_q4 - B->v0_q4;
     int64_t den, num;
-    int32_t xu, xv, ca, sa, cb, sb, ta, tb, w, arm, reach, sinab, k;
+    int32_t xu, xv, ca, sa, cb, sb, ta, tb, w, arm, arm_a, arm_b, reach, sinab, k;
     int32_t step_q4 = 16 * l->step_px, conf, f;
     bool pres[4], geo[4];
     int32_t dirc[4], dirs[4], conflicts = 0, cntA, cntB;
@@ -399,6 +429,7 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     }
     w = cr_width_q4(l, xv);
     arm = pp->arm_px > 0 ? 16 * pp->arm_px : 2 * step_q4 > 2 * w ? 2 * step_q4 : 2 * w;
+    arm_a = arm_b = arm;
     reach = pp->reach_px > 0 ? 16 * pp->reach_px : 3 * step_q4 > 3 * w ? 3 * step_q4 : 3 * w;
     /* two long segments (6 steps each) may stop up to 5 steps short of
      * their intersection: where lines meet at a shallow image angle (a far
@@ -408,24 +439,38 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
         reach = 5 * step_q4;
     if (ta < -reach || ta > A->len_q4 + reach || tb < -reach || tb > B->len_q4 + reach)
         return;
+    /* an arm of A must reach past B's paint, which covers B's width across
+     * B over |sin| of A (and vice versa): below arm where the other line
+     * crosses the image's rows or columns on its thin side (a horizontal
+     * far line is thinner across than a line running away is), never
+     * below 2 steps */
+    if (pp->arm_px <= 0) {
+        int32_t wh = fl_lines_width_q4(l, xv / 16, false), wv = fl_lines_width_q4(l, xv / 16, true);
+        int32_t wa = (int32_t)(((int64_t)wv * cr_abs(ca) + (int64_t)wh * cr_abs(sa)) >> 15);
+        int32_t wb = (int32_t)(((int64_t)wv * cr_abs(cb) + (int64_t)wh * cr_abs(sb)) >> 15);
+        int32_t ea = (int32_t)((int64_t)2 * wa * 32768 / cr_abs(sinab));
+        int32_t eb = (int32_t)((int64_t)2 * wb * 32768 / cr_abs(sinab));
+        arm_a = eb < arm ? (eb > 2 * step_q4 ? eb : 2 * step_q4) : arm;
+        arm_b = ea < arm ? (ea > 2 * step_q4 ? ea : 2 * step_q4) : arm;
+    }
     /* arms: 0 = A forward, 1 = A backward, 2 = B forward, 3 = B backward */
-    geo[0] = A->len_q4 - ta >= arm;
-    geo[1] = ta >= arm;
-    geo[2] = B->len_q4 - tb >= arm;
-    geo[3] = tb >= arm;
+    geo[0] = A->len_q4 - ta >= arm_a;
+    geo[1] = ta >= arm_a;
+    geo[2] = B->len_q4 - tb >= arm_b;
+    geo[3] = tb >= arm_b;
     /* an arm cut off by the image edge: half an arm of segment up to an
      * end within a step of the border (not in images under 8 arms across:
      * there every segment is near an edge) */
     if (16 * l->width >= 8 * arm && 16 * l->height >= 8 * arm) {
         int32_t eh = step_q4, umax = 16 * (l->width - 1) - eh, vmax = 16 * (l->height - 1) - eh;
 #define CR_AT_EDGE(u, v) ((u) < eh || (v) < eh || (u) > umax || (v) > vmax)
-        if (!geo[0] && 2 * (A->len_q4 - ta) >= arm && CR_AT_EDGE(A->u1_q4, A->v1_q4))
+        if (!geo[0] && 2 * (A->len_q4 - ta) >= arm_a && CR_AT_EDGE(A->u1_q4, A->v1_q4))
             geo[0] = true;
-        if (!geo[1] && 2 * ta >= arm && CR_AT_EDGE(A->u0_q4, A->v0_q4))
+        if (!geo[1] && 2 * ta >= arm_a && CR_AT_EDGE(A->u0_q4, A->v0_q4))
             geo[1] = true;
-        if (!geo[2] && 2 * (B->len_q4 - tb) >= arm && CR_AT_EDGE(B->u1_q4, B->v1_q4))
+        if (!geo[2] && 2 * (B->len_q4 - tb) >= arm_b && CR_AT_EDGE(B->u1_q4, B->v1_q4))
             geo[2] = true;
-        if (!geo[3] && 2 * tb >= arm && CR_AT_EDGE(B->u0_q4, B->v0_q4))
+        if (!geo[3] && 2 * tb >= arm_b && CR_AT_EDGE(B->u0_q4, B->v0_q4))
             geo[3] = true;
 #undef CR_AT_EDGE
     }
@@ -553,7 +598,8 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     if (it.x.kind == FL_LM_X && cam && field && field->mark_size_mm > 0) {
         int32_t la = cr_ground_len(cam, A), lb = cr_ground_len(cam, B);
         int32_t lim = 5 * field->mark_size_mm / 2;
-        bool sa_ = la >= 0 && la <= lim, sb_ = lb >= 0 && lb <= lim;
+        /* (a bar cut off by the image edge is no short bar) */
+        bool sa_ = la >= 0 && la <= lim && !cr_cut(l, A), sb_ = lb >= 0 && lb <= lim && !cr_cut(l, B);
         if (sa_ && sb_)
             it.x.kind = FL_LM_PENALTY_MARK;
         else if (sa_ || sb_)
@@ -564,7 +610,7 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     cr_orient(&it.x, it.garm, ground);
     {
         int32_t merge = 3 * w > 4 * step_q4 ? 3 * w : 4 * step_q4;
-        cr_add(c, garm_store, &it, merge);
+        cr_add(c, garm_store, &it, merge, l);
     }
 }
 
@@ -736,7 +782,7 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
             continue;
         {
             int32_t merge = 2 * mh > 4 * step_q4 ? 2 * mh : 4 * step_q4;
-            cr_add(c, garm_store, &it, merge);
+            cr_add(c, garm_store, &it, merge, l);
         }
     }
 }
@@ -971,7 +1017,7 @@ static void cr_border_t(const cr_ctx_t *ctx, int32_t is)
         return;
     cr_orient(&it.x, it.garm, true);
     c->border_t++;
-    cr_add(c, c->garm, &it, merge);
+    cr_add(c, c->garm, &it, merge, l);
 }
 
 /* ---- corners of a short connector (two parallel far lines) ------------------- */
@@ -1200,7 +1246,7 @@ static void cr_connect(const cr_ctx_t *ctx, int32_t is, bool end1)
             if (!near && cr_type(&it.x)) {
                 cr_orient(&it.x, it.garm, true);
                 c->connectors++;
-                cr_add(c, c->garm, &it, mf < bt / 2 ? mf : bt / 2);
+                cr_add(c, c->garm, &it, mf < bt / 2 ? mf : bt / 2, l);
             }
         }
         /* L at E */
@@ -1221,7 +1267,7 @@ static void cr_connect(const cr_ctx_t *ctx, int32_t is, bool end1)
         if (cr_type(&it.x)) {
             cr_orient(&it.x, it.garm, true);
             c->connectors++;
-            cr_add(c, c->garm, &it, merge < bt / 2 ? merge : bt / 2);
+            cr_add(c, c->garm, &it, merge < bt / 2 ? merge : bt / 2, l);
         }
         return;
     }
@@ -1391,7 +1437,7 @@ int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
             continue;
         w = cr_width_q4(lines, v);
         merge = 3 * w > 4 * step_q4 ? 3 * w : 4 * step_q4;
-        cr_add(c, c->garm, &it, merge);
+        cr_add(c, c->garm, &it, merge, lines);
         added++;
     }
     return added;

@@ -30,7 +30,9 @@
  * such probes per frame, counted in luma_probes).  The arm count gives the type (2 L, 3 T, 4 X).
  * Crossings closer than the merge distance (3 line widths or 4 steps) are
  * merged by the union of their arms: two opposite T's become an X, an L
- * and its continuation a T.
+ * and its continuation a T.  Two crossings of one straight segment with
+ * two others (a goal box side with the goal line and the front line)
+ * merge only within half that distance.
  *
  * Border T's.  Far away the boundary lines are a pixel or less tall: their
  * paint blends into the carpet or lies above the field border found by the
@@ -119,7 +121,10 @@ typedef struct {
     int32_t ground_tol_mdeg;  /* allowed deviation from 90 deg on the
                                  ground, 1000..45000 */
     int32_t arm_px;           /* segment extent past X that makes an arm,
-                                 px; 0 = auto (max(2 step, 2 line width)) */
+                                 px; 0 = auto (max(2 step, 2 line width),
+                                 lowered to twice the other line's paint
+                                 along the segment: its width across
+                                 itself over |sin|, at least 2 steps) */
     int32_t reach_px;         /* largest gap between X and a segment end,
                                  px; 0 = auto (max(3 step, 3 line width),
                                  at least 5 steps when both segments are
