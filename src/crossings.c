@@ -458,19 +458,21 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     geo[1] = ta >= arm_a;
     geo[2] = B->len_q4 - tb >= arm_b;
     geo[3] = tb >= arm_b;
-    /* an arm cut off by the image edge: half an arm of segment up to an
-     * end within a step of the border (not in images under 8 arms across:
-     * there every segment is near an edge) */
+    /* an arm cut off by the image edge: half an arm (at most 2 steps) of
+     * segment up to an end within a step of the border (not in images
+     * under 8 arms across: there every segment is near an edge) */
     if (16 * l->width >= 8 * arm && 16 * l->height >= 8 * arm) {
         int32_t eh = step_q4, umax = 16 * (l->width - 1) - eh, vmax = 16 * (l->height - 1) - eh;
+        int32_t ha = arm_a / 2 < 2 * step_q4 ? arm_a / 2 : 2 * step_q4;
+        int32_t hb = arm_b / 2 < 2 * step_q4 ? arm_b / 2 : 2 * step_q4;
 #define CR_AT_EDGE(u, v) ((u) < eh || (v) < eh || (u) > umax || (v) > vmax)
-        if (!geo[0] && 2 * (A->len_q4 - ta) >= arm_a && CR_AT_EDGE(A->u1_q4, A->v1_q4))
+        if (!geo[0] && A->len_q4 - ta >= ha && CR_AT_EDGE(A->u1_q4, A->v1_q4))
             geo[0] = true;
-        if (!geo[1] && 2 * ta >= arm_a && CR_AT_EDGE(A->u0_q4, A->v0_q4))
+        if (!geo[1] && ta >= ha && CR_AT_EDGE(A->u0_q4, A->v0_q4))
             geo[1] = true;
-        if (!geo[2] && 2 * (B->len_q4 - tb) >= arm_b && CR_AT_EDGE(B->u1_q4, B->v1_q4))
+        if (!geo[2] && B->len_q4 - tb >= hb && CR_AT_EDGE(B->u1_q4, B->v1_q4))
             geo[2] = true;
-        if (!geo[3] && 2 * tb >= arm_b && CR_AT_EDGE(B->u0_q4, B->v0_q4))
+        if (!geo[3] && tb >= hb && CR_AT_EDGE(B->u0_q4, B->v0_q4))
             geo[3] = true;
 #undef CR_AT_EDGE
     }
