@@ -735,10 +735,10 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         cc.cv = cc.sv / cc.n_in;
         cr_mark_census(l, &cc, vis);
         /* luma points (noise ridges of a dark frame, the bright rims of
-         * carpet seams) count only beside 2 class-map points, or as 3
-         * points alone */
+         * carpet seams) count only beside 2 class-map points, or in a
+         * cluster of 3 (a far mark: one white run and its blurred ends) */
         if (cc.n_in < 2 || cc.long_in > 0 || cc.n_out > 0 ||
-            (cc.luma_in > 0 && cc.n_in - cc.luma_in < 2 && cc.luma_in < 3))
+            (cc.luma_in > 0 && cc.n_in - cc.luma_in < 2 && cc.n_in < 3))
             continue;
         n_in = cc.n_in;
         cu = cc.su * 8 / n_in; /* Q4 */

@@ -66,7 +66,7 @@
  * of the projected mark size; a cluster of at least 2 points with no other
  * point out to 2.5 mark sizes, whose ring of 16 class-map samples at 1.6
  * mark sizes is green (13 of 16, no white), is a penalty mark (a cluster
- * of luma points alone needs 3).  An X of a
+ * with luma points needs 2 class-map points or 3 points in all).  An X of a
  * short bar (<= 2.5 mark sizes on the ground) across a long line is a
  * centre mark, of two short bars a penalty mark.  Both count as X (as the
  * UvA 2013 labels do); their kind says which.  A found centre circle with
