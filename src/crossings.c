@@ -227,7 +227,9 @@ static void cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         /* two crossings of one segment with two others (a goal box's side
          * with the goal line and the front line) are distinct unless they
          * nearly coincide (two pieces of one line broken at the segment) */
-        if (cr_shared(l, e, &it->x))
+        /* ... and so are a mark and a crossing of lines (a penalty mark
+         * is far from every line crossing) */
+        if (cr_shared(l, e, &it->x) || emark != imark)
             m = merge_q4 / 2;
         if (du * du + dv * dv > m * m)
             continue;

@@ -31,8 +31,8 @@
  * Crossings closer than the merge distance (3 line widths or 4 steps) are
  * merged by the union of their arms: two opposite T's become an X, an L
  * and its continuation a T.  Two crossings of one straight segment with
- * two others (a goal box side with the goal line and the front line)
- * merge only within half that distance.
+ * two others (a goal box side with the goal line and the front line), and
+ * a mark and a crossing of lines, merge only within half that distance.
  *
  * Border T's.  Far away the boundary lines are a pixel or less tall: their
  * paint blends into the carpet or lies above the field border found by the
