@@ -63,6 +63,7 @@
 #define CR_MARK_CLUSTERS_MAX 256 /* mark candidates looked at per frame */
 #define CR_MARK_CLUSTERS_CLUTTER 64 /* ... once the line points overflowed */
 #define CR_LUMA_PROBES 128    /* probes per frame that may read the luma */
+#define CR_MARK_APART_MM 500 /* a mark merges only with features closer */
 #define CR_FAR_MM 3000u       /* the ground check's tolerance grows beyond */
 #define CR_FAR_TOL_MDEG 15000u /* ... by this much at twice that range */
 
@@ -233,6 +234,14 @@ static void cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
             m = merge_q4 / 2;
         if (du * du + dv * dv > m * m)
             continue;
+        /* a mark and another feature 500 mm apart on the ground are two
+         * (the centre mark and a far penalty mark a few px above it) */
+        if ((emark || imark) && it->ground && e->range_mm > 0) {
+            int64_t gx = (int64_t)e->ground.x_mm - it->x.ground.x_mm;
+            int64_t gy = (int64_t)e->ground.y_mm - it->x.ground.y_mm;
+            if (gx * gx + gy * gy > (int64_t)CR_MARK_APART_MM * CR_MARK_APART_MM)
+                continue;
+        }
         /* union of the arms */
         for (a = 0; a < it->x.n_arms; a++) {
             bool have = false;
@@ -675,6 +684,16 @@ static void cr_mark_census(const fl_lines_t *l, cr_census_t *k, uint32_t *vis)
             if (vis)
                 vis[ids[j] >> 5] |= 1u << (ids[j] & 31);
         } else if (du * du * ov * ov + dv * dv * ou * ou <= ou * ou * ov * ov) {
+            /* a point of a long line passing by, its line farther than
+             * twice the inner ellipse across it, is no clutter */
+            if (q->seg != FL_LINES_NONE && l->segments[q->seg].len_q4 > k->long_q4) {
+                const fl_segment_t *s = &l->segments[q->seg];
+                int32_t d = fl_segment_distance_q4(s, 8 * cu, 8 * cv);
+                int32_t m = (int32_t)((16 * (iu * cr_abs(fl_sin_q15(s->angle)) +
+                                             iv * cr_abs(fl_cos_q15(s->angle)))) >> 15);
+                if (d > m || d < -m)
+                    continue;
+            }
             k->n_out++;
         }
     }

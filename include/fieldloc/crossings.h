@@ -32,7 +32,8 @@
  * merged by the union of their arms: two opposite T's become an X, an L
  * and its continuation a T.  Two crossings of one straight segment with
  * two others (a goal box side with the goal line and the front line), and
- * a mark and a crossing of lines, merge only within half that distance.
+ * a mark and a crossing of lines, merge only within half that distance;
+ * a mark never with a feature 500 mm away on the ground.
  *
  * Border T's.  Far away the boundary lines are a pixel or less tall: their
  * paint blends into the carpet or lies above the field border found by the
@@ -64,7 +65,8 @@
  * Marks.  The penalty and centre marks (a 100 mm cross) are too small to
  * make long segments.  Points off long segments are clustered within 0.75
  * of the projected mark size; a cluster of at least 2 points with no other
- * point out to 2.5 mark sizes, whose ring of 16 class-map samples at 1.6
+ * point out to 2.5 mark sizes (but those of a long line passing by, twice
+ * the inner half-axis away), whose ring of 16 class-map samples at 1.6
  * mark sizes is green (13 of 16, no white), is a penalty mark (a cluster
  * with luma points needs 2 class-map points or 3 points in all).  An X of a
  * short bar (<= 2.5 mark sizes on the ground) across a long line is a
