@@ -63,7 +63,7 @@
 #define CR_MARK_CLUSTERS_MAX 256 /* mark candidates looked at per frame */
 #define CR_MARK_CLUSTERS_CLUTTER 64 /* ... once the line points overflowed */
 #define CR_LUMA_PROBES 128    /* probes per frame that may read the luma */
-#define CR_MARK_APART_MM 500 /* a mark merges only with features closer */
+#define CR_APART_MM 500      /* crossings farther apart on the ground never merge */
 #define CR_FAR_MM 3000u       /* the ground check's tolerance grows beyond */
 #define CR_FAR_TOL_MDEG 15000u /* ... by this much at twice that range */
 
@@ -234,12 +234,14 @@ static void cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
             m = merge_q4 / 2;
         if (du * du + dv * dv > m * m)
             continue;
-        /* a mark and another feature 500 mm apart on the ground are two
-         * (the centre mark and a far penalty mark a few px above it) */
-        if ((emark || imark) && it->ground && e->range_mm > 0) {
+        /* two features CR_APART_MM apart on the ground are two (a far
+         * penalty mark a few px above the centre mark, the corners of a
+         * far goal box; the nearest distinct features of a field are
+         * 600 mm apart) */
+        if (it->ground && e->range_mm > 0) {
             int64_t gx = (int64_t)e->ground.x_mm - it->x.ground.x_mm;
             int64_t gy = (int64_t)e->ground.y_mm - it->x.ground.y_mm;
-            if (gx * gx + gy * gy > (int64_t)CR_MARK_APART_MM * CR_MARK_APART_MM)
+            if (gx * gx + gy * gy > (int64_t)CR_APART_MM * CR_APART_MM)
                 continue;
         }
         /* union of the arms */

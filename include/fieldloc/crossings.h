@@ -33,7 +33,7 @@
  * and its continuation a T.  Two crossings of one straight segment with
  * two others (a goal box side with the goal line and the front line), and
  * a mark and a crossing of lines, merge only within half that distance;
- * a mark never with a feature 500 mm away on the ground.
+ * crossings 500 mm apart on the ground never merge.
  *
  * Border T's.  Far away the boundary lines are a pixel or less tall: their
  * paint blends into the carpet or lies above the field border found by the
