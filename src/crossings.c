@@ -444,13 +444,12 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     arm = pp->arm_px > 0 ? 16 * pp->arm_px : 2 * step_q4 > 2 * w ? 2 * step_q4 : 2 * w;
     arm_a = arm_b = arm;
     reach = pp->reach_px > 0 ? 16 * pp->reach_px : 3 * step_q4 > 3 * w ? 3 * step_q4 : 3 * w;
-    /* two long segments (6 steps each) may stop up to 7 steps short of
+    /* two long segments (6 steps each) may stop up to 5 steps short of
      * their intersection: where lines meet at a shallow image angle (a far
-     * corner) one of them takes the other's points near the corner, and a
-     * robot or a post before a far corner hides its first few steps */
+     * corner) one of them takes the other's points near the corner */
     if (pp->reach_px <= 0 && A->len_q4 >= 6 * step_q4 && B->len_q4 >= 6 * step_q4 &&
-        reach < 7 * step_q4)
-        reach = 7 * step_q4;
+        reach < 5 * step_q4)
+        reach = 5 * step_q4;
     if (ta < -reach || ta > A->len_q4 + reach || tb < -reach || tb > B->len_q4 + reach)
         return;
     /* an arm of A must reach past B's paint, which covers B's width across

@@ -129,7 +129,7 @@ typedef struct {
                                  itself over |sin|, at least 2 steps) */
     int32_t reach_px;         /* largest gap between X and a segment end,
                                  px; 0 = auto (max(3 step, 3 line width),
-                                 at least 7 steps when both segments are
+                                 at least 5 steps when both segments are
                                  6 steps long) */
     int32_t probe_white_pct;  /* probe: arm present at >= this % white */
     int32_t probe_green_pct;  /* probe: arm absent at < this % white */
