@@ -375,6 +375,32 @@ static bool cr_cut(const fl_lines_t *l, const fl_segment_t *s)
            s->v1_q4 < e || s->u1_q4 > um || s->v1_q4 > vm;
 }
 
+static int32_t cr_class_px(const fl_scan_t *s, int32_t u_q4, int32_t v_q4);
+
+/* Is most of the straight path between two pixels (Q4) neither carpet
+ * nor paint in the class map (a robot, a post in front of the line)?  At
+ * most 64 samples, 1 px apart; false when no sample lies in the image. */
+static bool cr_hidden(const fl_scan_t *s, int32_t u0, int32_t v0, int32_t u1, int32_t v1)
+{
+    int32_t du = u1 - u0, dv = v1 - v0, len = (int32_t)fl_hypot(du, dv), n, k, in = 0, hid = 0;
+    n = len / 16;
+    if (n > 63)
+        n = 63;
+    if (n < 1)
+        return false;
+    for (k = 0; k <= n; k++) {
+        int32_t u = u0 + (int32_t)((int64_t)du * k / n), v = v0 + (int32_t)((int64_t)dv * k / n);
+        int32_t c;
+        if (u < 0 || v < 0 || u >= 16 * s->width || v >= 16 * s->height)
+            continue;
+        in++;
+        c = cr_class_px(s, u, v);
+        if (c == FL_CLASS_OTHER || c == FL_CLASS_YELLOW)
+            hid++;
+    }
+    return in > 0 && 2 * hid >= in;
+}
+
 /* What every pair test of a frame shares. */
 typedef struct {
     fl_crossings_t *c;
@@ -450,8 +476,18 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     if (pp->reach_px <= 0 && A->len_q4 >= 6 * step_q4 && B->len_q4 >= 6 * step_q4 &&
         reach < 5 * step_q4)
         reach = 5 * step_q4;
-    if (ta < -reach || ta > A->len_q4 + reach || tb < -reach || tb > B->len_q4 + reach)
-        return;
+    if (ta < -reach || ta > A->len_q4 + reach || tb < -reach || tb > B->len_q4 + reach) {
+        /* ... 7 steps where the gap is hidden (a robot or a post on the
+         * line before the corner: no field colour in most of it) */
+        int32_t far = 7 * step_q4;
+        if (!scan || pp->reach_px > 0 || A->len_q4 < 6 * step_q4 || B->len_q4 < 6 * step_q4 ||
+            ta < -far || ta > A->len_q4 + far || tb < -far || tb > B->len_q4 + far ||
+            (ta < -reach && !cr_hidden(scan, A->u0_q4, A->v0_q4, xu, xv)) ||
+            (ta > A->len_q4 + reach && !cr_hidden(scan, A->u1_q4, A->v1_q4, xu, xv)) ||
+            (tb < -reach && !cr_hidden(scan, B->u0_q4, B->v0_q4, xu, xv)) ||
+            (tb > B->len_q4 + reach && !cr_hidden(scan, B->u1_q4, B->v1_q4, xu, xv)))
+            return;
+    }
     /* an arm of A must reach past B's paint, which covers B's width across
      * B over |sin| of A (and vice versa): below arm where the other line
      * crosses the image's rows or columns on its thin side (a horizontal

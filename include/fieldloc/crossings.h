@@ -130,7 +130,9 @@ typedef struct {
     int32_t reach_px;         /* largest gap between X and a segment end,
                                  px; 0 = auto (max(3 step, 3 line width),
                                  at least 5 steps when both segments are
-                                 6 steps long) */
+                                 6 steps long, 7 steps where the gap is
+                                 mostly neither carpet nor paint: a robot
+                                 or post hides the corner's first steps) */
     int32_t probe_white_pct;  /* probe: arm present at >= this % white */
     int32_t probe_green_pct;  /* probe: arm absent at < this % white */
     int32_t min_confidence;   /* crossings below are dropped, 0..255 */
