@@ -1447,6 +1447,47 @@ static bool cr_circle_axis(const fl_circle_t *circle, const fl_lines_t *lines,
     return best_len > 0;
 }
 
+/* Halfway-line direction for a circle found with no segment through its
+ * centre (a blurred or faint halfway line): of 16 ground directions
+ * through the centre, the one whose line is paint (fl_lines_paint_pct at
+ * least the lines' white_pct) from 1.15 to 1.5 radii out on both sides,
+ * the best of the two sides' paint; false when none (or a side leaves the
+ * image).  Cost: 64 projections and at most 32 paint probes, only for
+ * such a circle. */
+static bool cr_circle_probe_axis(const fl_circle_t *circle, const fl_lines_t *lines,
+                                 const fl_scan_t *scan, const fl_camera_t *camera, int32_t R,
+                                 fl_angle_t *out)
+{
+    int32_t d, side, best = -1;
+    for (d = 0; d < 16; d++) {
+        fl_angle_t g = (fl_angle_t)(d * 2048);
+        int32_t co = fl_cos_q15(g), so = fl_sin_q15(g), worst = 100;
+        for (side = -1; side <= 1 && worst >= 0; side += 2) {
+            fl_point_t a, b;
+            int32_t ua, va, ub, vb, p;
+            a.x_mm = circle->centre.x_mm + side * fl_mul_q15(R * 115 / 100, co);
+            a.y_mm = circle->centre.y_mm + side * fl_mul_q15(R * 115 / 100, so);
+            b.x_mm = circle->centre.x_mm + side * fl_mul_q15(R * 3 / 2, co);
+            b.y_mm = circle->centre.y_mm + side * fl_mul_q15(R * 3 / 2, so);
+            if (!fl_camera_ground_to_pixel(camera, a, &ua, &va) ||
+                !fl_camera_ground_to_pixel(camera, b, &ub, &vb) || ua < 0 || va < 0 || ub < 0 ||
+                vb < 0 || ua > 16 * (lines->width - 1) || ub > 16 * (lines->width - 1) ||
+                va > 16 * (lines->height - 1) || vb > 16 * (lines->height - 1)) {
+                worst = -1;
+                break;
+            }
+            p = fl_lines_paint_pct(lines, scan, ua, va, ub, vb);
+            if (p < worst)
+                worst = p;
+        }
+        if (worst >= lines->params.white_pct && worst > best) {
+            best = worst;
+            *out = g;
+        }
+    }
+    return best >= 0;
+}
+
 int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
                                 const fl_lines_t *lines, const fl_scan_t *scan,
                                 const fl_camera_t *camera,
@@ -1460,7 +1501,8 @@ int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
         return 0;
     R = field->circle_radius_mm;
     ori = circle->orientation;
-    if (!circle->has_orientation && !cr_circle_axis(circle, lines, camera, R, &ori))
+    if (!circle->has_orientation && !cr_circle_axis(circle, lines, camera, R, &ori) &&
+        !cr_circle_probe_axis(circle, lines, scan, camera, R, &ori))
         return 0;
     step_q4 = 16 * lines->step_px;
     for (k = -1; k <= 1; k++) {

@@ -174,8 +174,11 @@ int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
                           const fl_field_t *field);
 
 /* Crossings implied by a found centre circle whose halfway line was seen
- * (circle->has_orientation): the two X where the halfway line crosses the
- * circle and the centre mark.  Each is added (merged with a crossing
+ * (circle->has_orientation; else the longest segment through its centre;
+ * else, a halfway line too faint for segments, the one of 16 ground
+ * directions through the centre that is paint from 1.15 to 1.5 radii out
+ * on both sides): the two X where the halfway line crosses the circle and
+ * the centre mark.  Each is added (merged with a crossing
  * already there, which then becomes an X) only when its pixel is inside
  * the image and the class map is white within one cell of it; confidence
  * 3/4 of the circle's.  Call after fl_crossings_find.  Returns the number
