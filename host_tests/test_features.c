@@ -831,12 +831,12 @@ static void test_eval_realdata(void)
     det_ctx_free(&dc);
     CHECK(n >= 20);
     /* precision 0.919 at recall 0.553 before the luma line points; 0.880
-     * at recall 0.641 with them (white s_hi 48, color.h); 0.918 at 0.757
+     * at recall 0.641 with them (white s_hi 48, color.h); 0.919 at 0.767
      * after the far ground tolerance, edge corners, arm widths, merging,
-     * far marks and hidden gaps of crossings.c */
+     * far and edge marks and hidden gaps of crossings.c */
     floor_target("UvA crossings precision", ratio(s.cross_tp, s.cross_tp + s.cross_fp), 0.91,
                  0.85);
-    floor_target("UvA crossings recall", ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.75, 0.75);
+    floor_target("UvA crossings recall", ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.76, 0.75);
     floor_target("UvA post feet precision", ratio(s.foot_tp, s.foot_tp + s.foot_fp), 0.96, 0.90);
     floor_target("UvA post feet recall", ratio(s.foot_tp, s.foot_tp + s.foot_fn), 0.90, 0.90);
     t_info("UvA type accuracy %.3f over %d matched crossings", ratio(s.type_ok, s.cross_tp),

@@ -810,7 +810,8 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         if (rv < 48)
             rv = 48;
         /* samples outside the image (a mark near its edge) are not
-         * counted: 13 of 16 green means 13/16 of those inside, at least 10 */
+         * counted: 13 of 16 green means 13/16 of those inside, at least 8: a mark
+         * cut by the image edge has half its ring */
         for (j = 0; j < 16; j++) {
             int32_t su = cu + ru * cr_ring_c[j] / 256, sv = cv + rv * cr_ring_c[(j + 4) & 15] / 256;
             int32_t cls;
@@ -824,7 +825,7 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
             else if (cls == FL_CLASS_WHITE)
                 white++;
         }
-        if (outside > 6 || 16 * green < 13 * (16 - outside) || white > 0)
+        if (outside > 8 || 16 * green < 13 * (16 - outside) || white > 0)
             continue;
         green += outside;
         if (!fl_camera_pixel_to_ground(cam, cu, cv, &g))
