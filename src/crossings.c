@@ -63,6 +63,9 @@
 #define CR_MARK_CLUSTERS_MAX 256 /* mark candidates looked at per frame */
 #define CR_MARK_CLUSTERS_CLUTTER 64 /* ... once the line points overflowed */
 #define CR_LUMA_PROBES 128    /* probes per frame that may read the luma */
+#define CR_APART_MM 500      /* crossings farther apart on the ground never merge */
+#define CR_FAR_MM 3000u       /* the ground check's tolerance grows beyond */
+#define CR_FAR_TOL_MDEG 15000u /* ... by this much at twice that range */
 
 void fl_crossings_params_default(fl_crossings_params_t *p)
 {
@@ -194,10 +197,26 @@ typedef struct {
     bool ground;
 } cr_item_t;
 
+/* Do two crossings of straight segments (no circle chord) share one? */
+static bool cr_shared(const fl_lines_t *l, const fl_crossing_t *e, const fl_crossing_t *x)
+{
+    int16_t s[4];
+    int32_t k;
+    s[0] = e->seg_a;
+    s[1] = e->seg_b;
+    s[2] = x->seg_a;
+    s[3] = x->seg_b;
+    for (k = 0; k < 4; k++)
+        if (s[k] < 0 || s[k] >= l->n_segments || (l->segments[s[k]].flags & FL_SEG_CIRCLE))
+            return false;
+    return s[0] == s[2] || s[0] == s[3] || s[1] == s[2] || s[1] == s[3];
+}
+
 /* Insert with merging.  Ground arms of stored crossings are kept in
  * garm_store (parallel to c->c). */
 static void cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
-                   const cr_item_t *it, int32_t merge_q4)
+                   const cr_item_t *it, int32_t merge_q4,
+                   const fl_lines_t *l)
 {
     int32_t k, a, b;
     for (k = 0; k < c->n; k++) {
@@ -205,8 +224,26 @@ static void cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         int64_t du = (int64_t)e->u_q4 - it->x.u_q4, dv = (int64_t)e->v_q4 - it->x.v_q4;
         bool emark = e->kind == FL_LM_PENALTY_MARK || e->kind == FL_LM_CENTRE_MARK;
         bool imark = it->x.kind == FL_LM_PENALTY_MARK || it->x.kind == FL_LM_CENTRE_MARK;
-        if (du * du + dv * dv > (int64_t)merge_q4 * merge_q4)
+        int64_t m = merge_q4;
+        /* two crossings of one segment with two others (a goal box's side
+         * with the goal line and the front line) are distinct unless they
+         * nearly coincide (two pieces of one line broken at the segment) */
+        /* ... and so are a mark and a crossing of lines (a penalty mark
+         * is far from every line crossing) */
+        if (cr_shared(l, e, &it->x) || emark != imark)
+            m = merge_q4 / 2;
+        if (du * du + dv * dv > m * m)
             continue;
+        /* two features CR_APART_MM apart on the ground are two (a far
+         * penalty mark a few px above the centre mark, the corners of a
+         * far goal box; the nearest distinct features of a field are
+         * 600 mm apart) */
+        if (it->ground && e->range_mm > 0) {
+            int64_t gx = (int64_t)e->ground.x_mm - it->x.ground.x_mm;
+            int64_t gy = (int64_t)e->ground.y_mm - it->x.ground.y_mm;
+            if (gx * gx + gy * gy > (int64_t)CR_APART_MM * CR_APART_MM)
+                continue;
+        }
         /* union of the arms */
         for (a = 0; a < it->x.n_arms; a++) {
             bool have = false;
@@ -330,6 +367,40 @@ static int32_t cr_width_q4(const fl_lines_t *l, int32_t v_q4)
     return w;
 }
 
+/* Does a segment end within a line step of the image edge? */
+static bool cr_cut(const fl_lines_t *l, const fl_segment_t *s)
+{
+    int32_t e = 16 * l->step_px, um = 16 * (l->width - 1) - e, vm = 16 * (l->height - 1) - e;
+    return s->u0_q4 < e || s->v0_q4 < e || s->u0_q4 > um || s->v0_q4 > vm || s->u1_q4 < e ||
+           s->v1_q4 < e || s->u1_q4 > um || s->v1_q4 > vm;
+}
+
+static int32_t cr_class_px(const fl_scan_t *s, int32_t u_q4, int32_t v_q4);
+
+/* Is most of the straight path between two pixels (Q4) neither carpet
+ * nor paint in the class map (a robot, a post in front of the line)?  At
+ * most 64 samples, 1 px apart; false when no sample lies in the image. */
+static bool cr_hidden(const fl_scan_t *s, int32_t u0, int32_t v0, int32_t u1, int32_t v1)
+{
+    int32_t du = u1 - u0, dv = v1 - v0, len = (int32_t)fl_hypot(du, dv), n, k, in = 0, hid = 0;
+    n = len / 16;
+    if (n > 63)
+        n = 63;
+    if (n < 1)
+        return false;
+    for (k = 0; k <= n; k++) {
+        int32_t u = u0 + (int32_t)((int64_t)du * k / n), v = v0 + (int32_t)((int64_t)dv * k / n);
+        int32_t c;
+        if (u < 0 || v < 0 || u >= 16 * s->width || v >= 16 * s->height)
+            continue;
+        in++;
+        c = cr_class_px(s, u, v);
+        if (c == FL_CLASS_OTHER || c == FL_CLASS_YELLOW)
+            hid++;
+    }
+    return in > 0 && 2 * hid >= in;
+}
+
 /* What every pair test of a frame shares. */
 typedef struct {
     fl_crossings_t *c;
@@ -354,7 +425,7 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     int64_t ax = (int64_t)A->u1_q4 - A->u0_q4, ay = (int64_t)A->v1_q4 - A->v0_q4;
     int64_t bx = (int64_t)B->u1_q4 - B->u0_q4, by = (int64_t)B->v1_q4 - B->v0_q4;
     int64_t den, num;
-    int32_t xu, xv, ca, sa, cb, sb, ta, tb, w, arm, reach, sinab, k;
+    int32_t xu, xv, ca, sa, cb, sb, ta, tb, w, arm, arm_a, arm_b, reach, sinab, k;
     int32_t step_q4 = 16 * l->step_px, conf, f;
     bool pres[4], geo[4];
     int32_t dirc[4], dirs[4], conflicts = 0, cntA, cntB;
@@ -376,7 +447,10 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     num = ((int64_t)B->u0_q4 - A->u0_q4) * by - ((int64_t)B->v0_q4 - A->v0_q4) * bx;
     xu = A->u0_q4 + fl_div_round(ax * num, den);
     xv = A->v0_q4 + fl_div_round(ay * num, den);
-    if (xu < 0 || xv < 0 || xu > 16 * (l->width - 1) || xv > 16 * (l->height - 1))
+    /* X may lie up to 2 steps outside the image: a corner at the image
+     * edge whose lines come in from it (its arms point inward) */
+    if (xu < -2 * step_q4 || xv < -2 * step_q4 || xu > 16 * (l->width - 1) + 2 * step_q4 ||
+        xv > 16 * (l->height - 1) + 2 * step_q4)
         return;
     ta = fl_rshift_round(((int64_t)xu - A->u0_q4) * ca + ((int64_t)xv - A->v0_q4) * sa, 15);
     tb = fl_rshift_round(((int64_t)xu - B->u0_q4) * cb + ((int64_t)xv - B->v0_q4) * sb, 15);
@@ -394,6 +468,7 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     }
     w = cr_width_q4(l, xv);
     arm = pp->arm_px > 0 ? 16 * pp->arm_px : 2 * step_q4 > 2 * w ? 2 * step_q4 : 2 * w;
+    arm_a = arm_b = arm;
     reach = pp->reach_px > 0 ? 16 * pp->reach_px : 3 * step_q4 > 3 * w ? 3 * step_q4 : 3 * w;
     /* two long segments (6 steps each) may stop up to 5 steps short of
      * their intersection: where lines meet at a shallow image angle (a far
@@ -401,26 +476,52 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     if (pp->reach_px <= 0 && A->len_q4 >= 6 * step_q4 && B->len_q4 >= 6 * step_q4 &&
         reach < 5 * step_q4)
         reach = 5 * step_q4;
-    if (ta < -reach || ta > A->len_q4 + reach || tb < -reach || tb > B->len_q4 + reach)
-        return;
+    if (ta < -reach || ta > A->len_q4 + reach || tb < -reach || tb > B->len_q4 + reach) {
+        /* ... 7 steps where the gap is hidden (a robot or a post on the
+         * line before the corner: no field colour in most of it) */
+        int32_t far = 7 * step_q4;
+        if (!scan || pp->reach_px > 0 || A->len_q4 < 6 * step_q4 || B->len_q4 < 6 * step_q4 ||
+            ta < -far || ta > A->len_q4 + far || tb < -far || tb > B->len_q4 + far ||
+            (ta < -reach && !cr_hidden(scan, A->u0_q4, A->v0_q4, xu, xv)) ||
+            (ta > A->len_q4 + reach && !cr_hidden(scan, A->u1_q4, A->v1_q4, xu, xv)) ||
+            (tb < -reach && !cr_hidden(scan, B->u0_q4, B->v0_q4, xu, xv)) ||
+            (tb > B->len_q4 + reach && !cr_hidden(scan, B->u1_q4, B->v1_q4, xu, xv)))
+            return;
+    }
+    /* an arm of A must reach past B's paint, which covers B's width across
+     * B over |sin| of A (and vice versa): below arm where the other line
+     * crosses the image's rows or columns on its thin side (a horizontal
+     * far line is thinner across than a line running away is), never
+     * below 2 steps */
+    if (pp->arm_px <= 0) {
+        int32_t wh = fl_lines_width_q4(l, xv / 16, false), wv = fl_lines_width_q4(l, xv / 16, true);
+        int32_t wa = (int32_t)(((int64_t)wv * cr_abs(ca) + (int64_t)wh * cr_abs(sa)) >> 15);
+        int32_t wb = (int32_t)(((int64_t)wv * cr_abs(cb) + (int64_t)wh * cr_abs(sb)) >> 15);
+        int32_t ea = (int32_t)((int64_t)2 * wa * 32768 / cr_abs(sinab));
+        int32_t eb = (int32_t)((int64_t)2 * wb * 32768 / cr_abs(sinab));
+        arm_a = eb < arm ? (eb > 2 * step_q4 ? eb : 2 * step_q4) : arm;
+        arm_b = ea < arm ? (ea > 2 * step_q4 ? ea : 2 * step_q4) : arm;
+    }
     /* arms: 0 = A forward, 1 = A backward, 2 = B forward, 3 = B backward */
-    geo[0] = A->len_q4 - ta >= arm;
-    geo[1] = ta >= arm;
-    geo[2] = B->len_q4 - tb >= arm;
-    geo[3] = tb >= arm;
-    /* an arm cut off by the image edge: half an arm of segment up to an
-     * end within a step of the border (not in images under 8 arms across:
-     * there every segment is near an edge) */
+    geo[0] = A->len_q4 - ta >= arm_a;
+    geo[1] = ta >= arm_a;
+    geo[2] = B->len_q4 - tb >= arm_b;
+    geo[3] = tb >= arm_b;
+    /* an arm cut off by the image edge: half an arm (at most 2 steps) of
+     * segment up to an end within a step of the border (not in images
+     * under 8 arms across: there every segment is near an edge) */
     if (16 * l->width >= 8 * arm && 16 * l->height >= 8 * arm) {
         int32_t eh = step_q4, umax = 16 * (l->width - 1) - eh, vmax = 16 * (l->height - 1) - eh;
+        int32_t ha = arm_a / 2 < 2 * step_q4 ? arm_a / 2 : 2 * step_q4;
+        int32_t hb = arm_b / 2 < 2 * step_q4 ? arm_b / 2 : 2 * step_q4;
 #define CR_AT_EDGE(u, v) ((u) < eh || (v) < eh || (u) > umax || (v) > vmax)
-        if (!geo[0] && 2 * (A->len_q4 - ta) >= arm && CR_AT_EDGE(A->u1_q4, A->v1_q4))
+        if (!geo[0] && A->len_q4 - ta >= ha && CR_AT_EDGE(A->u1_q4, A->v1_q4))
             geo[0] = true;
-        if (!geo[1] && 2 * ta >= arm && CR_AT_EDGE(A->u0_q4, A->v0_q4))
+        if (!geo[1] && ta >= ha && CR_AT_EDGE(A->u0_q4, A->v0_q4))
             geo[1] = true;
-        if (!geo[2] && 2 * (B->len_q4 - tb) >= arm && CR_AT_EDGE(B->u1_q4, B->v1_q4))
+        if (!geo[2] && B->len_q4 - tb >= hb && CR_AT_EDGE(B->u1_q4, B->v1_q4))
             geo[2] = true;
-        if (!geo[3] && 2 * tb >= arm && CR_AT_EDGE(B->u0_q4, B->v0_q4))
+        if (!geo[3] && tb >= hb && CR_AT_EDGE(B->u0_q4, B->v0_q4))
             geo[3] = true;
 #undef CR_AT_EDGE
     }
@@ -463,8 +564,9 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     memset(&it, 0, sizeof it);
     it.x.seg_a = (int16_t)ia;
     it.x.seg_b = (int16_t)ib;
-    it.x.u_q4 = xu;
-    it.x.v_q4 = xv;
+    /* the image position inside the image (ground from the true X) */
+    it.x.u_q4 = xu < 0 ? 0 : xu > 16 * (l->width - 1) ? 16 * (l->width - 1) : xu;
+    it.x.v_q4 = xv < 0 ? 0 : xv > 16 * (l->height - 1) ? 16 * (l->height - 1) : xv;
     for (k = 0; k < 4; k++)
         if (pres[k])
             it.x.arm[it.x.n_arms++] = fl_atan2(dirs[k], dirc[k]);
@@ -497,8 +599,21 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
         /* deviation from square: sin(90 - between) = cos(between) */
         f = fl_cos_q15((fl_angle_t)between);
         if (f > sin_tol_q15) {
-            c->rejected_ground++;
-            return;
+            /* beyond CR_FAR_MM the ground angles depend on the camera
+             * pitch (1 degree moves a point 5 m away by about 1 m): the
+             * tolerance grows linearly by CR_FAR_TOL_MDEG up to twice
+             * that range (u32 range clamped first: products < 2^26) */
+            uint32_t rg = fl_hypot(gx.x_mm, gx.y_mm);
+            int32_t tm = c->params.ground_tol_mdeg;
+            if (rg > CR_FAR_MM)
+                tm += (int32_t)((rg > 2 * CR_FAR_MM ? CR_FAR_MM : rg - CR_FAR_MM) *
+                                CR_FAR_TOL_MDEG / CR_FAR_MM);
+            if (tm > 45000)
+                tm = 45000;
+            if (f > fl_sin_q15(fl_angle_from_mdeg(tm))) {
+                c->rejected_ground++;
+                return;
+            }
         }
         ground = true;
         it.ground = true;
@@ -534,7 +649,8 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     if (it.x.kind == FL_LM_X && cam && field && field->mark_size_mm > 0) {
         int32_t la = cr_ground_len(cam, A), lb = cr_ground_len(cam, B);
         int32_t lim = 5 * field->mark_size_mm / 2;
-        bool sa_ = la >= 0 && la <= lim, sb_ = lb >= 0 && lb <= lim;
+        /* (a bar cut off by the image edge is no short bar) */
+        bool sa_ = la >= 0 && la <= lim && !cr_cut(l, A), sb_ = lb >= 0 && lb <= lim && !cr_cut(l, B);
         if (sa_ && sb_)
             it.x.kind = FL_LM_PENALTY_MARK;
         else if (sa_ || sb_)
@@ -545,7 +661,7 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     cr_orient(&it.x, it.garm, ground);
     {
         int32_t merge = 3 * w > 4 * step_q4 ? 3 * w : 4 * step_q4;
-        cr_add(c, garm_store, &it, merge);
+        cr_add(c, garm_store, &it, merge, l);
     }
 }
 
@@ -606,6 +722,16 @@ static void cr_mark_census(const fl_lines_t *l, cr_census_t *k, uint32_t *vis)
             if (vis)
                 vis[ids[j] >> 5] |= 1u << (ids[j] & 31);
         } else if (du * du * ov * ov + dv * dv * ou * ou <= ou * ou * ov * ov) {
+            /* a point of a long line passing by, its line farther than
+             * twice the inner ellipse across it, is no clutter */
+            if (q->seg != FL_LINES_NONE && l->segments[q->seg].len_q4 > k->long_q4) {
+                const fl_segment_t *s = &l->segments[q->seg];
+                int32_t d = fl_segment_distance_q4(s, 8 * cu, 8 * cv);
+                int32_t m = (int32_t)((16 * (iu * cr_abs(fl_sin_q15(s->angle)) +
+                                             iv * cr_abs(fl_cos_q15(s->angle)))) >> 15);
+                if (d > m || d < -m)
+                    continue;
+            }
             k->n_out++;
         }
     }
@@ -668,10 +794,10 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         cc.cv = cc.sv / cc.n_in;
         cr_mark_census(l, &cc, vis);
         /* luma points (noise ridges of a dark frame, the bright rims of
-         * carpet seams) count only beside 2 class-map points, or as 3
-         * points alone */
+         * carpet seams) count only beside 2 class-map points, or in a
+         * cluster of 3 (a far mark: one white run and its blurred ends) */
         if (cc.n_in < 2 || cc.long_in > 0 || cc.n_out > 0 ||
-            (cc.luma_in > 0 && cc.n_in - cc.luma_in < 2 && cc.luma_in < 3))
+            (cc.luma_in > 0 && cc.n_in - cc.luma_in < 2 && cc.n_in < 3))
             continue;
         n_in = cc.n_in;
         cu = cc.su * 8 / n_in; /* Q4 */
@@ -684,7 +810,8 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         if (rv < 48)
             rv = 48;
         /* samples outside the image (a mark near its edge) are not
-         * counted: 13 of 16 green means 13/16 of those inside, at least 10 */
+         * counted: 13 of 16 green means 13/16 of those inside, at least 8: a mark
+         * cut by the image edge has half its ring */
         for (j = 0; j < 16; j++) {
             int32_t su = cu + ru * cr_ring_c[j] / 256, sv = cv + rv * cr_ring_c[(j + 4) & 15] / 256;
             int32_t cls;
@@ -698,7 +825,7 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
             else if (cls == FL_CLASS_WHITE)
                 white++;
         }
-        if (outside > 6 || 16 * green < 13 * (16 - outside) || white > 0)
+        if (outside > 8 || 16 * green < 13 * (16 - outside) || white > 0)
             continue;
         green += outside;
         if (!fl_camera_pixel_to_ground(cam, cu, cv, &g))
@@ -717,7 +844,7 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
             continue;
         {
             int32_t merge = 2 * mh > 4 * step_q4 ? 2 * mh : 4 * step_q4;
-            cr_add(c, garm_store, &it, merge);
+            cr_add(c, garm_store, &it, merge, l);
         }
     }
 }
@@ -952,7 +1079,7 @@ static void cr_border_t(const cr_ctx_t *ctx, int32_t is)
         return;
     cr_orient(&it.x, it.garm, true);
     c->border_t++;
-    cr_add(c, c->garm, &it, merge);
+    cr_add(c, c->garm, &it, merge, l);
 }
 
 /* ---- corners of a short connector (two parallel far lines) ------------------- */
@@ -1181,7 +1308,7 @@ static void cr_connect(const cr_ctx_t *ctx, int32_t is, bool end1)
             if (!near && cr_type(&it.x)) {
                 cr_orient(&it.x, it.garm, true);
                 c->connectors++;
-                cr_add(c, c->garm, &it, mf < bt / 2 ? mf : bt / 2);
+                cr_add(c, c->garm, &it, mf < bt / 2 ? mf : bt / 2, l);
             }
         }
         /* L at E */
@@ -1202,7 +1329,7 @@ static void cr_connect(const cr_ctx_t *ctx, int32_t is, bool end1)
         if (cr_type(&it.x)) {
             cr_orient(&it.x, it.garm, true);
             c->connectors++;
-            cr_add(c, c->garm, &it, merge < bt / 2 ? merge : bt / 2);
+            cr_add(c, c->garm, &it, merge < bt / 2 ? merge : bt / 2, l);
         }
         return;
     }
@@ -1321,6 +1448,47 @@ static bool cr_circle_axis(const fl_circle_t *circle, const fl_lines_t *lines,
     return best_len > 0;
 }
 
+/* Halfway-line direction for a circle found with no segment through its
+ * centre (a blurred or faint halfway line): of 16 ground directions
+ * through the centre, the one whose line is paint (fl_lines_paint_pct at
+ * least the lines' white_pct) from 1.15 to 1.5 radii out on both sides,
+ * the best of the two sides' paint; false when none (or a side leaves the
+ * image).  Cost: 64 projections and at most 32 paint probes, only for
+ * such a circle. */
+static bool cr_circle_probe_axis(const fl_circle_t *circle, const fl_lines_t *lines,
+                                 const fl_scan_t *scan, const fl_camera_t *camera, int32_t R,
+                                 fl_angle_t *out)
+{
+    int32_t d, side, best = -1;
+    for (d = 0; d < 16; d++) {
+        fl_angle_t g = (fl_angle_t)(d * 2048);
+        int32_t co = fl_cos_q15(g), so = fl_sin_q15(g), worst = 100;
+        for (side = -1; side <= 1 && worst >= 0; side += 2) {
+            fl_point_t a, b;
+            int32_t ua, va, ub, vb, p;
+            a.x_mm = circle->centre.x_mm + side * fl_mul_q15(R * 115 / 100, co);
+            a.y_mm = circle->centre.y_mm + side * fl_mul_q15(R * 115 / 100, so);
+            b.x_mm = circle->centre.x_mm + side * fl_mul_q15(R * 3 / 2, co);
+            b.y_mm = circle->centre.y_mm + side * fl_mul_q15(R * 3 / 2, so);
+            if (!fl_camera_ground_to_pixel(camera, a, &ua, &va) ||
+                !fl_camera_ground_to_pixel(camera, b, &ub, &vb) || ua < 0 || va < 0 || ub < 0 ||
+                vb < 0 || ua > 16 * (lines->width - 1) || ub > 16 * (lines->width - 1) ||
+                va > 16 * (lines->height - 1) || vb > 16 * (lines->height - 1)) {
+                worst = -1;
+                break;
+            }
+            p = fl_lines_paint_pct(lines, scan, ua, va, ub, vb);
+            if (p < worst)
+                worst = p;
+        }
+        if (worst >= lines->params.white_pct && worst > best) {
+            best = worst;
+            *out = g;
+        }
+    }
+    return best >= 0;
+}
+
 int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
                                 const fl_lines_t *lines, const fl_scan_t *scan,
                                 const fl_camera_t *camera,
@@ -1334,7 +1502,8 @@ int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
         return 0;
     R = field->circle_radius_mm;
     ori = circle->orientation;
-    if (!circle->has_orientation && !cr_circle_axis(circle, lines, camera, R, &ori))
+    if (!circle->has_orientation && !cr_circle_axis(circle, lines, camera, R, &ori) &&
+        !cr_circle_probe_axis(circle, lines, scan, camera, R, &ori))
         return 0;
     step_q4 = 16 * lines->step_px;
     for (k = -1; k <= 1; k++) {
@@ -1372,7 +1541,7 @@ int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
             continue;
         w = cr_width_q4(lines, v);
         merge = 3 * w > 4 * step_q4 ? 3 * w : 4 * step_q4;
-        cr_add(c, c->garm, &it, merge);
+        cr_add(c, c->garm, &it, merge, lines);
         added++;
     }
     return added;

@@ -3,7 +3,10 @@
  * centre marks (seed 000, section 3.7).
  *
  * Pairs.  Every pair of segments (lines.h) at least min_angle apart in the
- * image whose (infinite) lines meet inside the image is a candidate.  For
+ * image whose (infinite) lines meet inside the image (or at most 2 line
+ * steps outside it: a corner at the image edge; its pixel is then clamped
+ * into the image, its ground position is the true meeting point's) is a
+ * candidate.  For
  * each segment the meeting point X is placed along it: an arm leaves X
  * where the segment goes on past X by at least arm_px (half of it where
  * the segment ends within a line step of the image border: the arm is cut
@@ -27,7 +30,10 @@
  * such probes per frame, counted in luma_probes).  The arm count gives the type (2 L, 3 T, 4 X).
  * Crossings closer than the merge distance (3 line widths or 4 steps) are
  * merged by the union of their arms: two opposite T's become an X, an L
- * and its continuation a T.
+ * and its continuation a T.  Two crossings of one straight segment with
+ * two others (a goal box side with the goal line and the front line), and
+ * a mark and a crossing of lines, merge only within half that distance;
+ * crossings 500 mm apart on the ground never merge.
  *
  * Border T's.  Far away the boundary lines are a pixel or less tall: their
  * paint blends into the carpet or lies above the field border found by the
@@ -59,9 +65,10 @@
  * Marks.  The penalty and centre marks (a 100 mm cross) are too small to
  * make long segments.  Points off long segments are clustered within 0.75
  * of the projected mark size; a cluster of at least 2 points with no other
- * point out to 2.5 mark sizes, whose ring of 16 class-map samples at 1.6
+ * point out to 2.5 mark sizes (but those of a long line passing by, twice
+ * the inner half-axis away), whose ring of 16 class-map samples at 1.6
  * mark sizes is green (13 of 16, no white), is a penalty mark (a cluster
- * of luma points alone needs 3).  An X of a
+ * with luma points needs 2 class-map points or 3 points in all).  An X of a
  * short bar (<= 2.5 mark sizes on the ground) across a long line is a
  * centre mark, of two short bars a penalty mark.  Both count as X (as the
  * UvA 2013 labels do); their kind says which.  A found centre circle with
@@ -116,11 +123,16 @@ typedef struct {
     int32_t ground_tol_mdeg;  /* allowed deviation from 90 deg on the
                                  ground, 1000..45000 */
     int32_t arm_px;           /* segment extent past X that makes an arm,
-                                 px; 0 = auto (max(2 step, 2 line width)) */
+                                 px; 0 = auto (max(2 step, 2 line width),
+                                 lowered to twice the other line's paint
+                                 along the segment: its width across
+                                 itself over |sin|, at least 2 steps) */
     int32_t reach_px;         /* largest gap between X and a segment end,
                                  px; 0 = auto (max(3 step, 3 line width),
                                  at least 5 steps when both segments are
-                                 6 steps long) */
+                                 6 steps long, 7 steps where the gap is
+                                 mostly neither carpet nor paint: a robot
+                                 or post hides the corner's first steps) */
     int32_t probe_white_pct;  /* probe: arm present at >= this % white */
     int32_t probe_green_pct;  /* probe: arm absent at < this % white */
     int32_t min_confidence;   /* crossings below are dropped, 0..255 */
@@ -162,8 +174,11 @@ int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
                           const fl_field_t *field);
 
 /* Crossings implied by a found centre circle whose halfway line was seen
- * (circle->has_orientation): the two X where the halfway line crosses the
- * circle and the centre mark.  Each is added (merged with a crossing
+ * (circle->has_orientation; else the longest segment through its centre;
+ * else, a halfway line too faint for segments, the one of 16 ground
+ * directions through the centre that is paint from 1.15 to 1.5 radii out
+ * on both sides): the two X where the halfway line crosses the circle and
+ * the centre mark.  Each is added (merged with a crossing
  * already there, which then becomes an X) only when its pixel is inside
  * the image and the class map is white within one cell of it; confidence
  * 3/4 of the circle's.  Call after fl_crossings_find.  Returns the number
