@@ -565,7 +565,8 @@ static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
     const fl_color_table_t *ct = f->ct;
     int32_t n = s->cols - 32 * w, j, p;
     uint64_t found = 0, g1 = 0, g2 = 0, y1 = 0, y2 = 0, y3 = 0, wprev = 0, wrej = 0;
-    uint64_t cnt[8] = {0, 0, 0, 0, 0, 0, 0, 0}, want, all;
+    uint64_t cnt[8] = {0, 0, 0, 0, 0, 0, 0, 0}, m[8], all;
+    uint64_t c0 = 0, c1 = 0, c2 = 0, c3 = 0;
     uint64_t *ycount = s->ycount[w];
     size_t cs = (size_t)f->cs, u0 = (size_t)w * 32 * cs, step = (size_t)f->rs * f->st0;
     const uint8_t *row;
@@ -577,6 +578,8 @@ static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
         kind = cs == 1 ? 1 : (cs == 2 ? 4 : ((cs & 1) == 0 ? 2 : 0));
     else if (n == 32 && f->fmt == FL_FMT_RGB888)
         kind = cs == 1 ? 5 : (cs == 2 ? 6 : 3);
+    for (p = 0; p < 8; p++)
+        m[p] = (ns >> p) & 1 ? 0 : ~0ULL;
     memset(ycount, 0, sizeof s->ycount[w]);
     for (j = 0; j < j_lo && j < s->rows; j++)
         s->map[j][w] = 0;
@@ -601,17 +604,31 @@ static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
         if (found != all) {
             /* bit-sliced run counters: +1 where green, 0 elsewhere */
             uint64_t gr = lo & ~hi, x = gr & ~found, eq;
-            for (p = 0; p < nplanes; p++) {
-                uint64_t t = cnt[p] & x;
-                cnt[p] ^= x;
-                x = t;
-            }
-            x = gr & ~found;
-            eq = x;
-            for (p = 0; p < nplanes; p++) {
-                cnt[p] &= x;
-                want = (ns >> p) & 1 ? cnt[p] : ~cnt[p];
-                eq &= want;
+            /* A counter never exceeds ns (a column that reaches ns is
+             * found and leaves the count), so it equals ns exactly when
+             * it has every bit of ns set: eq = x & the planes of ns's
+             * set bits (m[p] all ones for the others). */
+            if (nplanes <= 4) {   /* the common ns 1..15: in registers */
+                uint64_t t = c0 & x, t2;
+                c0 = ~c0 & x;
+                t2 = c1 & t;
+                c1 = (c1 ^ t) & x;
+                t = c2 & t2;
+                c2 = (c2 ^ t2) & x;
+                c3 = (c3 ^ t) & x;
+                eq = x & (c0 | m[0]) & (c1 | m[1]) & (c2 | m[2]) & (c3 | m[3]);
+            } else {
+                for (p = 0; p < nplanes; p++) {
+                    uint64_t t = cnt[p] & x;
+                    cnt[p] ^= x;
+                    x = t;
+                }
+                x = gr & ~found;
+                eq = x;
+                for (p = 0; p < nplanes; p++) {
+                    cnt[p] &= x;
+                    eq &= cnt[p] | m[p];
+                }
             }
             if (eq != 0) {
                 uint64_t e = eq;
@@ -841,18 +858,18 @@ static void repair_borders(fl_scan_t *s, const frame_t *f)
 {
     const fl_color_table_t *ct = f->ct;
     int32_t reach = 16 / f->cs > 2 ? 16 / f->cs : 2;
-    int32_t i;
+    /* l: the nearest column left of i with a border (repaired ones
+     * included), r: the nearest right of i (not yet visited: as found) */
+    int32_t i, l = -1, r = 0;
     for (i = 0; i < s->cols; i++) {
-        int32_t l, r, ref = -1, j, n = 0, nf = 0, best = -1;
+        int32_t ref = -1, j, n = 0, nf = 0, best = -1;
         col_t col;
-        if (s->border_v[i] < s->height)
+        if (s->border_v[i] < s->height) {
+            l = i;
             continue;
-        for (l = i - 1; l >= 0 && l >= i - reach; l--)
-            if (s->border_v[l] < s->height)
-                break;
-        for (r = i + 1; r < s->cols && r <= i + reach; r++)
-            if (s->border_v[r] < s->height)
-                break;
+        }
+        while (r < s->cols && (r <= i || s->border_v[r] >= s->height))
+            r++;
         if (l >= 0 && l >= i - reach)
             ref = s->first_row[l];
         if (r < s->cols && r <= i + reach && s->first_row[r] > ref)
@@ -877,6 +894,7 @@ static void repair_borders(fl_scan_t *s, const frame_t *f)
         s->border_v[i] = (int16_t)(best * f->rs);
         s->first_row[i] = (int16_t)best;
         s->n_border++;
+        l = i;
         s->post_top[i >> 5] |= 1ULL << (62 - 2 * (i & 31));   /* let C look */
         for (j = best; j < s->rows; j++) {
             uint64_t c = (uint64_t)col_class(&col, ct, j * f->rs);
