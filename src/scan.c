@@ -58,6 +58,14 @@
 
 #define EVEN 0x5555555555555555ULL
 
+/* Kept out of its caller (gcc's inlining limits are then spent on the
+ * caller's hot loops); no effect on results. */
+#if defined(__GNUC__)
+#define FL_NOINLINE __attribute__((noinline))
+#else
+#define FL_NOINLINE
+#endif
+
 void fl_scan_params_default(fl_scan_params_t *p)
 {
     if (p == NULL)
@@ -178,23 +186,30 @@ static int32_t px_luma(const frame_t *f, int32_t u, int32_t v)
 /* ---- word classification (phase B) ----------------------------------------------
  * 32 cells -> 64 bits, cell k at bits 63 - 2k, 62 - 2k. */
 
+/* Each word function is instantiated twice (word_*: phase B's rows,
+ * cand_*: the candidate rows of phase A) so that each copy has one call
+ * site and is inlined there. */
+
 /* YUYV at full resolution: 16 pixel pairs from q (an even pixel). */
-static uint64_t word_yuyv_pairs(const uint8_t *q, const uint16_t *chroma,
-                                const uint8_t *pat)
-{
-    uint64_t acc = 0;
-    const uint8_t *r;
 #define FL_PAIR(k)                                                              \
     r = pat + chroma[((unsigned)q[4 * (k) + 1] << 8) | q[4 * (k) + 3]];         \
     acc = (acc << 2) + r[q[4 * (k)]];                                           \
     acc = (acc << 2) + r[q[4 * (k) + 2]];
-    FL_PAIR(0) FL_PAIR(1) FL_PAIR(2) FL_PAIR(3)
-    FL_PAIR(4) FL_PAIR(5) FL_PAIR(6) FL_PAIR(7)
-    FL_PAIR(8) FL_PAIR(9) FL_PAIR(10) FL_PAIR(11)
-    FL_PAIR(12) FL_PAIR(13) FL_PAIR(14) FL_PAIR(15)
+#define FL_PAIRS_WORD(name)                                                     \
+    static uint64_t name(const uint8_t *q, const uint16_t *chroma,              \
+                         const uint8_t *pat)                                    \
+    {                                                                           \
+        uint64_t acc = 0;                                                       \
+        const uint8_t *r;                                                       \
+        FL_PAIR(0) FL_PAIR(1) FL_PAIR(2) FL_PAIR(3)                             \
+        FL_PAIR(4) FL_PAIR(5) FL_PAIR(6) FL_PAIR(7)                             \
+        FL_PAIR(8) FL_PAIR(9) FL_PAIR(10) FL_PAIR(11)                           \
+        FL_PAIR(12) FL_PAIR(13) FL_PAIR(14) FL_PAIR(15)                         \
+        return acc;                                                             \
+    }
+FL_PAIRS_WORD(word_yuyv_pairs)
+FL_PAIRS_WORD(cand_yuyv_pairs)
 #undef FL_PAIR
-    return acc;
-}
 
 /* RGB, 32 cells D bytes apart from q.  D is a literal in the common
  * cases so that every address is a constant offset. */
@@ -220,12 +235,15 @@ static uint64_t word_yuyv_pairs(const uint8_t *q, const uint16_t *chroma,
     }
 #define D 3
 FL_RGB_WORD(word_rgb_1)
+FL_RGB_WORD(cand_rgb_1)
 #undef D
 #define D 6
 FL_RGB_WORD(word_rgb_2)
+FL_RGB_WORD(cand_rgb_2)
 #undef D
 #define D d
 FL_RGB_WORD(word_rgb)
+FL_RGB_WORD(cand_rgb)
 #undef D
 
 /* YUYV, 32 cells on even pixels D bytes apart from q (D = 2 col_step). */
@@ -244,9 +262,11 @@ FL_RGB_WORD(word_rgb)
     }
 #define D 4
 FL_YE_WORD(word_yuyv_2)
+FL_YE_WORD(cand_yuyv_2)
 #undef D
 #define D d
 FL_YE_WORD(word_yuyv_even)
+FL_YE_WORD(cand_yuyv_even)
 #undef D
 
 /* Any format and step, n cells (1..32) of pixel row v from cell i0. */
@@ -261,6 +281,30 @@ static uint64_t word_generic(const frame_t *f, int32_t v, int32_t i0, int32_t n)
         acc = (acc << 2) + (uint64_t)col_class(&c, ct, v);
     }
     return acc << (2 * (32 - n));
+}
+
+/* Row j of band w (n cells, u0 = its first pixel column; row points at
+ * pixel row j * rs of plane 0) through the word function of its kind: the
+ * candidate rows of phase A (scan_band's own rows have this dispatch
+ * written out with the word_* copies). */
+static uint64_t band_word(const frame_t *f, int32_t kind, const uint8_t *row,
+                                 size_t u0, int32_t j, int32_t w, int32_t n)
+{
+    const fl_color_table_t *ct = f->ct;
+    size_t cs = (size_t)f->cs;
+    /* the common kinds first: a predicted compare is cheaper than the
+     * jump table */
+    if (kind == 4)
+        return cand_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
+    if (kind == 1)
+        return cand_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern);
+    switch (kind) {
+    case 2: return cand_yuyv_even(row + 2 * u0, 2 * cs, ct->chroma, ct->pattern);
+    case 3: return cand_rgb(row + 3 * u0, 3 * cs, ct);
+    case 5: return cand_rgb_1(row + 3 * u0, 3, ct);
+    case 6: return cand_rgb_2(row + 3 * u0, 6, ct);
+    default: return word_generic(f, j * f->rs, 32 * w, n);
+    }
 }
 
 /* ---- bit helpers ----------------------------------------------------------------- */
@@ -293,66 +337,6 @@ static uint64_t cell_bit(int32_t k)
 static int32_t map_class(const fl_scan_t *s, int32_t i, int32_t j)
 {
     return (int32_t)((s->map[j][i >> 5] >> (62 - 2 * (i & 31))) & 3);
-}
-
-/* ---- phase A: where the search for a run can start ------------------------------------ */
-
-/* Per grid column, the first of the samples j0 + ns - 1, j0 + 2 ns - 1, ...
- * that is green (cand_row; rows when none).  Every run of ns green samples
- * below j0 contains one of these samples, so no run starts before
- * cand_row - ns + 1 and a column without a green one has no run. */
-static void find_candidates(fl_scan_t *s, const frame_t *f, int32_t j0, int32_t ns)
-{
-    const fl_color_table_t *ct = f->ct;
-    int32_t i, j;
-    for (i = 0; i < s->cols; i++) {
-        col_t col;
-        col_init(&col, f, i * f->cs);
-        s->first_row[i] = (int16_t)s->rows;
-        s->border_v[i] = (int16_t)s->height;
-        j = j0 + ns - 1;
-        if (j < s->rows && f->fmt != FL_FMT_YCBCR_PLANAR) {
-            /* the lookups of col_class, walking a pointer down (never
-             * past the last row) */
-            const uint8_t *q = col.y + (size_t)(j * f->rs) * col.sy;
-            ptrdiff_t dc = col.cb - col.y;
-            size_t step = (size_t)(ns * f->rs) * col.sy;
-            const uint16_t *tr = ct->rgb_dr + 255, *tb = ct->rgb_db + 255;
-            if (col.rgb) {
-                for (;;) {
-                    ptrdiff_t g = q[1];
-                    if (ct->pattern[(ptrdiff_t)ct->rgb_chroma[(unsigned)tr[(ptrdiff_t)q[0] - g] +
-                                                              tb[(ptrdiff_t)q[2] - g]] + g] ==
-                        FL_CLASS_GREEN) {
-                        s->first_row[i] = (int16_t)j;
-                        break;
-                    }
-                    if (j + ns >= s->rows)
-                        break;
-                    j += ns;
-                    q += step;
-                }
-                continue;
-            }
-            for (;;) {
-                if (ct->pattern[(size_t)ct->chroma[((unsigned)q[dc] << 8) | q[dc + 2]] +
-                                q[0]] == FL_CLASS_GREEN) {
-                    s->first_row[i] = (int16_t)j;
-                    break;
-                }
-                if (j + ns >= s->rows)
-                    break;
-                j += ns;
-                q += step;
-            }
-            continue;
-        }
-        for (; j < s->rows; j += ns)
-            if (col_class(&col, ct, j * f->rs) == FL_CLASS_GREEN) {
-                s->first_row[i] = (int16_t)j;   /* the candidate, for now */
-                break;
-            }
-    }
 }
 
 /* ---- phase B helpers ------------------------------------------------------------------ */
@@ -477,6 +461,22 @@ static bool green_near_top(const fl_scan_t *s, const frame_t *f, int32_t i)
     return false;
 }
 
+/* The first of the samples j0 + ns - 1, j0 + 2 ns - 1, ... of column i
+ * that is green (rows when none): what first_row holds for a column
+ * without a border until the loop over the columns after phase B reaches
+ * it (extend_border reads it for columns to the right). */
+static int32_t column_candidate(const fl_scan_t *s, const frame_t *f, int32_t i,
+                                int32_t j0, int32_t ns)
+{
+    int32_t j;
+    col_t col;
+    col_init(&col, f, i * f->cs);
+    for (j = j0 + ns - 1; j < s->rows; j += ns)
+        if (col_class(&col, f->ct, j * f->rs) == FL_CLASS_GREEN)
+            return j;
+    return s->rows;
+}
+
 /* Above the border.  Far away the carpet beyond the boundary line is a
  * strip thinner than N: the first run of N is then below the line.  From
  * the border up: a white stretch of at most 2 N px (a line) with green
@@ -530,9 +530,16 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
             /* a post standing on a line (thin: not a floor strip beyond
              * the carpet under a yellow box): the line is field */
             int32_t q, wmin = s->rows;
-            for (q = i - 2 * ns; q <= i + 2 * ns; q++)
-                if (q >= 0 && q < s->cols && q != i && s->first_row[q] < wmin)
-                    wmin = s->first_row[q];
+            for (q = i - 2 * ns; q <= i + 2 * ns; q++) {
+                int32_t fq;
+                if (q < 0 || q >= s->cols || q == i)
+                    continue;
+                fq = s->first_row[q];
+                if (q > i && s->border_v[q] >= s->height)
+                    fq = column_candidate(s, f, q, lo, ns);
+                if (fq < wmin)
+                    wmin = fq;
+            }
             /* ... and inside the field: its line lies below the carpet
              * edge of the columns around it */
             if (jw < lo || 2 * (jb - 1 - jw) > ns || jw + 1 <= wmin)
@@ -556,10 +563,42 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
     }
 }
 
+/* Word function of band w: 0 generic, 1 YUYV pairs, 2 YUYV even pixels,
+ * 3 RGB, 4 YUYV col_step 2, 5 RGB col_step 1, 6 RGB col_step 2. */
+static int32_t band_kind(const frame_t *f, int32_t n)
+{
+    size_t cs = (size_t)f->cs;
+    if (n == 32 && f->fmt == FL_FMT_YUYV422)
+        return cs == 1 ? 1 : (cs == 2 ? 4 : ((cs & 1) == 0 ? 2 : 0));
+    if (n == 32 && f->fmt == FL_FMT_RGB888)
+        return cs == 1 ? 5 : (cs == 2 ? 6 : 3);
+    return 0;
+}
+
+/* Phase A for band w: the first of the rows j0 + ns - 1, j0 + 2 ns - 1,
+ * ... with a green cell.  Every run of ns green samples below j0 contains
+ * one of these rows, so no run in the band starts before that row - (ns -
+ * 1): the band's first row (j0 at the least). */
+static FL_NOINLINE int32_t band_start(const fl_scan_t *s, const frame_t *f, int32_t w,
+                          int32_t j0, int32_t ns)
+{
+    int32_t n = s->cols - 32 * w > 32 ? 32 : s->cols - 32 * w;
+    int32_t kind = band_kind(f, n), j, m = s->rows;
+    size_t u0 = (size_t)w * 32 * (size_t)f->cs, step = (size_t)f->rs * f->st0;
+    for (j = j0 + ns - 1; j < s->rows; j += ns) {
+        uint64_t c = band_word(f, kind, f->p0 + (size_t)j * step, u0, j, w, n);
+        if ((c & ~(c >> 1) & EVEN) != 0) {
+            m = j;
+            break;
+        }
+    }
+    return m - ns + 1 > j0 ? m - ns + 1 : j0;
+}
+
 /* Band w (32 grid columns): rows from j_lo down, each row classified once
  * (32 cells), the run detector for columns still without a border, then
  * the bit logic on the cells below the border.  State lives in locals. */
-static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
+static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
                       int32_t ns, int32_t nplanes)
 {
     const fl_color_table_t *ct = f->ct;
@@ -570,14 +609,11 @@ static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
     uint64_t *ycount = s->ycount[w];
     size_t cs = (size_t)f->cs, u0 = (size_t)w * 32 * cs, step = (size_t)f->rs * f->st0;
     const uint8_t *row;
-    int32_t kind = 0;
+    int32_t kind;
     if (n > 32)
         n = 32;
     all = n == 32 ? EVEN : EVEN & ~((1ULL << (64 - 2 * n)) - 1);
-    if (n == 32 && f->fmt == FL_FMT_YUYV422)
-        kind = cs == 1 ? 1 : (cs == 2 ? 4 : ((cs & 1) == 0 ? 2 : 0));
-    else if (n == 32 && f->fmt == FL_FMT_RGB888)
-        kind = cs == 1 ? 5 : (cs == 2 ? 6 : 3);
+    kind = band_kind(f, n);
     for (p = 0; p < 8; p++)
         m[p] = (ns >> p) & 1 ? 0 : ~0ULL;
     memset(ycount, 0, sizeof s->ycount[w]);
@@ -586,8 +622,7 @@ static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
     row = f->p0 + (size_t)j_lo * step;
     for (j = j_lo; j < s->rows; j++, row += step) {
         uint64_t c, lo, hi, g, wh, y, starts, rej, cand;
-        /* the common kinds first: a predicted compare is cheaper than the
-         * jump table */
+        /* band_word's dispatch, written out: here it must be inlined */
         if (kind == 4)
             c = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
         else if (kind == 1)
@@ -1089,21 +1124,18 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
     ns = (s->params.border_run_px + f.rs - 1) / f.rs;
     for (nplanes = 1; (1 << nplanes) <= ns; nplanes++)
         ;
-    find_candidates(s, &f, j0, ns);
     /* B */
     memset(s->col_feet, 0, (size_t)cols);
     memset(s->col_checks, 0, (size_t)cols);
     memset(s->yellow_cols, 0, (size_t)cols * sizeof s->yellow_cols[0]);
     memset(s->yellow_rows, 0, (size_t)rows * sizeof s->yellow_rows[0]);
     memset(s->post_top, 0, sizeof s->post_top);
-    for (w = 0; w < s->words; w++) {
-        int32_t m = rows, k;
-        for (k = 32 * w; k < cols && k < 32 * w + 32; k++)
-            if (s->first_row[k] < m)
-                m = s->first_row[k];
-        m = m - ns + 1 > j0 ? m - ns + 1 : j0;
-        scan_band(s, &f, w, m, ns, nplanes);
+    for (w = 0; w < cols; w++) {
+        s->first_row[w] = (int16_t)rows;
+        s->border_v[w] = (int16_t)s->height;
     }
+    for (w = 0; w < s->words; w++)
+        scan_band(s, &f, w, band_start(s, &f, w, j0, ns), ns, nplanes);
     for (w = 0; w < cols; w++) {
         if (s->border_v[w] >= s->height)
             s->first_row[w] = (int16_t)rows;   /* no run found */
