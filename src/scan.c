@@ -186,10 +186,6 @@ static int32_t px_luma(const frame_t *f, int32_t u, int32_t v)
 /* ---- word classification (phase B) ----------------------------------------------
  * 32 cells -> 64 bits, cell k at bits 63 - 2k, 62 - 2k. */
 
-/* Each word function is instantiated twice (word_*: phase B's rows,
- * cand_*: the candidate rows of phase A) so that each copy has one call
- * site and is inlined there. */
-
 /* YUYV at full resolution: 16 pixel pairs from q (an even pixel). */
 #define FL_PAIR(k)                                                              \
     r = pat + chroma[((unsigned)q[4 * (k) + 1] << 8) | q[4 * (k) + 3]];         \
@@ -208,7 +204,6 @@ static int32_t px_luma(const frame_t *f, int32_t u, int32_t v)
         return acc;                                                             \
     }
 FL_PAIRS_WORD(word_yuyv_pairs)
-FL_PAIRS_WORD(cand_yuyv_pairs)
 #undef FL_PAIR
 
 /* RGB, 32 cells D bytes apart from q.  D is a literal in the common
@@ -235,15 +230,12 @@ FL_PAIRS_WORD(cand_yuyv_pairs)
     }
 #define D 3
 FL_RGB_WORD(word_rgb_1)
-FL_RGB_WORD(cand_rgb_1)
 #undef D
 #define D 6
 FL_RGB_WORD(word_rgb_2)
-FL_RGB_WORD(cand_rgb_2)
 #undef D
 #define D d
 FL_RGB_WORD(word_rgb)
-FL_RGB_WORD(cand_rgb)
 #undef D
 
 /* YUYV, 32 cells on even pixels D bytes apart from q (D = 2 col_step). */
@@ -262,11 +254,9 @@ FL_RGB_WORD(cand_rgb)
     }
 #define D 4
 FL_YE_WORD(word_yuyv_2)
-FL_YE_WORD(cand_yuyv_2)
 #undef D
 #define D d
 FL_YE_WORD(word_yuyv_even)
-FL_YE_WORD(cand_yuyv_even)
 #undef D
 
 /* Any format and step, n cells (1..32) of pixel row v from cell i0. */
@@ -285,8 +275,7 @@ static uint64_t word_generic(const frame_t *f, int32_t v, int32_t i0, int32_t n)
 
 /* Row j of band w (n cells, u0 = its first pixel column; row points at
  * pixel row j * rs of plane 0) through the word function of its kind: the
- * candidate rows of phase A (scan_band's own rows have this dispatch
- * written out with the word_* copies). */
+ * candidate rows of phase A (scan_band has this dispatch written out). */
 static uint64_t band_word(const frame_t *f, int32_t kind, const uint8_t *row,
                                  size_t u0, int32_t j, int32_t w, int32_t n)
 {
@@ -295,14 +284,14 @@ static uint64_t band_word(const frame_t *f, int32_t kind, const uint8_t *row,
     /* the common kinds first: a predicted compare is cheaper than the
      * jump table */
     if (kind == 4)
-        return cand_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
+        return word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
     if (kind == 1)
-        return cand_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern);
+        return word_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern);
     switch (kind) {
-    case 2: return cand_yuyv_even(row + 2 * u0, 2 * cs, ct->chroma, ct->pattern);
-    case 3: return cand_rgb(row + 3 * u0, 3 * cs, ct);
-    case 5: return cand_rgb_1(row + 3 * u0, 3, ct);
-    case 6: return cand_rgb_2(row + 3 * u0, 6, ct);
+    case 2: return word_yuyv_even(row + 2 * u0, 2 * cs, ct->chroma, ct->pattern);
+    case 3: return word_rgb(row + 3 * u0, 3 * cs, ct);
+    case 5: return word_rgb_1(row + 3 * u0, 3, ct);
+    case 6: return word_rgb_2(row + 3 * u0, 6, ct);
     default: return word_generic(f, j * f->rs, 32 * w, n);
     }
 }
