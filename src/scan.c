@@ -836,7 +836,7 @@ static void reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns, int32_t dir
     int32_t t = ns / 2 > 2 ? ns / 2 : 2, rows = s->rows, cols = s->cols;
     int32_t wx[BUMP_WIN], wn = 0, wh = 0, i;
     for (i = dir > 0 ? 0 : cols - 1; i >= 0 && i < cols; i += dir) {
-        int32_t k, last, r;
+        int32_t last, r;
         if (b[i] >= rows)
             continue;
         if (wn == BUMP_WIN) {
@@ -846,15 +846,17 @@ static void reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns, int32_t dir
                 /* a bump: up to where the border comes back to the level */
                 last = i;
                 for (r = i; r >= 0 && r < cols && (r - i) * dir < cols / 2; r += dir) {
+                    int32_t lv;
                     if (b[r] >= rows)
                         continue;
-                    if (b[r] >= level_at(x0, y0, x1, y1, r) - t)
+                    lv = level_at(x0, y0, x1, y1, r);
+                    if (b[r] >= lv - t)
                         break;
                     last = r;
+                    /* changes column r only: the columns still to test
+                     * keep the borders they had when the bump began */
+                    (void)rerun_column(s, f, r, ns, t, lv);
                 }
-                for (k = i; k != last + dir; k += dir)
-                    if (b[k] < rows)
-                        (void)rerun_column(s, f, k, ns, t, level_at(x0, y0, x1, y1, k));
                 i = last;
                 continue;
             }
