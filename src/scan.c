@@ -665,6 +665,11 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int
                     e &= e - 1;
                     border_found(s, f, 32 * w + 31 - (b >> 1), j, ns);
                 }
+            } else if (found == 0) {
+                /* no border in the band yet: the row is all masked and
+                 * the state (g, y, w of the rows above) is still all 0 */
+                s->map[j][w] = 0;
+                continue;
             }
         }
         c &= found | (found << 1);
