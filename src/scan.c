@@ -473,13 +473,14 @@ static int32_t column_candidate(const fl_scan_t *s, const frame_t *f, int32_t i,
  * two lines); with yellow above it (a post standing on the line) to the top
  * of the white.  Yellow right above the border (or above the line, or with
  * one other sample between) marks the column for the post trace (phase C).
- * The cells passed are classified into the map (they were masked). */
-static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
+ * The cells passed are classified into the map (they were masked).  lo:
+ * the first searched grid row; max_white: 2 N px in grid rows (both
+ * computed once per frame). */
+static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
+                          int32_t lo, int32_t max_white)
 {
     const fl_color_table_t *ct = f->ct;
     int32_t rs = f->rs, jb = s->first_row[i], k, j;
-    int32_t max_white = (2 * s->params.border_run_px + rs - 1) / rs;
-    int32_t lo = (s->start_v + rs - 1) / rs;
     uint64_t shift = (uint64_t)(62 - 2 * (i & 31));
     col_t col;
     col_init(&col, f, i * f->cs);
@@ -1066,7 +1067,7 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
 {
     frame_t f;
     fl_status_t st;
-    int32_t cols, rows, w, j0, ns, nplanes;
+    int32_t cols, rows, w, j0, ns, nplanes, max_white;
     if (s == NULL)
         return 0;
     if (colors == NULL || img == NULL) {
@@ -1118,6 +1119,7 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
 
     /* A */
     ns = (s->params.border_run_px + f.rs - 1) / f.rs;
+    max_white = (2 * s->params.border_run_px + f.rs - 1) / f.rs;
     for (nplanes = 1; (1 << nplanes) <= ns; nplanes++)
         ;
     /* B */
@@ -1136,7 +1138,7 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
         if (s->border_v[w] >= s->height)
             s->first_row[w] = (int16_t)rows;   /* no run found */
         else
-            extend_border(s, &f, w, ns);
+            extend_border(s, &f, w, ns, j0, max_white);
     }
     reject_bumps(s, &f, ns, 1);
     reject_bumps(s, &f, ns, -1);
