@@ -815,7 +815,7 @@ static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
  * Scaling: |dy| <= 4096, |x - x0| <= 4096: products < 2^24. */
 static int32_t level_at(int32_t x0, int32_t y0, int32_t x1, int32_t y1, int32_t x)
 {
-    return x1 == x0 ? y1 : y0 + (y1 - y0) * (x - x0) / (x1 - x0);
+    return x1 == x0 || y1 == y0 ? y1 : y0 + (y1 - y0) * (x - x0) / (x1 - x0);
 }
 
 #define BUMP_WIN 8
