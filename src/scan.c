@@ -3,12 +3,13 @@
  * for the outputs and their definitions).
  *
  * Algorithm, per frame, over the scan grid (col_step x row_step):
- *  A  candidates: per grid column, from the search start (horizon - margin
- *     with a camera, else row 0), only every ns-th sample (ns =
- *     ceil(N / row_step)) is classified until one is green: every run of ns
- *     green samples contains one of them, so no run starts earlier than
- *     ns - 1 samples before it (cost ~1/ns of a classification per row above
- *     the border).
+ *  A  candidates: per band of 32 grid columns, from the search start
+ *     (horizon - margin with a camera, else row 0), only every ns-th row
+ *     (ns = ceil(N / row_step)) is classified (one 32-cell word) until a
+ *     cell is green: every run of ns green samples contains one of these
+ *     rows, so no run in the band starts earlier than ns - 1 rows before it
+ *     (cost ~1/ns of a classification per row above the band's highest
+ *     border).
  *  B  bands of 32 grid columns, top-down from the band's earliest possible
  *     run start: each row classified once into 32 2-bit codes (table
  *     lookups; YUYV pixel pairs share one chroma lookup), bit-sliced run
@@ -37,20 +38,24 @@
  * Memory: fl_scan_t only (85 824 bytes at the default capacities);
  *  the stack holds a few words and one 8-entry window.
  * Cost (x86-64 host, gcc 12 -O2, callgrind, tools/callgrind.sh, UvA 2013
- *  320x240 frame): full resolution YUYV 887k instructions per frame (11.6
- *  per pixel), RGB 1.29M (16.7); default 2 x 2 grid YUYV 337k (4.4 per
- *  image pixel, 17.5 per grid cell), RGB 439k (5.7).  Where a grid cell's
- *  cost goes (default YUYV, per frame): the lookups of phase B ~139k (9
+ *  320x240 frame): full resolution YUYV 783k instructions per frame (10.2
+ *  per pixel), RGB 1.18M (15.4); default 2 x 2 grid YUYV 298k (3.9 per
+ *  image pixel, 15.5 per grid cell), RGB 401k (5.2).  Where a grid cell's
+ *  cost goes (default YUYV, per frame): the lookups of phase B ~142k (9
  *  instructions per classified cell: at col_step 2 every sample is the
  *  even pixel of its own YUYV pair, so the chroma lookup is not shared as
  *  at full resolution, where a pair costs 12 = 6 per pixel; the band
- *  starts at the earliest possible run start of its 32 columns, ~15k cells
- *  classified for ~13k below the border), the bit logic of B ~57k (~100
- *  per 32-cell row word), and the per-column scalar phases ~130k, which do
- *  not shrink with the grid: A candidates ~23k, A' extend ~26k and bumps
- *  ~15k, C ~10k, D ~22k (exact HSV of ~84 samples), border refinement and
- *  col_init/col_class of the scalar walks the rest.  Worst case bounded by
- *  cells + per-column caps (noise frames in bench_scan).
+ *  starts at the earliest possible run start of its 32 columns, ~15.6k
+ *  cells classified for ~13k below the border; an RGB cell costs 12: three
+ *  byte loads, R - G and B - G, two bucket loads, the cell, the pattern),
+ *  the candidate rows of A ~11k, the bit logic of B ~56k (~115 per 32-cell
+ *  row word), and the per-column scalar phases ~90k, which do not shrink
+ *  with the grid: A' extend ~20k and bumps ~17k, C ~7k, D ~13k (exact HSV
+ *  of ~84 samples), border refinement, white checks and col_init/col_class
+ *  of the scalar walks the rest.  At full resolution the bump re-runs walk
+ *  longer columns (~120k of the YUYV frame).  Worst case bounded by cells
+ *  + per-column caps (noise frames in bench_scan: full RGB 1.16M, YUYV
+ *  694k; default RGB 365k, YUYV 289k).
  */
 #include "fieldloc/scan.h"
 
