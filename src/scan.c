@@ -192,24 +192,22 @@ static int32_t px_luma(const frame_t *f, int32_t u, int32_t v)
  * 32 cells -> 64 bits, cell k at bits 63 - 2k, 62 - 2k. */
 
 /* YUYV at full resolution: 16 pixel pairs from q (an even pixel). */
+static uint64_t word_yuyv_pairs(const uint8_t *q, const uint16_t *chroma,
+                                const uint8_t *pat)
+{
+    uint64_t acc = 0;
+    const uint8_t *r;
 #define FL_PAIR(k)                                                              \
     r = pat + chroma[((unsigned)q[4 * (k) + 1] << 8) | q[4 * (k) + 3]];         \
     acc = (acc << 2) + r[q[4 * (k)]];                                           \
     acc = (acc << 2) + r[q[4 * (k) + 2]];
-#define FL_PAIRS_WORD(name)                                                     \
-    static uint64_t name(const uint8_t *q, const uint16_t *chroma,              \
-                         const uint8_t *pat)                                    \
-    {                                                                           \
-        uint64_t acc = 0;                                                       \
-        const uint8_t *r;                                                       \
-        FL_PAIR(0) FL_PAIR(1) FL_PAIR(2) FL_PAIR(3)                             \
-        FL_PAIR(4) FL_PAIR(5) FL_PAIR(6) FL_PAIR(7)                             \
-        FL_PAIR(8) FL_PAIR(9) FL_PAIR(10) FL_PAIR(11)                           \
-        FL_PAIR(12) FL_PAIR(13) FL_PAIR(14) FL_PAIR(15)                         \
-        return acc;                                                             \
-    }
-FL_PAIRS_WORD(word_yuyv_pairs)
+    FL_PAIR(0) FL_PAIR(1) FL_PAIR(2) FL_PAIR(3)
+    FL_PAIR(4) FL_PAIR(5) FL_PAIR(6) FL_PAIR(7)
+    FL_PAIR(8) FL_PAIR(9) FL_PAIR(10) FL_PAIR(11)
+    FL_PAIR(12) FL_PAIR(13) FL_PAIR(14) FL_PAIR(15)
 #undef FL_PAIR
+    return acc;
+}
 
 /* RGB, 32 cells D bytes apart from q.  D is a literal in the common
  * cases so that every address is a constant offset. */
@@ -282,7 +280,7 @@ static uint64_t word_generic(const frame_t *f, int32_t v, int32_t i0, int32_t n)
  * pixel row j * rs of plane 0) through the word function of its kind: the
  * candidate rows of phase A (scan_band has this dispatch written out). */
 static uint64_t band_word(const frame_t *f, int32_t kind, const uint8_t *row,
-                                 size_t u0, int32_t j, int32_t w, int32_t n)
+                          size_t u0, int32_t j, int32_t w, int32_t n)
 {
     const fl_color_table_t *ct = f->ct;
     size_t cs = (size_t)f->cs;
@@ -574,8 +572,8 @@ static int32_t band_kind(const frame_t *f, int32_t n)
  * ... with a green cell.  Every run of ns green samples below j0 contains
  * one of these rows, so no run in the band starts before that row - (ns -
  * 1): the band's first row (j0 at the least). */
-static FL_NOINLINE int32_t band_start(const fl_scan_t *s, const frame_t *f, int32_t w,
-                          int32_t j0, int32_t ns)
+static FL_NOINLINE int32_t band_start(const fl_scan_t *s, const frame_t *f,
+                                      int32_t w, int32_t j0, int32_t ns)
 {
     int32_t n = s->cols - 32 * w > 32 ? 32 : s->cols - 32 * w;
     int32_t kind = band_kind(f, n), j, m = s->rows;
@@ -593,8 +591,8 @@ static FL_NOINLINE int32_t band_start(const fl_scan_t *s, const frame_t *f, int3
 /* Band w (32 grid columns): rows from j_lo down, each row classified once
  * (32 cells), the run detector for columns still without a border, then
  * the bit logic on the cells below the border.  State lives in locals. */
-static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
-                      int32_t ns, int32_t nplanes)
+static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
+                                  int32_t j_lo, int32_t ns, int32_t nplanes)
 {
     const fl_color_table_t *ct = f->ct;
     int32_t n = s->cols - 32 * w, j, p;
@@ -617,7 +615,8 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int
     row = f->p0 + (size_t)j_lo * step;
     for (j = j_lo; j < s->rows; j++, row += step) {
         uint64_t c, lo, hi, g, wh, y, starts, rej, cand;
-        /* band_word's dispatch, written out: here it must be inlined */
+        /* band_word's dispatch, written out (the common kinds first: a
+         * predicted compare is cheaper than the jump table) */
         if (kind == 4)
             c = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
         else if (kind == 1)
