@@ -180,15 +180,22 @@ static void chroma_offsets(int32_t cb, int32_t cr, int32_t *a, int32_t *b,
     *c = (116130 * cbp + 32768) >> 16;
 }
 
+/* fl_satu8 (fixed.h), here inlined: the scanner's field-colour samples
+ * convert through fl_rgb_from_ycbcr.  Clamp to [0, 255]. */
+static uint8_t clamp_u8(int32_t v)
+{
+    return (uint8_t)(v < 0 ? 0 : (v > 255 ? 255 : v));
+}
+
 void fl_rgb_from_ycbcr(uint8_t y, uint8_t cb, uint8_t cr, uint8_t rgb[3])
 {
     int32_t a, b, c;
     if (rgb == NULL)
         return;
     chroma_offsets(cb, cr, &a, &b, &c);
-    rgb[0] = fl_satu8(y + a);
-    rgb[1] = fl_satu8(y + b);
-    rgb[2] = fl_satu8(y + c);
+    rgb[0] = clamp_u8(y + a);
+    rgb[1] = clamp_u8(y + b);
+    rgb[2] = clamp_u8(y + c);
 }
 
 /* Scaling: Q16 weights summing to 2^16, sum < 2^24, rounded by + 2^15. */

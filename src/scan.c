@@ -3,12 +3,13 @@
  * for the outputs and their definitions).
  *
  * Algorithm, per frame, over the scan grid (col_step x row_step):
- *  A  candidates: per grid column, from the search start (horizon - margin
- *     with a camera, else row 0), only every ns-th sample (ns =
- *     ceil(N / row_step)) is classified until one is green: every run of ns
- *     green samples contains one of them, so no run starts earlier than
- *     ns - 1 samples before it (cost ~1/ns of a classification per row above
- *     the border).
+ *  A  candidates: per band of 32 grid columns, from the search start
+ *     (horizon - margin with a camera, else row 0), only every ns-th row
+ *     (ns = ceil(N / row_step)) is classified (one 32-cell word) until a
+ *     cell is green: every run of ns green samples contains one of these
+ *     rows, so no run in the band starts earlier than ns - 1 rows before it
+ *     (cost ~1/ns of a classification per row above the band's highest
+ *     border).
  *  B  bands of 32 grid columns, top-down from the band's earliest possible
  *     run start: each row classified once into 32 2-bit codes (table
  *     lookups; YUYV pixel pairs share one chroma lookup), bit-sliced run
@@ -37,26 +38,38 @@
  * Memory: fl_scan_t only (85 824 bytes at the default capacities);
  *  the stack holds a few words and one 8-entry window.
  * Cost (x86-64 host, gcc 12 -O2, callgrind, tools/callgrind.sh, UvA 2013
- *  320x240 frame): full resolution YUYV 887k instructions per frame (11.6
- *  per pixel), RGB 1.29M (16.7); default 2 x 2 grid YUYV 337k (4.4 per
- *  image pixel, 17.5 per grid cell), RGB 439k (5.7).  Where a grid cell's
- *  cost goes (default YUYV, per frame): the lookups of phase B ~139k (9
+ *  320x240 frame): full resolution YUYV 783k instructions per frame (10.2
+ *  per pixel), RGB 1.18M (15.4); default 2 x 2 grid YUYV 298k (3.9 per
+ *  image pixel, 15.5 per grid cell), RGB 401k (5.2).  Where a grid cell's
+ *  cost goes (default YUYV, per frame): the lookups of phase B ~142k (9
  *  instructions per classified cell: at col_step 2 every sample is the
  *  even pixel of its own YUYV pair, so the chroma lookup is not shared as
  *  at full resolution, where a pair costs 12 = 6 per pixel; the band
- *  starts at the earliest possible run start of its 32 columns, ~15k cells
- *  classified for ~13k below the border), the bit logic of B ~57k (~100
- *  per 32-cell row word), and the per-column scalar phases ~130k, which do
- *  not shrink with the grid: A candidates ~23k, A' extend ~26k and bumps
- *  ~15k, C ~10k, D ~22k (exact HSV of ~84 samples), border refinement and
- *  col_init/col_class of the scalar walks the rest.  Worst case bounded by
- *  cells + per-column caps (noise frames in bench_scan).
+ *  starts at the earliest possible run start of its 32 columns, ~15.6k
+ *  cells classified for ~13k below the border; an RGB cell costs 12: three
+ *  byte loads, R - G and B - G, two bucket loads, the cell, the pattern),
+ *  the candidate rows of A ~11k, the bit logic of B ~56k (~115 per 32-cell
+ *  row word), and the per-column scalar phases ~90k, which do not shrink
+ *  with the grid: A' extend ~20k and bumps ~17k, C ~7k, D ~13k (exact HSV
+ *  of ~84 samples), border refinement, white checks and col_init/col_class
+ *  of the scalar walks the rest.  At full resolution the bump re-runs walk
+ *  longer columns (~120k of the YUYV frame).  Worst case bounded by cells
+ *  + per-column caps (noise frames in bench_scan: full RGB 1.16M, YUYV
+ *  694k; default RGB 365k, YUYV 289k).
  */
 #include "fieldloc/scan.h"
 
 #include <string.h>
 
 #define EVEN 0x5555555555555555ULL
+
+/* Kept out of its caller (gcc's inlining limits are then spent on the
+ * caller's hot loops); no effect on results. */
+#if defined(__GNUC__)
+#define FL_NOINLINE __attribute__((noinline))
+#else
+#define FL_NOINLINE
+#endif
 
 void fl_scan_params_default(fl_scan_params_t *p)
 {
@@ -263,6 +276,29 @@ static uint64_t word_generic(const frame_t *f, int32_t v, int32_t i0, int32_t n)
     return acc << (2 * (32 - n));
 }
 
+/* Row j of band w (n cells, u0 = its first pixel column; row points at
+ * pixel row j * rs of plane 0) through the word function of its kind: the
+ * candidate rows of phase A (scan_band has this dispatch written out). */
+static uint64_t band_word(const frame_t *f, int32_t kind, const uint8_t *row,
+                          size_t u0, int32_t j, int32_t w, int32_t n)
+{
+    const fl_color_table_t *ct = f->ct;
+    size_t cs = (size_t)f->cs;
+    /* the common kinds first: a predicted compare is cheaper than the
+     * jump table */
+    if (kind == 4)
+        return word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
+    if (kind == 1)
+        return word_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern);
+    switch (kind) {
+    case 2: return word_yuyv_even(row + 2 * u0, 2 * cs, ct->chroma, ct->pattern);
+    case 3: return word_rgb(row + 3 * u0, 3 * cs, ct);
+    case 5: return word_rgb_1(row + 3 * u0, 3, ct);
+    case 6: return word_rgb_2(row + 3 * u0, 6, ct);
+    default: return word_generic(f, j * f->rs, 32 * w, n);
+    }
+}
+
 /* ---- bit helpers ----------------------------------------------------------------- */
 
 /* Index of the lowest set bit of x != 0 (de Bruijn). */
@@ -293,66 +329,6 @@ static uint64_t cell_bit(int32_t k)
 static int32_t map_class(const fl_scan_t *s, int32_t i, int32_t j)
 {
     return (int32_t)((s->map[j][i >> 5] >> (62 - 2 * (i & 31))) & 3);
-}
-
-/* ---- phase A: where the search for a run can start ------------------------------------ */
-
-/* Per grid column, the first of the samples j0 + ns - 1, j0 + 2 ns - 1, ...
- * that is green (cand_row; rows when none).  Every run of ns green samples
- * below j0 contains one of these samples, so no run starts before
- * cand_row - ns + 1 and a column without a green one has no run. */
-static void find_candidates(fl_scan_t *s, const frame_t *f, int32_t j0, int32_t ns)
-{
-    const fl_color_table_t *ct = f->ct;
-    int32_t i, j;
-    for (i = 0; i < s->cols; i++) {
-        col_t col;
-        col_init(&col, f, i * f->cs);
-        s->first_row[i] = (int16_t)s->rows;
-        s->border_v[i] = (int16_t)s->height;
-        j = j0 + ns - 1;
-        if (j < s->rows && f->fmt != FL_FMT_YCBCR_PLANAR) {
-            /* the lookups of col_class, walking a pointer down (never
-             * past the last row) */
-            const uint8_t *q = col.y + (size_t)(j * f->rs) * col.sy;
-            ptrdiff_t dc = col.cb - col.y;
-            size_t step = (size_t)(ns * f->rs) * col.sy;
-            const uint16_t *tr = ct->rgb_dr + 255, *tb = ct->rgb_db + 255;
-            if (col.rgb) {
-                for (;;) {
-                    ptrdiff_t g = q[1];
-                    if (ct->pattern[(ptrdiff_t)ct->rgb_chroma[(unsigned)tr[(ptrdiff_t)q[0] - g] +
-                                                              tb[(ptrdiff_t)q[2] - g]] + g] ==
-                        FL_CLASS_GREEN) {
-                        s->first_row[i] = (int16_t)j;
-                        break;
-                    }
-                    if (j + ns >= s->rows)
-                        break;
-                    j += ns;
-                    q += step;
-                }
-                continue;
-            }
-            for (;;) {
-                if (ct->pattern[(size_t)ct->chroma[((unsigned)q[dc] << 8) | q[dc + 2]] +
-                                q[0]] == FL_CLASS_GREEN) {
-                    s->first_row[i] = (int16_t)j;
-                    break;
-                }
-                if (j + ns >= s->rows)
-                    break;
-                j += ns;
-                q += step;
-            }
-            continue;
-        }
-        for (; j < s->rows; j += ns)
-            if (col_class(&col, ct, j * f->rs) == FL_CLASS_GREEN) {
-                s->first_row[i] = (int16_t)j;   /* the candidate, for now */
-                break;
-            }
-    }
 }
 
 /* ---- phase B helpers ------------------------------------------------------------------ */
@@ -477,6 +453,22 @@ static bool green_near_top(const fl_scan_t *s, const frame_t *f, int32_t i)
     return false;
 }
 
+/* The first of the samples j0 + ns - 1, j0 + 2 ns - 1, ... of column i
+ * that is green (rows when none): what first_row holds for a column
+ * without a border until the loop over the columns after phase B reaches
+ * it (extend_border reads it for columns to the right). */
+static int32_t column_candidate(const fl_scan_t *s, const frame_t *f, int32_t i,
+                                int32_t j0, int32_t ns)
+{
+    int32_t j;
+    col_t col;
+    col_init(&col, f, i * f->cs);
+    for (j = j0 + ns - 1; j < s->rows; j += ns)
+        if (col_class(&col, f->ct, j * f->rs) == FL_CLASS_GREEN)
+            return j;
+    return s->rows;
+}
+
 /* Above the border.  Far away the carpet beyond the boundary line is a
  * strip thinner than N: the first run of N is then below the line.  From
  * the border up: a white stretch of at most 2 N px (a line) with green
@@ -484,13 +476,14 @@ static bool green_near_top(const fl_scan_t *s, const frame_t *f, int32_t i)
  * two lines); with yellow above it (a post standing on the line) to the top
  * of the white.  Yellow right above the border (or above the line, or with
  * one other sample between) marks the column for the post trace (phase C).
- * The cells passed are classified into the map (they were masked). */
-static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
+ * The cells passed are classified into the map (they were masked).  lo:
+ * the first searched grid row; max_white: 2 N px in grid rows (both
+ * computed once per frame). */
+static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
+                          int32_t lo, int32_t max_white)
 {
     const fl_color_table_t *ct = f->ct;
     int32_t rs = f->rs, jb = s->first_row[i], k, j;
-    int32_t max_white = (2 * s->params.border_run_px + rs - 1) / rs;
-    int32_t lo = (s->start_v + rs - 1) / rs;
     uint64_t shift = (uint64_t)(62 - 2 * (i & 31));
     col_t col;
     col_init(&col, f, i * f->cs);
@@ -530,9 +523,16 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
             /* a post standing on a line (thin: not a floor strip beyond
              * the carpet under a yellow box): the line is field */
             int32_t q, wmin = s->rows;
-            for (q = i - 2 * ns; q <= i + 2 * ns; q++)
-                if (q >= 0 && q < s->cols && q != i && s->first_row[q] < wmin)
-                    wmin = s->first_row[q];
+            for (q = i - 2 * ns; q <= i + 2 * ns; q++) {
+                int32_t fq;
+                if (q < 0 || q >= s->cols || q == i)
+                    continue;
+                fq = s->first_row[q];
+                if (q > i && s->border_v[q] >= s->height)
+                    fq = column_candidate(s, f, q, lo, ns);
+                if (fq < wmin)
+                    wmin = fq;
+            }
             /* ... and inside the field: its line lies below the carpet
              * edge of the columns around it */
             if (jw < lo || 2 * (jb - 1 - jw) > ns || jw + 1 <= wmin)
@@ -556,35 +556,67 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns)
     }
 }
 
+/* Word function of band w: 0 generic, 1 YUYV pairs, 2 YUYV even pixels,
+ * 3 RGB, 4 YUYV col_step 2, 5 RGB col_step 1, 6 RGB col_step 2. */
+static int32_t band_kind(const frame_t *f, int32_t n)
+{
+    size_t cs = (size_t)f->cs;
+    if (n == 32 && f->fmt == FL_FMT_YUYV422)
+        return cs == 1 ? 1 : (cs == 2 ? 4 : ((cs & 1) == 0 ? 2 : 0));
+    if (n == 32 && f->fmt == FL_FMT_RGB888)
+        return cs == 1 ? 5 : (cs == 2 ? 6 : 3);
+    return 0;
+}
+
+/* Phase A for band w: the first of the rows j0 + ns - 1, j0 + 2 ns - 1,
+ * ... with a green cell.  Every run of ns green samples below j0 contains
+ * one of these rows, so no run in the band starts before that row - (ns -
+ * 1): the band's first row (j0 at the least). */
+static FL_NOINLINE int32_t band_start(const fl_scan_t *s, const frame_t *f,
+                                      int32_t w, int32_t j0, int32_t ns)
+{
+    int32_t n = s->cols - 32 * w > 32 ? 32 : s->cols - 32 * w;
+    int32_t kind = band_kind(f, n), j, m = s->rows;
+    size_t u0 = (size_t)w * 32 * (size_t)f->cs, step = (size_t)f->rs * f->st0;
+    for (j = j0 + ns - 1; j < s->rows; j += ns) {
+        uint64_t c = band_word(f, kind, f->p0 + (size_t)j * step, u0, j, w, n);
+        if ((c & ~(c >> 1) & EVEN) != 0) {
+            m = j;
+            break;
+        }
+    }
+    return m - ns + 1 > j0 ? m - ns + 1 : j0;
+}
+
 /* Band w (32 grid columns): rows from j_lo down, each row classified once
  * (32 cells), the run detector for columns still without a border, then
  * the bit logic on the cells below the border.  State lives in locals. */
-static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
-                      int32_t ns, int32_t nplanes)
+static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
+                                  int32_t j_lo, int32_t ns, int32_t nplanes)
 {
     const fl_color_table_t *ct = f->ct;
     int32_t n = s->cols - 32 * w, j, p;
     uint64_t found = 0, g1 = 0, g2 = 0, y1 = 0, y2 = 0, y3 = 0, wprev = 0, wrej = 0;
-    uint64_t cnt[8] = {0, 0, 0, 0, 0, 0, 0, 0}, want, all;
+    uint64_t cnt[8] = {0, 0, 0, 0, 0, 0, 0, 0}, m[8], all;
+    uint64_t c0 = 0, c1 = 0, c2 = 0, c3 = 0;
     uint64_t *ycount = s->ycount[w];
     size_t cs = (size_t)f->cs, u0 = (size_t)w * 32 * cs, step = (size_t)f->rs * f->st0;
     const uint8_t *row;
-    int32_t kind = 0;
+    int32_t kind;
     if (n > 32)
         n = 32;
     all = n == 32 ? EVEN : EVEN & ~((1ULL << (64 - 2 * n)) - 1);
-    if (n == 32 && f->fmt == FL_FMT_YUYV422)
-        kind = cs == 1 ? 1 : (cs == 2 ? 4 : ((cs & 1) == 0 ? 2 : 0));
-    else if (n == 32 && f->fmt == FL_FMT_RGB888)
-        kind = cs == 1 ? 5 : (cs == 2 ? 6 : 3);
+    kind = band_kind(f, n);
+    for (p = 0; p < 8; p++)
+        m[p] = (ns >> p) & 1 ? 0 : ~0ULL;
     memset(ycount, 0, sizeof s->ycount[w]);
     for (j = 0; j < j_lo && j < s->rows; j++)
         s->map[j][w] = 0;
     row = f->p0 + (size_t)j_lo * step;
     for (j = j_lo; j < s->rows; j++, row += step) {
         uint64_t c, lo, hi, g, wh, y, starts, rej, cand;
-        /* the common kinds first: a predicted compare is cheaper than the
-         * jump table */
+        /* band_word's dispatch, written out (the common kinds first: a
+         * predicted compare is cheaper than the jump table) */
         if (kind == 4)
             c = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
         else if (kind == 1)
@@ -601,17 +633,31 @@ static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
         if (found != all) {
             /* bit-sliced run counters: +1 where green, 0 elsewhere */
             uint64_t gr = lo & ~hi, x = gr & ~found, eq;
-            for (p = 0; p < nplanes; p++) {
-                uint64_t t = cnt[p] & x;
-                cnt[p] ^= x;
-                x = t;
-            }
-            x = gr & ~found;
-            eq = x;
-            for (p = 0; p < nplanes; p++) {
-                cnt[p] &= x;
-                want = (ns >> p) & 1 ? cnt[p] : ~cnt[p];
-                eq &= want;
+            /* A counter never exceeds ns (a column that reaches ns is
+             * found and leaves the count), so it equals ns exactly when
+             * it has every bit of ns set: eq = x & the planes of ns's
+             * set bits (m[p] all ones for the others). */
+            if (nplanes <= 4) {   /* the common ns 1..15: in registers */
+                uint64_t t = c0 & x, t2;
+                c0 = ~c0 & x;
+                t2 = c1 & t;
+                c1 = (c1 ^ t) & x;
+                t = c2 & t2;
+                c2 = (c2 ^ t2) & x;
+                c3 = (c3 ^ t) & x;
+                eq = x & (c0 | m[0]) & (c1 | m[1]) & (c2 | m[2]) & (c3 | m[3]);
+            } else {
+                for (p = 0; p < nplanes; p++) {
+                    uint64_t t = cnt[p] & x;
+                    cnt[p] ^= x;
+                    x = t;
+                }
+                x = gr & ~found;
+                eq = x;
+                for (p = 0; p < nplanes; p++) {
+                    cnt[p] &= x;
+                    eq &= cnt[p] | m[p];
+                }
             }
             if (eq != 0) {
                 uint64_t e = eq;
@@ -624,6 +670,11 @@ static void scan_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j_lo,
                     e &= e - 1;
                     border_found(s, f, 32 * w + 31 - (b >> 1), j, ns);
                 }
+            } else if (found == 0) {
+                /* no border in the band yet: the row is all masked and
+                 * the state (g, y, w of the rows above) is still all 0 */
+                s->map[j][w] = 0;
+                continue;
             }
         }
         c &= found | (found << 1);
@@ -768,7 +819,7 @@ static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
  * Scaling: |dy| <= 4096, |x - x0| <= 4096: products < 2^24. */
 static int32_t level_at(int32_t x0, int32_t y0, int32_t x1, int32_t y1, int32_t x)
 {
-    return x1 == x0 ? y1 : y0 + (y1 - y0) * (x - x0) / (x1 - x0);
+    return x1 == x0 || y1 == y0 ? y1 : y0 + (y1 - y0) * (x - x0) / (x1 - x0);
 }
 
 #define BUMP_WIN 8
@@ -795,7 +846,7 @@ static void reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns, int32_t dir
     int32_t t = ns / 2 > 2 ? ns / 2 : 2, rows = s->rows, cols = s->cols;
     int32_t wx[BUMP_WIN], wn = 0, wh = 0, i;
     for (i = dir > 0 ? 0 : cols - 1; i >= 0 && i < cols; i += dir) {
-        int32_t k, last, r;
+        int32_t last, r;
         if (b[i] >= rows)
             continue;
         if (wn == BUMP_WIN) {
@@ -805,15 +856,17 @@ static void reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns, int32_t dir
                 /* a bump: up to where the border comes back to the level */
                 last = i;
                 for (r = i; r >= 0 && r < cols && (r - i) * dir < cols / 2; r += dir) {
+                    int32_t lv;
                     if (b[r] >= rows)
                         continue;
-                    if (b[r] >= level_at(x0, y0, x1, y1, r) - t)
+                    lv = level_at(x0, y0, x1, y1, r);
+                    if (b[r] >= lv - t)
                         break;
                     last = r;
+                    /* changes column r only: the columns still to test
+                     * keep the borders they had when the bump began */
+                    (void)rerun_column(s, f, r, ns, t, lv);
                 }
-                for (k = i; k != last + dir; k += dir)
-                    if (b[k] < rows)
-                        (void)rerun_column(s, f, k, ns, t, level_at(x0, y0, x1, y1, k));
                 i = last;
                 continue;
             }
@@ -841,18 +894,18 @@ static void repair_borders(fl_scan_t *s, const frame_t *f)
 {
     const fl_color_table_t *ct = f->ct;
     int32_t reach = 16 / f->cs > 2 ? 16 / f->cs : 2;
-    int32_t i;
+    /* l: the nearest column left of i with a border (repaired ones
+     * included), r: the nearest right of i (not yet visited: as found) */
+    int32_t i, l = -1, r = 0;
     for (i = 0; i < s->cols; i++) {
-        int32_t l, r, ref = -1, j, n = 0, nf = 0, best = -1;
+        int32_t ref = -1, j, n = 0, nf = 0, best = -1;
         col_t col;
-        if (s->border_v[i] < s->height)
+        if (s->border_v[i] < s->height) {
+            l = i;
             continue;
-        for (l = i - 1; l >= 0 && l >= i - reach; l--)
-            if (s->border_v[l] < s->height)
-                break;
-        for (r = i + 1; r < s->cols && r <= i + reach; r++)
-            if (s->border_v[r] < s->height)
-                break;
+        }
+        while (r < s->cols && (r <= i || s->border_v[r] >= s->height))
+            r++;
         if (l >= 0 && l >= i - reach)
             ref = s->first_row[l];
         if (r < s->cols && r <= i + reach && s->first_row[r] > ref)
@@ -877,6 +930,7 @@ static void repair_borders(fl_scan_t *s, const frame_t *f)
         s->border_v[i] = (int16_t)(best * f->rs);
         s->first_row[i] = (int16_t)best;
         s->n_border++;
+        l = i;
         s->post_top[i >> 5] |= 1ULL << (62 - 2 * (i & 31));   /* let C look */
         for (j = best; j < s->rows; j++) {
             uint64_t c = (uint64_t)col_class(&col, ct, j * f->rs);
@@ -1017,7 +1071,7 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
 {
     frame_t f;
     fl_status_t st;
-    int32_t cols, rows, w, j0, ns, nplanes;
+    int32_t cols, rows, w, j0, ns, nplanes, max_white;
     if (s == NULL)
         return 0;
     if (colors == NULL || img == NULL) {
@@ -1069,28 +1123,26 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
 
     /* A */
     ns = (s->params.border_run_px + f.rs - 1) / f.rs;
+    max_white = (2 * s->params.border_run_px + f.rs - 1) / f.rs;
     for (nplanes = 1; (1 << nplanes) <= ns; nplanes++)
         ;
-    find_candidates(s, &f, j0, ns);
     /* B */
     memset(s->col_feet, 0, (size_t)cols);
     memset(s->col_checks, 0, (size_t)cols);
     memset(s->yellow_cols, 0, (size_t)cols * sizeof s->yellow_cols[0]);
     memset(s->yellow_rows, 0, (size_t)rows * sizeof s->yellow_rows[0]);
     memset(s->post_top, 0, sizeof s->post_top);
-    for (w = 0; w < s->words; w++) {
-        int32_t m = rows, k;
-        for (k = 32 * w; k < cols && k < 32 * w + 32; k++)
-            if (s->first_row[k] < m)
-                m = s->first_row[k];
-        m = m - ns + 1 > j0 ? m - ns + 1 : j0;
-        scan_band(s, &f, w, m, ns, nplanes);
+    for (w = 0; w < cols; w++) {
+        s->first_row[w] = (int16_t)rows;
+        s->border_v[w] = (int16_t)s->height;
     }
+    for (w = 0; w < s->words; w++)
+        scan_band(s, &f, w, band_start(s, &f, w, j0, ns), ns, nplanes);
     for (w = 0; w < cols; w++) {
         if (s->border_v[w] >= s->height)
             s->first_row[w] = (int16_t)rows;   /* no run found */
         else
-            extend_border(s, &f, w, ns);
+            extend_border(s, &f, w, ns, j0, max_white);
     }
     reject_bumps(s, &f, ns, 1);
     reject_bumps(s, &f, ns, -1);

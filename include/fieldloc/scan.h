@@ -64,10 +64,11 @@
  * Lifecycle: fl_scan_init(&s, &params) once; fl_scan_frame(&s, &colors,
  * &image, camera or NULL) per frame.  Callers read everything before the
  * "private" mark.  Worst case per frame: every grid cell classified once
- * in B (noise: no border, every row below the search start), plus per
- * column the candidate samples, a few samples around the border, the post
- * trace and the repair (each at most one column height), plus capped
- * per-column checks and feet; measured on noise frames by bench_scan.
+ * in B (noise: no border, every row below the search start), plus the
+ * candidate rows of each band of 32 columns (every ns-th), per column a
+ * few samples around the border, the post trace and the repair (each at
+ * most one column height), plus capped per-column checks and feet;
+ * measured on noise frames by bench_scan.
  */
 #ifndef FIELDLOC_SCAN_H
 #define FIELDLOC_SCAN_H
