@@ -716,7 +716,7 @@ static void ln_luma_points(fl_lines_t *l, const fl_scan_t *s, int32_t mc, int32_
     int32_t cs = s->params.col_step, rs = s->params.row_step, i, j, top = l->height;
     ln_sline_t sl;
     ln_luma_band(l);
-    for (i = mc / 2; i < s->cols; i += mc) {
+    for (i = mc / 2; i < s->cols && l->points_dropped == 0; i += mc) {
         int32_t bv = s->border_v[i], lo;
         if (bv >= l->height)
             continue;
@@ -736,7 +736,7 @@ static void ln_luma_points(fl_lines_t *l, const fl_scan_t *s, int32_t mc, int32_
         ln_luma_fill(l, ln_px_off(&l->img, sl.pos, sl.x0), l->img.stride[0], sl.x1 - sl.x0 + 1);
         ln_luma_scan(l, s, &sl, lo, l->lum_vend, l->lum_dv);
     }
-    for (j = mr / 2; j < s->rows; j += mr) {
+    for (j = mr / 2; j < s->rows && l->points_dropped == 0; j += mr) {
         int32_t v = j * rs;
         if (v < top || v > l->lum_hend)
             continue;
@@ -862,8 +862,10 @@ int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
     if (mc < 1)
         mc = 1;
 
-    /* horizontal scan lines: 32 cells per mask word */
-    for (j = mr / 2; j < scan->rows; j += mr) {
+    /* horizontal scan lines: 32 cells per mask word.  Once a point was
+     * dropped (the table is full) no later scan line can add one: the
+     * scan stops there (points_dropped counts only what was seen so far) */
+    for (j = mr / 2; j < scan->rows && l->points_dropped == 0; j += mr) {
         int32_t start = -1;
         for (w = 0; w < scan->words; w++) {
             uint32_t m = fl_scan_mask_word(scan, j, w, FL_CLASS_WHITE);
@@ -895,7 +897,7 @@ int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
     }
 
     /* vertical scan lines: from the border down */
-    for (i = mc / 2; i < scan->cols; i += mc) {
+    for (i = mc / 2; i < scan->cols && l->points_dropped == 0; i += mc) {
         int32_t start = -1, j0, bv = scan->border_v[i];
         const uint64_t *col;
         int32_t shift = 62 - 2 * (i & 31), word = i >> 5;
@@ -921,7 +923,10 @@ int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
         fl_image_validate(img) == FL_OK && img->width == scan->width &&
         img->height == scan->height) {
         l->img = *img;
-        ln_luma_points(l, scan, mc, mr);
+        if (l->points_dropped == 0)
+            ln_luma_points(l, scan, mc, mr);
+        else
+            ln_luma_band(l); /* the band of the ridge checks */
     }
     return l->n_points;
 }
