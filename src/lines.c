@@ -1697,6 +1697,15 @@ int32_t fl_lines_build(fl_lines_t *l, const fl_scan_t *scan)
         if (p->seg != FL_LINES_NONE || (p->flags & LN_SEEDED))
             continue;
         p->flags |= LN_SEEDED;
+        /* budget spent: no seed grows past its own point (ln_grow_end),
+         * which is never a segment (min_points >= 2); the rest are only
+         * marked as seeds */
+        if (scan && l->white_checks >= ln_check_budget(l)) {
+            for (i = k + 1; i < l->n_points; i++)
+                if (l->points[i].seg == FL_LINES_NONE)
+                    l->points[i].flags |= LN_SEEDED;
+            break;
+        }
         if (sid >= FL_LINES_MAX_SEGMENTS) {
             l->segments_dropped++;
             continue;
