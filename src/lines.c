@@ -393,21 +393,21 @@ static void ln_push(fl_lines_t *l, int32_t u_q1, int32_t v_q1, int32_t w,
     pt->seg = FL_LINES_NONE;
 }
 
-/* A horizontal white run of cells i0..i1 on grid row j. */
+/* A horizontal white run of cells i0..i1 on grid row j; w_q4: the row's
+ * projected width (ln_width_at, once per row).  The width check comes
+ * first: it is the cheaper one (and the one noise runs fail). */
 static void ln_hrun(fl_lines_t *l, const fl_scan_t *s, int32_t i0, int32_t i1,
-                    int32_t j)
+                    int32_t j, int32_t w_q4)
 {
     int32_t cs = s->params.col_step, rs = s->params.row_step;
     int32_t w = (i1 - i0 + 1) * cs;
     if (i0 <= 0 || i1 >= s->cols - 1)
         return; /* not closed by a non-white cell on both sides */
-    /* paint lies on carpet: green within two cells on one side at least */
-    if (ln_cell(s, i0 - 1, j) != FL_CLASS_GREEN && ln_cell(s, i0 - 2, j) != FL_CLASS_GREEN &&
-        ln_cell(s, i1 + 1, j) != FL_CLASS_GREEN && ln_cell(s, i1 + 2, j) != FL_CLASS_GREEN) {
-        l->runs_rejected++;
-        return;
-    }
-    if (!ln_width_ok(l, w, cs, ln_width_at(l, l->wtab_h_q4, j * rs))) {
+    /* the width, then paint lies on carpet: green within two cells on one
+     * side at least */
+    if (!ln_width_ok(l, w, cs, w_q4) ||
+        (ln_cell(s, i0 - 1, j) != FL_CLASS_GREEN && ln_cell(s, i0 - 2, j) != FL_CLASS_GREEN &&
+         ln_cell(s, i1 + 1, j) != FL_CLASS_GREEN && ln_cell(s, i1 + 2, j) != FL_CLASS_GREEN)) {
         l->runs_rejected++;
         return;
     }
@@ -422,14 +422,12 @@ static void ln_vrun(fl_lines_t *l, const fl_scan_t *s, int32_t i, int32_t j0,
     int32_t w = (j1 - j0 + 1) * rs;
     if (j0 <= 0 || j1 >= s->rows - 1)
         return;
-    /* green within two cells above (or the border right above) or below */
-    if (ln_cell(s, i, j0 - 1) != FL_CLASS_GREEN && ln_cell(s, i, j0 - 2) != FL_CLASS_GREEN &&
-        (j0 - 2) * rs >= s->border_v[i] &&
-        ln_cell(s, i, j1 + 1) != FL_CLASS_GREEN && ln_cell(s, i, j1 + 2) != FL_CLASS_GREEN) {
-        l->runs_rejected++;
-        return;
-    }
-    if (!ln_width_ok(l, w, rs, ln_width_at(l, l->wtab_v_q4, (j0 + j1) * rs / 2))) {
+    /* width first (cheaper); green within two cells above (or the border
+     * right above) or below */
+    if (!ln_width_ok(l, w, rs, ln_width_at(l, l->wtab_v_q4, (j0 + j1) * rs / 2)) ||
+        (ln_cell(s, i, j0 - 1) != FL_CLASS_GREEN && ln_cell(s, i, j0 - 2) != FL_CLASS_GREEN &&
+         (j0 - 2) * rs >= s->border_v[i] &&
+         ln_cell(s, i, j1 + 1) != FL_CLASS_GREEN && ln_cell(s, i, j1 + 2) != FL_CLASS_GREEN)) {
         l->runs_rejected++;
         return;
     }
@@ -866,13 +864,13 @@ int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
      * dropped (the table is full) no later scan line can add one: the
      * scan stops there (points_dropped counts only what was seen so far) */
     for (j = mr / 2; j < scan->rows && l->points_dropped == 0; j += mr) {
-        int32_t start = -1;
+        int32_t start = -1, wq4 = ln_width_at(l, l->wtab_h_q4, j * rs);
         for (w = 0; w < scan->words; w++) {
             uint32_t m = fl_scan_mask_word(scan, j, w, FL_CLASS_WHITE);
             int32_t b;
             if (m == 0u) {
                 if (start >= 0) {
-                    ln_hrun(l, scan, start, 32 * w - 1, j);
+                    ln_hrun(l, scan, start, 32 * w - 1, j, wq4);
                     start = -1;
                 }
                 continue;
@@ -888,7 +886,7 @@ int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
                 if (on && start < 0)
                     start = c;
                 else if (!on && start >= 0) {
-                    ln_hrun(l, scan, start, c - 1, j);
+                    ln_hrun(l, scan, start, c - 1, j, wq4);
                     start = -1;
                 }
             }
