@@ -370,6 +370,8 @@ static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
         if (l2 > lw)
             lw = l2;
     }
+    if (lw >= WHITE_CLIP)
+        return true;  /* clipped: passes whatever the green (see below) */
     /* the darkest green of the three samples above: the one right above a
      * line is often its blurred edge, brighter than the carpet */
     if (g1 & cell_bit(k))
@@ -398,8 +400,7 @@ static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
     /* Scaling: luma <= 255, products <= 255 * 300.  A clipped white
      * (luma >= WHITE_CLIP) passes: over carpet brighter than ~200 the
      * contrast asked for lies beyond what the sensor can show. */
-    return lw >= WHITE_CLIP ||
-           lw * 100 >= lg * (100 + (int32_t)f->ct->params.white_contrast_pct);
+    return lw * 100 >= lg * (100 + (int32_t)f->ct->params.white_contrast_pct);
 }
 
 static void count_yellow(uint64_t *planes, uint64_t x)
