@@ -467,7 +467,7 @@ static int32_t ln_ridge_budget(const fl_lines_t *l)
 }
 
 /* Offset of pixel (u, v) in plane 0 and the bytes per step along u. */
-static int32_t ln_px_off(const fl_image_t *im, int32_t u, int32_t v)
+static inline int32_t ln_px_off(const fl_image_t *im, int32_t u, int32_t v)
 {
     int32_t bpp = im->format == FL_FMT_RGB888 ? 3 : im->format == FL_FMT_YUYV422 ? 2 : 1;
     return v * im->stride[0] + bpp * u;
@@ -476,7 +476,7 @@ static int32_t ln_px_off(const fl_image_t *im, int32_t u, int32_t v)
 /* Luma of a pixel inside a validated view: BT.601 from RGB (the integer
  * formula of image.c: Q16 weights summing to 2^16, products < 2^24), the
  * Y byte of the other formats. */
-static int32_t ln_luma(const fl_image_t *im, int32_t u, int32_t v)
+static inline int32_t ln_luma(const fl_image_t *im, int32_t u, int32_t v)
 {
     const uint8_t *p = im->plane[0] + ln_px_off(im, u, v);
     if (im->format == FL_FMT_RGB888)
@@ -485,7 +485,7 @@ static int32_t ln_luma(const fl_image_t *im, int32_t u, int32_t v)
 }
 
 /* Luma of a pixel, -1 outside the view. */
-static int32_t ln_luma_at(const fl_image_t *im, int32_t u, int32_t v)
+static inline int32_t ln_luma_at(const fl_image_t *im, int32_t u, int32_t v)
 {
     if (u < 0 || v < 0 || u >= im->width || v >= im->height)
         return -1;
