@@ -761,7 +761,7 @@ static int32_t ln_ridge_pct(const fl_lines_t *l, int32_t u0, int32_t v0, int32_t
 {
     const fl_image_t *im = &l->img;
     int32_t du = u1 - u0, dv = v1 - v0, len, n, k, pass = 0, nu, nv, wv, wh, w, d, vm;
-    int32_t ou, ov, fu, fv;
+    int32_t ou, ov, fu, fv, ru, rv, so, sf;
     if (im->width <= 0 || l->params.luma_contrast_pct <= 0)
         return 0;
     len = (int32_t)fl_hypot(du, dv);
@@ -785,11 +785,39 @@ static int32_t ln_ridge_pct(const fl_lines_t *l, int32_t u0, int32_t v0, int32_t
     ov = (nv + 128) >> 8;
     fu = (d * nu + 128) >> 8;
     fv = (d * nv + 128) >> 8;
+    /* the five pixels of a sample: p, p +- (ou, ov), p +- (fu, fv); where
+     * all lie inside, read at byte offsets from p (ln_luma's formula) */
+    ru = ln_abs(ou) > ln_abs(fu) ? ln_abs(ou) : ln_abs(fu);
+    rv = ln_abs(ov) > ln_abs(fv) ? ln_abs(ov) : ln_abs(fv);
+    so = ln_px_off(im, ou, ov);
+    sf = ln_px_off(im, fu, fv);
     for (k = 0; k <= n; k++) {
         int32_t pu = (u0 + du * k / n + 8) >> 4, pv = (v0 + dv * k / n + 8) >> 4;
-        int32_t a = ln_luma_at(im, pu, pv), b = ln_luma_at(im, pu + ou, pv + ov);
-        int32_t c = ln_luma_at(im, pu - ou, pv - ov);
-        int32_t f1 = ln_luma_at(im, pu + fu, pv + fv), f2 = ln_luma_at(im, pu - fu, pv - fv);
+        int32_t a, b, c, f1, f2;
+        if (pu - ru >= 0 && pv - rv >= 0 && pu + ru < im->width && pv + rv < im->height) {
+            const uint8_t *q = im->plane[0] + ln_px_off(im, pu, pv);
+            if (im->format == FL_FMT_RGB888) {
+#define LN_Q_LUMA(o) ((19595 * q[(o)] + 38470 * q[(o) + 1] + 7471 * q[(o) + 2] + 32768) >> 16)
+                a = LN_Q_LUMA(0);
+                b = LN_Q_LUMA(so);
+                c = LN_Q_LUMA(-so);
+                f1 = LN_Q_LUMA(sf);
+                f2 = LN_Q_LUMA(-sf);
+#undef LN_Q_LUMA
+            } else {
+                a = q[0];
+                b = q[so];
+                c = q[-so];
+                f1 = q[sf];
+                f2 = q[-sf];
+            }
+        } else {
+            a = ln_luma_at(im, pu, pv);
+            b = ln_luma_at(im, pu + ou, pv + ov);
+            c = ln_luma_at(im, pu - ou, pv - ov);
+            f1 = ln_luma_at(im, pu + fu, pv + fv);
+            f2 = ln_luma_at(im, pu - fu, pv - fv);
+        }
         if (b > a)
             a = b;
         if (c > a)
