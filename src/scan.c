@@ -365,13 +365,14 @@ static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
     /* brightest pixel from this sample to the next: a thin line sampled
      * on its blurred edge still shows its core */
     lw = col_luma(&col, v);
-    for (d = 1; d <= f->rs && v + d < s->height; d++) {
+    for (d = 1; d <= f->rs && v + d < s->height && lw < WHITE_CLIP; d++) {
         int32_t l2 = col_luma(&col, v + d);
         if (l2 > lw)
             lw = l2;
     }
     if (lw >= WHITE_CLIP)
-        return true;  /* clipped: passes whatever the green (see below) */
+        return true;  /* clipped (then the loop stopped at once): passes
+                       * whatever the green (see below) */
     /* the darkest green of the three samples above: the one right above a
      * line is often its blurred edge, brighter than the carpet */
     if (g1 & cell_bit(k))
