@@ -393,21 +393,21 @@ static void ln_push(fl_lines_t *l, int32_t u_q1, int32_t v_q1, int32_t w,
     pt->seg = FL_LINES_NONE;
 }
 
-/* A horizontal white run of cells i0..i1 on grid row j. */
+/* A horizontal white run of cells i0..i1 on grid row j; w_q4: the row's
+ * projected width (ln_width_at, once per row).  The width check comes
+ * first: it is the cheaper one (and the one noise runs fail). */
 static void ln_hrun(fl_lines_t *l, const fl_scan_t *s, int32_t i0, int32_t i1,
-                    int32_t j)
+                    int32_t j, int32_t w_q4)
 {
     int32_t cs = s->params.col_step, rs = s->params.row_step;
     int32_t w = (i1 - i0 + 1) * cs;
     if (i0 <= 0 || i1 >= s->cols - 1)
         return; /* not closed by a non-white cell on both sides */
-    /* paint lies on carpet: green within two cells on one side at least */
-    if (ln_cell(s, i0 - 1, j) != FL_CLASS_GREEN && ln_cell(s, i0 - 2, j) != FL_CLASS_GREEN &&
-        ln_cell(s, i1 + 1, j) != FL_CLASS_GREEN && ln_cell(s, i1 + 2, j) != FL_CLASS_GREEN) {
-        l->runs_rejected++;
-        return;
-    }
-    if (!ln_width_ok(l, w, cs, ln_width_at(l, l->wtab_h_q4, j * rs))) {
+    /* the width, then paint lies on carpet: green within two cells on one
+     * side at least */
+    if (!ln_width_ok(l, w, cs, w_q4) ||
+        (ln_cell(s, i0 - 1, j) != FL_CLASS_GREEN && ln_cell(s, i0 - 2, j) != FL_CLASS_GREEN &&
+         ln_cell(s, i1 + 1, j) != FL_CLASS_GREEN && ln_cell(s, i1 + 2, j) != FL_CLASS_GREEN)) {
         l->runs_rejected++;
         return;
     }
@@ -422,14 +422,12 @@ static void ln_vrun(fl_lines_t *l, const fl_scan_t *s, int32_t i, int32_t j0,
     int32_t w = (j1 - j0 + 1) * rs;
     if (j0 <= 0 || j1 >= s->rows - 1)
         return;
-    /* green within two cells above (or the border right above) or below */
-    if (ln_cell(s, i, j0 - 1) != FL_CLASS_GREEN && ln_cell(s, i, j0 - 2) != FL_CLASS_GREEN &&
-        (j0 - 2) * rs >= s->border_v[i] &&
-        ln_cell(s, i, j1 + 1) != FL_CLASS_GREEN && ln_cell(s, i, j1 + 2) != FL_CLASS_GREEN) {
-        l->runs_rejected++;
-        return;
-    }
-    if (!ln_width_ok(l, w, rs, ln_width_at(l, l->wtab_v_q4, (j0 + j1) * rs / 2))) {
+    /* width first (cheaper); green within two cells above (or the border
+     * right above) or below */
+    if (!ln_width_ok(l, w, rs, ln_width_at(l, l->wtab_v_q4, (j0 + j1) * rs / 2)) ||
+        (ln_cell(s, i, j0 - 1) != FL_CLASS_GREEN && ln_cell(s, i, j0 - 2) != FL_CLASS_GREEN &&
+         (j0 - 2) * rs >= s->border_v[i] &&
+         ln_cell(s, i, j1 + 1) != FL_CLASS_GREEN && ln_cell(s, i, j1 + 2) != FL_CLASS_GREEN)) {
         l->runs_rejected++;
         return;
     }
@@ -469,7 +467,7 @@ static int32_t ln_ridge_budget(const fl_lines_t *l)
 }
 
 /* Offset of pixel (u, v) in plane 0 and the bytes per step along u. */
-static int32_t ln_px_off(const fl_image_t *im, int32_t u, int32_t v)
+static inline int32_t ln_px_off(const fl_image_t *im, int32_t u, int32_t v)
 {
     int32_t bpp = im->format == FL_FMT_RGB888 ? 3 : im->format == FL_FMT_YUYV422 ? 2 : 1;
     return v * im->stride[0] + bpp * u;
@@ -478,7 +476,7 @@ static int32_t ln_px_off(const fl_image_t *im, int32_t u, int32_t v)
 /* Luma of a pixel inside a validated view: BT.601 from RGB (the integer
  * formula of image.c: Q16 weights summing to 2^16, products < 2^24), the
  * Y byte of the other formats. */
-static int32_t ln_luma(const fl_image_t *im, int32_t u, int32_t v)
+static inline int32_t ln_luma(const fl_image_t *im, int32_t u, int32_t v)
 {
     const uint8_t *p = im->plane[0] + ln_px_off(im, u, v);
     if (im->format == FL_FMT_RGB888)
@@ -487,7 +485,7 @@ static int32_t ln_luma(const fl_image_t *im, int32_t u, int32_t v)
 }
 
 /* Luma of a pixel, -1 outside the view. */
-static int32_t ln_luma_at(const fl_image_t *im, int32_t u, int32_t v)
+static inline int32_t ln_luma_at(const fl_image_t *im, int32_t u, int32_t v)
 {
     if (u < 0 || v < 0 || u >= im->width || v >= im->height)
         return -1;
@@ -716,7 +714,7 @@ static void ln_luma_points(fl_lines_t *l, const fl_scan_t *s, int32_t mc, int32_
     int32_t cs = s->params.col_step, rs = s->params.row_step, i, j, top = l->height;
     ln_sline_t sl;
     ln_luma_band(l);
-    for (i = mc / 2; i < s->cols; i += mc) {
+    for (i = mc / 2; i < s->cols && l->points_dropped == 0; i += mc) {
         int32_t bv = s->border_v[i], lo;
         if (bv >= l->height)
             continue;
@@ -736,7 +734,7 @@ static void ln_luma_points(fl_lines_t *l, const fl_scan_t *s, int32_t mc, int32_
         ln_luma_fill(l, ln_px_off(&l->img, sl.pos, sl.x0), l->img.stride[0], sl.x1 - sl.x0 + 1);
         ln_luma_scan(l, s, &sl, lo, l->lum_vend, l->lum_dv);
     }
-    for (j = mr / 2; j < s->rows; j += mr) {
+    for (j = mr / 2; j < s->rows && l->points_dropped == 0; j += mr) {
         int32_t v = j * rs;
         if (v < top || v > l->lum_hend)
             continue;
@@ -763,7 +761,7 @@ static int32_t ln_ridge_pct(const fl_lines_t *l, int32_t u0, int32_t v0, int32_t
 {
     const fl_image_t *im = &l->img;
     int32_t du = u1 - u0, dv = v1 - v0, len, n, k, pass = 0, nu, nv, wv, wh, w, d, vm;
-    int32_t ou, ov, fu, fv;
+    int32_t ou, ov, fu, fv, ru, rv, so, sf;
     if (im->width <= 0 || l->params.luma_contrast_pct <= 0)
         return 0;
     len = (int32_t)fl_hypot(du, dv);
@@ -787,11 +785,39 @@ static int32_t ln_ridge_pct(const fl_lines_t *l, int32_t u0, int32_t v0, int32_t
     ov = (nv + 128) >> 8;
     fu = (d * nu + 128) >> 8;
     fv = (d * nv + 128) >> 8;
+    /* the five pixels of a sample: p, p +- (ou, ov), p +- (fu, fv); where
+     * all lie inside, read at byte offsets from p (ln_luma's formula) */
+    ru = ln_abs(ou) > ln_abs(fu) ? ln_abs(ou) : ln_abs(fu);
+    rv = ln_abs(ov) > ln_abs(fv) ? ln_abs(ov) : ln_abs(fv);
+    so = ln_px_off(im, ou, ov);
+    sf = ln_px_off(im, fu, fv);
     for (k = 0; k <= n; k++) {
         int32_t pu = (u0 + du * k / n + 8) >> 4, pv = (v0 + dv * k / n + 8) >> 4;
-        int32_t a = ln_luma_at(im, pu, pv), b = ln_luma_at(im, pu + ou, pv + ov);
-        int32_t c = ln_luma_at(im, pu - ou, pv - ov);
-        int32_t f1 = ln_luma_at(im, pu + fu, pv + fv), f2 = ln_luma_at(im, pu - fu, pv - fv);
+        int32_t a, b, c, f1, f2;
+        if (pu - ru >= 0 && pv - rv >= 0 && pu + ru < im->width && pv + rv < im->height) {
+            const uint8_t *q = im->plane[0] + ln_px_off(im, pu, pv);
+            if (im->format == FL_FMT_RGB888) {
+#define LN_Q_LUMA(o) ((19595 * q[(o)] + 38470 * q[(o) + 1] + 7471 * q[(o) + 2] + 32768) >> 16)
+                a = LN_Q_LUMA(0);
+                b = LN_Q_LUMA(so);
+                c = LN_Q_LUMA(-so);
+                f1 = LN_Q_LUMA(sf);
+                f2 = LN_Q_LUMA(-sf);
+#undef LN_Q_LUMA
+            } else {
+                a = q[0];
+                b = q[so];
+                c = q[-so];
+                f1 = q[sf];
+                f2 = q[-sf];
+            }
+        } else {
+            a = ln_luma_at(im, pu, pv);
+            b = ln_luma_at(im, pu + ou, pv + ov);
+            c = ln_luma_at(im, pu - ou, pv - ov);
+            f1 = ln_luma_at(im, pu + fu, pv + fv);
+            f2 = ln_luma_at(im, pu - fu, pv - fv);
+        }
         if (b > a)
             a = b;
         if (c > a)
@@ -862,15 +888,17 @@ int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
     if (mc < 1)
         mc = 1;
 
-    /* horizontal scan lines: 32 cells per mask word */
-    for (j = mr / 2; j < scan->rows; j += mr) {
-        int32_t start = -1;
+    /* horizontal scan lines: 32 cells per mask word.  Once a point was
+     * dropped (the table is full) no later scan line can add one: the
+     * scan stops there (points_dropped counts only what was seen so far) */
+    for (j = mr / 2; j < scan->rows && l->points_dropped == 0; j += mr) {
+        int32_t start = -1, wq4 = ln_width_at(l, l->wtab_h_q4, j * rs);
         for (w = 0; w < scan->words; w++) {
             uint32_t m = fl_scan_mask_word(scan, j, w, FL_CLASS_WHITE);
             int32_t b;
             if (m == 0u) {
                 if (start >= 0) {
-                    ln_hrun(l, scan, start, 32 * w - 1, j);
+                    ln_hrun(l, scan, start, 32 * w - 1, j, wq4);
                     start = -1;
                 }
                 continue;
@@ -886,7 +914,7 @@ int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
                 if (on && start < 0)
                     start = c;
                 else if (!on && start >= 0) {
-                    ln_hrun(l, scan, start, c - 1, j);
+                    ln_hrun(l, scan, start, c - 1, j, wq4);
                     start = -1;
                 }
             }
@@ -895,7 +923,7 @@ int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
     }
 
     /* vertical scan lines: from the border down */
-    for (i = mc / 2; i < scan->cols; i += mc) {
+    for (i = mc / 2; i < scan->cols && l->points_dropped == 0; i += mc) {
         int32_t start = -1, j0, bv = scan->border_v[i];
         const uint64_t *col;
         int32_t shift = 62 - 2 * (i & 31), word = i >> 5;
@@ -921,7 +949,10 @@ int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
         fl_image_validate(img) == FL_OK && img->width == scan->width &&
         img->height == scan->height) {
         l->img = *img;
-        ln_luma_points(l, scan, mc, mr);
+        if (l->points_dropped == 0)
+            ln_luma_points(l, scan, mc, mr);
+        else
+            ln_luma_band(l); /* the band of the ridge checks */
     }
     return l->n_points;
 }
@@ -1692,6 +1723,15 @@ int32_t fl_lines_build(fl_lines_t *l, const fl_scan_t *scan)
         if (p->seg != FL_LINES_NONE || (p->flags & LN_SEEDED))
             continue;
         p->flags |= LN_SEEDED;
+        /* budget spent: no seed grows past its own point (ln_grow_end),
+         * which is never a segment (min_points >= 2); the rest are only
+         * marked as seeds */
+        if (scan && l->white_checks >= ln_check_budget(l)) {
+            for (i = k + 1; i < l->n_points; i++)
+                if (l->points[i].seg == FL_LINES_NONE)
+                    l->points[i].flags |= LN_SEEDED;
+            break;
+        }
         if (sid >= FL_LINES_MAX_SEGMENTS) {
             l->segments_dropped++;
             continue;

@@ -148,6 +148,28 @@ static int bv_make_noise(bv_frame_t *f, const char *name, int w, int h, int clas
     return fl_image_init_packed(&f->view, FL_FMT_RGB888, f->data, w, h, 3 * w) == FL_OK ? 0 : -1;
 }
 
+/* `fieldloc bench --noise-frames DIR`: write the four noise frames as
+ * DIR/<row name>.ppm for callgrind (tools/callgrind_vision.sh); their pose is
+ * `detect --camera nao4-top-<W> --neck 450 --head 0.261799 0`. */
+int bench_vision_write_noise(const char *dir)
+{
+    static const char *names[4] = {"vision_noise_320", "vision_classnoise_320",
+                                   "vision_noise_640", "vision_classnoise_640"};
+    char path[1024];
+    int k, rc = 0;
+    for (k = 0; k < 4 && rc == 0; k++) {
+        bv_frame_t f;
+        int w = k < 2 ? 320 : 640;
+        if (bv_make_noise(&f, names[k], w, w * 3 / 4, k & 1) != 0)
+            rc = 1;
+        snprintf(path, sizeof path, "%s/%s.ppm", dir, names[k]);
+        if (rc == 0 && ppm_write(path, f.data, f.w, f.h) != 0)
+            rc = 1;
+        bv_free(&f);
+    }
+    return rc;
+}
+
 /* Time one frame on both sides; accumulate. */
 static void bv_time(bench_ctx_t *ctx, det_ctx_t *dc, void *cv, const bv_frame_t *f,
                     bv_acc_t *acc)

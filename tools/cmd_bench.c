@@ -41,8 +41,10 @@ int cmd_bench(int argc, char **argv)
             out = argv[++k];
         else if (!strcmp(argv[k], "--quick"))
             ctx.quick = 1;
+        else if (!strcmp(argv[k], "--noise-frames") && k + 1 < argc)
+            return bench_vision_write_noise && bench_vision_write_noise(argv[k + 1]) == 0 ? 0 : 1;
         else {
-            fprintf(stderr, "usage: fieldloc bench [--out FILE.tsv] [--quick]\n");
+            fprintf(stderr, "usage: fieldloc bench [--out FILE.tsv] [--quick] [--noise-frames DIR]\n");
             return 2;
         }
     }

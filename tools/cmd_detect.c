@@ -1,7 +1,7 @@
 /*
  * tools/cmd_detect.c - `fieldloc detect [--field NAME] [--camera NAME]
- * [--head PITCH_RAD YAW_RAD] [--picture OUT.ppm] [--stats] [--repeat N]
- * IMAGE`: runs the
+ * [--head PITCH_RAD YAW_RAD] [--neck MM] [--picture OUT.ppm] [--stats]
+ * [--repeat N] IMAGE`: runs the
  * firmware vision path on one frame and prints one feature per line,
  * tab-separated:
  *     kind  u  v  confidence  range_mm  bearing_deg
@@ -14,8 +14,9 @@
  * IMAGE: binary PPM, or an FLRAW fixture frame (yuyv / planar).  Defaults:
  * field uva2013, camera uva2013 (the UvA 2013 dataset of seed 000); head
  * pitch and yaw 0, except -0.54 rad pitch for camera uva2013 (the
- * dataset's HeadPitch); the neck height and pitch offset are always the
- * camera model's defaults (default_neck_height_mm, default_pitch_offset).
+ * dataset's HeadPitch); the neck height and pitch offset are the
+ * camera model's defaults (default_neck_height_mm, default_pitch_offset)
+ * unless --neck MM gives the neck height.
  * --stats prints the stage counters to stderr; --repeat N runs the path N
  * times (for callgrind: instructions per frame).
  */
@@ -32,7 +33,7 @@ static int detect_usage(void)
 {
     fprintf(stderr,
             "usage: fieldloc detect [--field NAME] [--camera NAME] [--head PITCH_RAD YAW_RAD]\n"
-            "                       [--picture OUT.ppm] [--stats] [--repeat N] IMAGE.ppm\n"
+            "                       [--neck MM] [--picture OUT.ppm] [--stats] [--repeat N] IMAGE.ppm\n"
             "  prints: kind<TAB>u<TAB>v<TAB>confidence<TAB>range_mm<TAB>bearing_deg\n"
             "  kind L T X G (post foot) U (post top) C (circle centre)\n");
     return 2;
@@ -43,7 +44,7 @@ int cmd_detect(int argc, char **argv)
     const char *field_name = "uva2013", *cam_name = "uva2013", *path = NULL,
                *picture = NULL;
     double pitch = 0, yaw = 0;
-    int i, n, stats = 0, rc = 0, repeat = 1, head_given = 0;
+    int i, n, stats = 0, rc = 0, repeat = 1, head_given = 0, neck = 0;
     const fl_field_t *field;
     const fl_camera_model_t *m;
     fl_camera_t cam;
@@ -68,6 +69,8 @@ int cmd_detect(int argc, char **argv)
             stats = 1;
         else if (!strcmp(argv[i], "--repeat") && i + 1 < argc)
             repeat = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--neck") && i + 1 < argc)
+            neck = atoi(argv[++i]);
         else if (argv[i][0] == '-' && argv[i][1] != '\0')
             return detect_usage();
         else if (!path)
@@ -100,6 +103,17 @@ int cmd_detect(int argc, char **argv)
     if (!head_given && !strcmp(m->name, "uva2013"))
         pitch = -0.54;  /* the dataset's HeadPitch (see realdata/SOURCES.md) */
     if (det_camera(&cam, m, pitch, yaw) != FL_OK) {
+        fprintf(stderr, "detect: invalid head pose\n");
+        render_frame_free(&fr);
+        return 2;
+    }
+    if (neck > 0) {  /* --neck MM: another neck height than the model's default */
+        fl_camera_pose_t pose = cam.pose;
+        pose.neck_height_mm = neck;
+        if (fl_camera_init(&cam, m, &pose) == FL_OK)
+            neck = 0;
+    }
+    if (neck > 0) {
         fprintf(stderr, "detect: invalid head pose\n");
         render_frame_free(&fr);
         return 2;

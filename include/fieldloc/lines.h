@@ -56,7 +56,8 @@
  * extreme points projected on the fitted line) and its bulge (sagitta) is
  * fitted from its points' offsets.
  *
- * Work is bounded: at most FL_LINES_MAX_POINTS points (the rest counted),
+ * Work is bounded: at most FL_LINES_MAX_POINTS points (the point scan
+ * stops at the scan line where the first one beyond was dropped),
  * neighbours found through a bucket grid (only the 3 x 3 buckets around an
  * end are searched, at most 96 points looked at), at most
  * FL_LINES_CANDIDATES white checks per growth step, each of at most gap_px
@@ -169,7 +170,11 @@ typedef struct {
     int32_t step_px, gap_px;  /* effective values of the last frame */
     int32_t line_width_mm;    /* as given to fl_lines_find_points (0: none) */
     /* counters of the last frame */
-    int32_t points_dropped;   /* beyond FL_LINES_MAX_POINTS */
+    int32_t points_dropped;   /* beyond FL_LINES_MAX_POINTS (> 0: the
+                                 table overflowed; fl_lines_find_points
+                                 stops at the scan line of the first, so
+                                 its count and runs_rejected, luma_points,
+                                 luma_capped are those seen until then) */
     int32_t runs_rejected;    /* white runs failing the width check */
     int32_t segments_dropped; /* beyond FL_LINES_MAX_SEGMENTS */
     int32_t merges;           /* pieces merged into earlier segments */
