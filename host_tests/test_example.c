@@ -20,12 +20,14 @@ static fl_status_t loc_init(robot_loc_t *r, const char *field_name)
 {
     fl_color_params_t cp;
     fl_vision_params_t vp;
+    fl_fuzzy_params_t fp;
     fl_status_t s;
     fl_color_params_default(&cp);               /* HSV boxes from the UvA 2013 images */
     fl_vision_params_default(&vp);
+    fl_fuzzy_params_vision(&fp, fl_camera_model_find("nao4-bottom-320"));   /* for vision's obs */
     if ((s = fl_color_init(&r->colors, &cp)) != FL_OK) return s;
     if ((s = fl_vision_init(&r->vision, &vp)) != FL_OK) return s;
-    return fl_fuzzy_init(&r->grid, fl_field_find(field_name), NULL);   /* total ignorance */
+    return fl_fuzzy_init(&r->grid, fl_field_find(field_name), &fp);   /* total ignorance */
 }
 
 /* once per camera frame: odometry since the last frame (robot frame, mm,
@@ -38,10 +40,12 @@ static void loc_frame(robot_loc_t *r, int32_t odo_dx_mm, int32_t odo_dy_mm, fl_a
     fl_camera_pose_t pose = {m->default_neck_height_mm, head_pitch, head_yaw, m->default_pitch_offset};
     fl_camera_t cam;
     fl_obs_list_t obs;
+    fl_obs_view_t view;
     fl_camera_init(&cam, m, &pose);
     fl_vision_frame(&r->vision, &r->colors, img, &cam, r->grid.field, &obs);  /* -> observations */
+    fl_obs_view_vision(&cam, &view);   /* where landmarks would surely have been seen */
     fl_fuzzy_predict(&r->grid, odo_dx_mm, odo_dy_mm, odo_dtheta);
-    fl_fuzzy_update(&r->grid, &obs);
+    fl_fuzzy_update_view(&r->grid, &obs, &view);   /* observations + negative information */
     fl_fuzzy_estimate(&r->grid, est);   /* x_mm, y_mm, heading, reliability_q16 */
 }
 /* ---- end of the README example ---- */

@@ -1,5 +1,6 @@
 /* host_tests/test_obs.c - observation lists and landmark orientation. */
 #include "test.h"
+#include "fieldloc/fuzzy.h"
 #include "fieldloc/obs.h"
 
 #include <string.h>
@@ -178,9 +179,70 @@ static void test_view(void)
     t_digest("obs.view", h);
 }
 
+/* fl_obs_view_vision and fl_fuzzy_params_vision / _for_camera: the view
+ * is the 1/16-margin view up to 4 m (2.5 m under 320 px wide); the
+ * parameters pass fl_fuzzy_params_check for every catalogue camera, keep
+ * the precise tracking rings and all crossings for the NAO cameras, and
+ * give the narrow AIBO camera wide rings and a 2.5 m crossing cut-off,
+ * unless the caller chose another ring_track_q8. */
+static void test_vision_defaults(void)
+{
+    size_t i;
+    int narrow = 0, wide = 0;
+    fl_fuzzy_params_t p, d;
+    fl_obs_view_t v;
+    for (i = 0; i < fl_camera_model_count(); i++) {
+        const fl_camera_model_t *model = fl_camera_model_at(i);
+        fl_camera_pose_t pose;
+        fl_camera_t cam;
+        fl_obs_view_t a, b;
+        int32_t w = model->width_px;
+        memset(&pose, 0, sizeof pose);
+        pose.neck_height_mm = model->default_neck_height_mm;
+        pose.pitch_offset = model->default_pitch_offset;
+        pose.head_pitch = fl_angle_from_urad(300000);
+        CHECK_EQ(fl_camera_init(&cam, model, &pose), FL_OK);
+        fl_obs_view_vision(&cam, &a);
+        fl_obs_view_from_camera(&cam, w / 16, w >= 320 ? 4000 : 2500, &b);
+        CHECK(a.valid && b.valid);
+        CHECK_EQ(memcmp(&a, &b, sizeof a), 0);
+        CHECK_LE(a.far_mm, w >= 320 ? 4000 : 2500);
+        fl_fuzzy_params_vision(&p, model);
+        CHECK_EQ(fl_fuzzy_params_check(&p), FL_OK);
+        CHECK(p.neg_q8 > 0 && p.confuse_q8 > 0 && p.head_bias_outlier == 1);
+        if (w < 320) {
+            narrow++;
+            CHECK_EQ(p.ring_track_q8, 256);
+            CHECK_EQ(p.cross_max_mm, 2500);
+        } else {
+            wide++;
+            CHECK_EQ(p.ring_track_q8, FL_FUZZY_RING_TRACK_VISION);
+            CHECK_EQ(p.cross_max_mm, 0);
+        }
+    }
+    CHECK(narrow >= 1 && wide >= 1);
+    /* NULL model: a NAO camera; the camera part leaves chosen values and
+     * other parameter sets alone */
+    fl_fuzzy_params_vision(&p, NULL);
+    CHECK_EQ(p.ring_track_q8, FL_FUZZY_RING_TRACK_VISION);
+    p.ring_track_q8 = 128;
+    fl_fuzzy_params_for_camera(&p, fl_camera_model_find("aibo-ers7"));
+    CHECK_EQ(p.ring_track_q8, 128);
+    CHECK_EQ(p.cross_max_mm, 0);
+    fl_fuzzy_params_default(&d);
+    p = d;
+    fl_fuzzy_params_for_camera(&p, fl_camera_model_find("aibo-ers7"));
+    CHECK_EQ(memcmp(&p, &d, sizeof p), 0);
+    fl_fuzzy_params_vision(NULL, NULL);   /* no crash */
+    fl_fuzzy_params_for_camera(NULL, NULL);
+    fl_obs_view_vision(NULL, &v);
+    CHECK(!v.valid);
+}
+
 void suite_obs(void)
 {
     t_run("obs.view_from_camera", test_view);
+    t_run("obs.vision_defaults", test_vision_defaults);
     t_run("obs.list_capacity", test_list);
     t_run("obs.landmark_orientation", test_orientation);
 }

@@ -146,3 +146,14 @@ void fl_obs_view_from_camera(const fl_camera_t *cam, int32_t margin_px,
     view->near_mm = near;
     view->far_mm = far;
 }
+
+void fl_obs_view_vision(const fl_camera_t *cam, fl_obs_view_t *view)
+{
+    int32_t w;
+    if (cam == NULL) {
+        fl_obs_view_from_camera(NULL, 0, 0, view);
+        return;
+    }
+    w = cam->model.width_px;
+    fl_obs_view_from_camera(cam, w / 16, w >= 320 ? 4000 : 2500, view);
+}

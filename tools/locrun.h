@@ -57,10 +57,8 @@ typedef struct {
     int ignore_post_sides;      /* 1: post sides from vision are dropped
                                    (FL_SIDE_UNKNOWN) before the update */
     fl_obs_view_t view;         /* the last frame's view (negative
-                                   information, fl_fuzzy_update_view) */
-    int32_t view_margin_px;     /* the view: the image shrunk by this */
-    int32_t view_range_mm;      /* ... up to this range (lr_init: by the
-                                   camera's resolution) */
+                                   information, fl_fuzzy_update_view;
+                                   obs.h fl_obs_view_vision) */
     double carry_x, carry_y, carry_a;   /* predict rounding remainders */
     uint32_t frames;            /* lr_frame calls that ran vision */
 } lr_t;
@@ -111,11 +109,10 @@ int lr_mkdirs(const char *path);
 double lr_deg(fl_angle_t a);
 
 /* The localizer parameters used with the vision path (simulate --frames,
- * localize, demo): fl_fuzzy_params_default with the changes measured in
- * tools/locrun.c (lr_params_frames), among them precise tracking rings,
- * ring_track_q8 = LR_RING_TRACK_FRAMES, which lr_init turns back to 256
- * (wide) for cameras narrower than 320 px (the AIBO's). */
-#define LR_RING_TRACK_FRAMES 96
+ * localize, demo): the firmware's fl_fuzzy_params_vision (fuzzy.h) for a
+ * NAO camera; lr_init applies fl_fuzzy_params_for_camera, which turns the
+ * tracking rings back to wide and cuts crossings at 2.5 m for cameras
+ * narrower than 320 px (the AIBO's) unless --param changed ring_track_q8. */
 void lr_params_frames(fl_fuzzy_params_t *p);
 
 /* Set one fuzzy parameter by name, "NAME=INTEGER" (field names of

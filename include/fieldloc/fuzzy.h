@@ -151,7 +151,7 @@ typedef struct {
                                     precise rings for tracking; wide ones
                                     from ignorance and for the gate, so
                                     deferral and kidnap detection do not
-                                    change (tools/locrun.c: vision path) */
+                                    change (fl_fuzzy_params_vision) */
     fl_angle_t bearing_core;     /* heading core half-width (2.5 deg) */
     fl_angle_t bearing_slope;    /* heading slope width (5 deg) */
     fl_angle_t head_min_core;    /* a cell's heading core and slope never
@@ -174,7 +174,7 @@ typedef struct {
                                     no longer flatten a cell's heading);
                                     0: head_bias alone (the default; 1 with
                                     head_bias 0 for the vision path,
-                                    tools/locrun.c) */
+                                    fl_fuzzy_params_vision) */
     uint8_t confuse_q8;          /* L and T confusion (0 = none, the
                                     default): an L observation is also a T
                                     and a T an L, with this possibility
@@ -188,7 +188,7 @@ typedef struct {
                                     and centre marks) farther are ignored
                                     (0 = max_range_mm, the default): a
                                     low-resolution camera measures them
-                                    badly far away (tools/locrun.c) */
+                                    badly far away (fl_fuzzy_params_for_camera) */
     /* normalization */
     uint8_t min_height_q8;       /* heights below this after normalization
                                     are zero (2/255) */
@@ -215,7 +215,7 @@ typedef struct {
                                     height per landmark its pose puts in
                                     the frame's view that no observation
                                     explains (0 = off, the default; the
-                                    vision path: tools/locrun.c) */
+                                    vision path: fl_fuzzy_params_vision) */
     uint8_t neg_max;             /* at most this many such landmarks count
                                     per cell and frame (2) */
     uint8_t neg_track;           /* 1: also while a mode is tracked; 0: only
@@ -353,6 +353,32 @@ typedef struct {
 void fl_fuzzy_params_default(fl_fuzzy_params_t *p);
 /* FL_OK, FL_ERR_NULL or FL_ERR_RANGE (a value outside its documented use). */
 fl_status_t fl_fuzzy_params_check(const fl_fuzzy_params_t *p);
+
+/* The parameters for observations from fl_vision_frame (vision.h), with
+ * the frame's view given to fl_fuzzy_update_view (obs.h,
+ * fl_obs_view_vision): the defaults above were tuned on feature-level
+ * observations with 8 % range noise; vision's ranges are within about 1 %,
+ * its bearings within 0.2 deg, at 10 Hz, with L/T confusions and far false
+ * marks instead.  Changes (measured in the frames-mode simulations, README
+ * "Localization"; the reasoning and the numbers of each in src/fuzzy.c):
+ * narrower rings (core 3 % and slope 9 % of the range), precise rings
+ * while tracked (ring_track_q8 FL_FUZZY_RING_TRACK_VISION), 9 deg heading
+ * uncertainty per metre walked, outlier heading bias, kidnap rate 0.5,
+ * negative information (neg_q8 0.39 on cells at least half the peak,
+ * neg_kidnap 2), tracking from reliability 0.2, L/T confusion (0.39 rising
+ * to 1 at confidence 160).  For a camera model narrower than 320 px (the
+ * AIBO's) fl_fuzzy_params_for_camera then keeps the wide rings and ignores
+ * crossings beyond 2.5 m.  model NULL: a NAO camera. */
+#define FL_FUZZY_RING_TRACK_VISION 96
+void fl_fuzzy_params_vision(fl_fuzzy_params_t *p, const fl_camera_model_t *model);
+
+/* The camera-dependent part of fl_fuzzy_params_vision, applied only while
+ * ring_track_q8 still has its vision value (an explicit other value is the
+ * caller's choice): for a model narrower than 320 px, ring_track_q8 256
+ * (its ranges are 1-3 % off: precise rings cost accuracy) and, when
+ * cross_max_mm is 0, 2500 (its crossings beyond 2.5 m read 5-15 % short).
+ * No-op for NULL or a wider model. */
+void fl_fuzzy_params_for_camera(fl_fuzzy_params_t *p, const fl_camera_model_t *model);
 
 /* Sizes the grid to the field's carpet (ceil(2 * half / CELL) cells each way,
  * centred) and resets to total ignorance with no prior.  params NULL gives
