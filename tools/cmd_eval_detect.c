@@ -201,7 +201,13 @@ static void evd_verbose_frame(const char *name, const evd_item_t *det, int nd,
     printf("  %s:", name);
     for (i = 0; i < nt; i++)
         if (tru[i].required && tru[i].match < 0)
-            printf(" miss %c(%.0f,%.0f)%s", tru[i].kind, tru[i].u, tru[i].v, tru[i].range_mm > 0 && tru[i].range_mm < 3000 ? "<3m" : "");
+            {
+            if (tru[i].range_mm > 0)
+                printf(" miss %c(%.0f,%.0f)@%.1fm", tru[i].kind, tru[i].u, tru[i].v,
+                       tru[i].range_mm / 1000);
+            else
+                printf(" miss %c(%.0f,%.0f)", tru[i].kind, tru[i].u, tru[i].v);
+        }
     for (i = 0; i < nd; i++)
         if (det[i].match < 0)
             printf(" fp %c(%.0f,%.0f)", det[i].kind, det[i].u, det[i].v);
