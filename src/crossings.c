@@ -411,6 +411,44 @@ typedef struct {
     int32_t sin_min_q15, sin_tol_q15;
 } cr_ctx_t;
 
+/* One segment's side of the reach test: t (Q4) along it within reach of
+ * its extent, or, for a long luma segment (a far thin line, 6 steps), up
+ * to CR_BRIDGE_STEPS steps beyond an end when the gap from that end to X
+ * is paint (fl_lines_paint_pct at least halfway between white_pct and
+ * CR_BRIDGE_FLOOR: the goal line and the box front line of a far goal
+ * box lie a few px apart, each stands on the other's ridge flank, the
+ * segment growth stops short of the corner and the ridge ratio of the gap
+ * is low too).  One luma probe (CR_LUMA_PROBES). */
+#define CR_BRIDGE_FLOOR 25
+#define CR_BRIDGE_STEPS 6
+static bool cr_bridge_one(const cr_ctx_t *ctx, const fl_segment_t *S, int32_t t, int32_t reach,
+                          int32_t xu, int32_t xv)
+{
+    fl_crossings_t *c = ctx->c;
+    int32_t step_q4 = 16 * ctx->l->step_px, eu, ev;
+    if (t >= -reach && t <= S->len_q4 + reach)
+        return true;
+    if (!(S->flags & FL_SEG_LUMA) || S->len_q4 < 6 * step_q4 || t < -CR_BRIDGE_STEPS * step_q4 ||
+        t > S->len_q4 + CR_BRIDGE_STEPS * step_q4 || c->luma_probes >= CR_LUMA_PROBES)
+        return false;
+    eu = t < 0 ? S->u0_q4 : S->u1_q4;
+    ev = t < 0 ? S->v0_q4 : S->v1_q4;
+    c->luma_probes++;
+    return 2 * fl_lines_paint_pct(ctx->l, ctx->scan, eu, ev, xu, xv) >=
+           ctx->l->params.white_pct + CR_BRIDGE_FLOOR;
+}
+
+/* Both segments pass the reach test, one at least by a painted bridge
+ * (not with a fixed reach_px). */
+static bool cr_bridged(const cr_ctx_t *ctx, int32_t ia, int32_t ta, int32_t reach, int32_t xu,
+                       int32_t xv, int32_t ib, int32_t tb)
+{
+    if (!ctx->scan || ctx->c->params.reach_px > 0)
+        return false;
+    return cr_bridge_one(ctx, &ctx->l->segments[ia], ta, reach, xu, xv) &&
+           cr_bridge_one(ctx, &ctx->l->segments[ib], tb, reach, xu, xv);
+}
+
 static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
 {
     fl_crossings_t *c = ctx->c;
@@ -476,7 +514,8 @@ static void cr_pair(const cr_ctx_t *ctx, int32_t ia, int32_t ib)
     if (pp->reach_px <= 0 && A->len_q4 >= 6 * step_q4 && B->len_q4 >= 6 * step_q4 &&
         reach < 5 * step_q4)
         reach = 5 * step_q4;
-    if (ta < -reach || ta > A->len_q4 + reach || tb < -reach || tb > B->len_q4 + reach) {
+    if ((ta < -reach || ta > A->len_q4 + reach || tb < -reach || tb > B->len_q4 + reach) &&
+        !cr_bridged(ctx, ia, ta, reach, xu, xv, ib, tb)) {
         /* ... 7 steps where the gap is hidden (a robot or a post on the
          * line before the corner: no field colour in most of it) */
         int32_t far = 7 * step_q4;
