@@ -14,7 +14,9 @@
  *            (one pass per scan line into lum_buf); ridge runs with
  *            carpet flanks and no class-map white nearby become points
  *            flagged FL_LINE_POINT_LUMA.  White checks that fall short in
- *            the band are retried as luma ridge checks across the path.
+ *            the band are retried as luma ridge checks across the path
+ *            (a second line close beside on one flank tolerated:
+ *            LN_RIDGE_NEAR).
  *   buckets  points are counting-sorted into square buckets of 2^bshift
  *            px >= gap_px, so the neighbours of a point within gap_px lie in
  *            the 3 x 3 buckets around it.
@@ -454,6 +456,7 @@ static void ln_vrun(fl_lines_t *l, const fl_scan_t *s, int32_t i, int32_t j0,
 #define LN_LUMA_DMAX 6       /* largest flank distance, px */
 #define LN_RIDGE_SAMPLES 32  /* samples of a path's ridge check */
 #define LN_RIDGE_BUDGET 256  /* ridge checks of the segment stage per frame */
+#define LN_RIDGE_NEAR 0x1000 /* flag in ln_ridge_pct's need: a line close beside */
 
 /* The frame's budgets (see LN_CLUTTER_BUDGET). */
 static int32_t ln_check_budget(const fl_lines_t *l)
@@ -754,7 +757,10 @@ static void ln_luma_points(fl_lines_t *l, const fl_scan_t *s, int32_t mc, int32_
  * brighter of the two pixels d + 1 away across (d from the projected width
  * across the path at its middle row).  0 outside the image or without
  * luma.  Stops early once `need` percent is out of reach (then the result
- * is some value below need).  Scaling: Q4 positions < 2^17, the unit normal in Q8, products
+ * is some value below need).  need | LN_RIDGE_NEAR: a sample whose one
+ * flank is bright (a second line close beside) also passes when the pixel
+ * 1 or 2 px beside the peak on that side is dark and the other flank is
+ * (at most 2 more pixel reads per failing sample).  Scaling: Q4 positions < 2^17, the unit normal in Q8, products
  * < 2^26 in int32. */
 static int32_t ln_ridge_pct(const fl_lines_t *l, int32_t u0, int32_t v0, int32_t u1,
                             int32_t v1, int32_t need)
@@ -762,6 +768,8 @@ static int32_t ln_ridge_pct(const fl_lines_t *l, int32_t u0, int32_t v0, int32_t
     const fl_image_t *im = &l->img;
     int32_t du = u1 - u0, dv = v1 - v0, len, n, k, pass = 0, nu, nv, wv, wh, w, d, vm;
     int32_t ou, ov, fu, fv, ru, rv, so, sf;
+    bool near = (need & LN_RIDGE_NEAR) != 0;
+    need &= ~LN_RIDGE_NEAR;
     if (im->width <= 0 || l->params.luma_contrast_pct <= 0)
         return 0;
     len = (int32_t)fl_hypot(du, dv);
@@ -818,13 +826,40 @@ static int32_t ln_ridge_pct(const fl_lines_t *l, int32_t u0, int32_t v0, int32_t
             f1 = ln_luma_at(im, pu + fu, pv + fv);
             f2 = ln_luma_at(im, pu - fu, pv - fv);
         }
-        if (b > a)
-            a = b;
-        if (c > a)
-            a = c;
-        if (f1 >= 0 && f2 >= 0 && a >= 0 && ln_ridge(l, a, f1 > f2 ? f1 : f2))
-            pass++;
-        else if ((pass + n - k) * 100 < need * (n + 1))
+        {
+            int32_t o = 0; /* the peak's offset across: -1, 0, +1 */
+            if (b > a) {
+                a = b;
+                o = 1;
+            }
+            if (c > a) {
+                a = c;
+                o = -1;
+            }
+            if (f1 >= 0 && f2 >= 0 && a >= 0 && ln_ridge(l, a, f1 > f2 ? f1 : f2)) {
+                pass++;
+                continue;
+            }
+            /* near: a second line close beside this one (a far goal box:
+             * goal line and box front line 2-4 px apart) lies on one
+             * flank; that side counts as dark when 1 or 2 px beside the
+             * peak is, the other flank must be dark at d */
+            if (near && d >= 3 && f1 >= 0 && f2 >= 0 && a >= 0 &&
+                ln_ridge(l, a, f1 < f2 ? f1 : f2)) {
+                int32_t side = f1 > f2 ? 1 : -1;
+                int32_t g = ln_luma_at(im, pu + (((o + 2 * side) * nu + 128) >> 8),
+                                       pv + (((o + 2 * side) * nv + 128) >> 8));
+                int32_t g1 = ln_luma_at(im, pu + (((o + side) * nu + 128) >> 8),
+                                        pv + (((o + side) * nv + 128) >> 8));
+                if (g1 >= 0 && g1 < g)
+                    g = g1;
+                if (g >= 0 && ln_ridge(l, a, g)) {
+                    pass++;
+                    continue;
+                }
+            }
+        }
+        if ((pass + n - k) * 100 < need * (n + 1))
             break; /* need is out of reach: the ratio so far is below it */
     }
     return pass * 100 / (n + 1);
@@ -851,7 +886,7 @@ static int32_t ln_paint_pct(fl_lines_t *l, const fl_scan_t *scan, int32_t u0, in
     if (!scan || !ln_luma_path(l, p, v0, v1) || l->ridge_checks >= ln_ridge_budget(l))
         return p;
     l->ridge_checks++;
-    r = ln_ridge_pct(l, u0, v0, u1, v1, l->params.white_pct);
+    r = ln_ridge_pct(l, u0, v0, u1, v1, l->params.white_pct | LN_RIDGE_NEAR);
     return r > p ? r : p;
 }
 
@@ -862,6 +897,16 @@ int32_t fl_lines_paint_pct(const fl_lines_t *l, const fl_scan_t *scan, int32_t u
     if (!l || !scan || !ln_luma_path(l, p, v0_q4, v1_q4))
         return p;
     r = ln_ridge_pct(l, u0_q4, v0_q4, u1_q4, v1_q4, 0);
+    return r > p ? r : p;
+}
+
+int32_t fl_lines_paint_beside_pct(const fl_lines_t *l, const fl_scan_t *scan, int32_t u0_q4,
+                                  int32_t v0_q4, int32_t u1_q4, int32_t v1_q4)
+{
+    int32_t p = fl_lines_white_pct(scan, u0_q4, v0_q4, u1_q4, v1_q4), r;
+    if (!l || !scan || !ln_luma_path(l, p, v0_q4, v1_q4))
+        return p;
+    r = ln_ridge_pct(l, u0_q4, v0_q4, u1_q4, v1_q4, LN_RIDGE_NEAR);
     return r > p ? r : p;
 }
 
@@ -1691,7 +1736,7 @@ static bool ln_segment_white(fl_lines_t *l, const fl_scan_t *scan, const fl_segm
         return false;
     l->ridge_checks++;
     return ln_ridge_pct(l, s->e0u * 8, s->e0v * 8, s->e1u * 8, s->e1v * 8,
-                        l->params.white_pct) >= l->params.white_pct;
+                        l->params.white_pct | LN_RIDGE_NEAR) >= l->params.white_pct;
 }
 
 /* ---- build ------------------------------------------------------------------ */
@@ -1727,6 +1772,7 @@ int32_t fl_lines_build(fl_lines_t *l, const fl_scan_t *scan)
          * which is never a segment (min_points >= 2); the rest are only
          * marked as seeds */
         if (scan && l->white_checks >= ln_check_budget(l)) {
+            l->checks_capped++; /* (this seed's growth is stopped too) */
             for (i = k + 1; i < l->n_points; i++)
                 if (l->points[i].seg == FL_LINES_NONE)
                     l->points[i].flags |= LN_SEEDED;

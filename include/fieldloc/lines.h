@@ -256,6 +256,14 @@ int32_t fl_lines_paint_pct(const fl_lines_t *l, const fl_scan_t *scan,
                            int32_t u0_q4, int32_t v0_q4, int32_t u1_q4,
                            int32_t v1_q4);
 
+/* fl_lines_paint_pct for a line with a second one close beside it (a far
+ * goal box: goal line and box front line a few px apart): a luma sample
+ * whose one flank is bright also counts when that side is dark 2 px
+ * beside the ridge's peak and the other flank is dark. */
+int32_t fl_lines_paint_beside_pct(const fl_lines_t *l, const fl_scan_t *scan,
+                                  int32_t u0_q4, int32_t v0_q4, int32_t u1_q4,
+                                  int32_t v1_q4);
+
 /* Projected width (Q4 px) of a painted line at pixel row v_px, as used by
  * the width check: across the row (horizontal run of a line pointing away
  * from the camera) or along the column (vertical: a line seen crosswise).
