@@ -1401,9 +1401,11 @@ static void cr_connect(const cr_ctx_t *ctx, int32_t is, bool end1)
  * ground line a box depth of the field (goal area or penalty area) within
  * CR_CLOSE_TOL_PCT, the foot F of E on it farther from the robot than E.
  * Without such a P, cr_close_model: F a box depth from E along S's ground
- * normal, painted along S both ways.  Then E is an L (S inward, toward F)
- * and F a T (the farther line both ways, toward E) unless a crossing is
- * within merge distance of F; the two never merge with each other;
+ * normal, painted along S one way at least.  Then E is an L (S inward,
+ * toward F) and F a T (the farther line both ways, toward E) unless a
+ * crossing is within merge distance of F or (model) F is painted one way
+ * only (a faint goal line in the goal's shadow, a post beside F); the two
+ * never merge with each other;
  * confidence CR_CLOSE_CONF (a connector's is 160).  Cost per end: a pass
  * over the segments, at most 5 camera projections and 16 luma probes
  * (counted against CR_LUMA_PROBES).
@@ -1417,11 +1419,18 @@ static void cr_connect(const cr_ctx_t *ctx, int32_t is, bool end1)
  * moved by a box depth along S's ground normal away from the robot
  * (r: E's ray, r->gx its ground point; gin: S's ground direction into S;
  * sa: S's image angle), 1 px to 2 steps from E in the image; F must be
- * paint along S both ways for 1.5 steps (fl_lines_paint_beside_pct, F
- * moved across by up to 1 px to the best paint).  Returns F (ground and
- * Q4 pixel). */
+ * paint along S for 1.5 steps one way (fl_lines_paint_beside_pct; a half
+ * hidden by a post counts as its other half), both ways for a T; F moved
+ * across by up to 1 px to the best paint.  Into ft: F (ground, Q4 pixel)
+ * and whether it is a T. */
+typedef struct {
+    fl_point_t g;  /* ground point */
+    int32_t u, v;  /* pixel, Q4 */
+    bool t_ok;     /* paint both ways: a T (else only one way: an L at E) */
+} cr_foot_t;
+
 static bool cr_close_model(const cr_ctx_t *ctx, const cr_ray_t *r, fl_angle_t gin,
-                           fl_angle_t sa, fl_point_t *gF, int32_t *fu, int32_t *fv)
+                           fl_angle_t sa, cr_foot_t *ft)
 {
     const fl_lines_t *l = ctx->l;
     fl_crossings_t *c = ctx->c;
@@ -1438,7 +1447,7 @@ static bool cr_close_model(const cr_ctx_t *ctx, const cr_ray_t *r, fl_angle_t gi
         for (side = -1; side <= 1; side += 2) {
             fl_angle_t n = fl_angle_add(gin, (fl_angle_t)(side * FL_ANGLE_90));
             fl_point_t g;
-            int32_t u, v, du, dv, dd, nu, nv, bp = -1, bu = 0, bv = 0;
+            int32_t u, v, du, dv, dd, nu, nv, bp = -1, bu = 0, bv = 0, bmax = -1;
             g.x_mm = r->gx.x_mm + fl_rshift_round((int64_t)depth * fl_cos_q15(n), 15);
             g.y_mm = r->gx.y_mm + fl_rshift_round((int64_t)depth * fl_sin_q15(n), 15);
             if ((int64_t)g.x_mm * g.x_mm + (int64_t)g.y_mm * g.y_mm <= rE)
@@ -1473,20 +1482,26 @@ static bool cr_close_model(const cr_ctx_t *ctx, const cr_ray_t *r, fl_angle_t gi
                 if (p2 >= l->params.white_pct && p1 < p2 &&
                     cr_hidden(ctx->scan, pu, pv, pu + hu, pv + hv))
                     p1 = p2;
-                if (p2 < p1)
+                if (p2 < p1) {
+                    int32_t t = p1;
                     p1 = p2;
-                if (p1 > bp) {
+                    p2 = t;
+                }
+                /* p1 the weaker half, p2 the stronger */
+                if (p1 > bp || (p1 == bp && p2 > bmax)) {
                     bp = p1;
+                    bmax = p2;
                     bu = pu;
                     bv = pv;
                 }
             }
-            if (bp < l->params.white_pct)
+            if (bmax < l->params.white_pct)
                 continue;
-            if (!fl_camera_pixel_to_ground(ctx->cam, bu, bv, gF))
+            if (!fl_camera_pixel_to_ground(ctx->cam, bu, bv, &ft->g))
                 continue;
-            *fu = bu;
-            *fv = bv;
+            ft->u = bu;
+            ft->v = bv;
+            ft->t_ok = bp >= l->params.white_pct;
             return true;
         }
     }
@@ -1507,7 +1522,7 @@ static void cr_close(const cr_ctx_t *ctx, int32_t is, bool end1)
     fl_point_t gA, gB, gF;
     cr_ray_t r;
     cr_item_t it;
-    bool near = false;
+    bool near = false, t_ok = true;
     if (!field || S->len_q4 < 6 * step_q4)
         return;
     depth[0] = field->goal_area_depth_mm;
@@ -1593,8 +1608,13 @@ static void cr_close(const cr_ctx_t *ctx, int32_t is, bool end1)
             return;
     }
     if (best < 0) {
-        if (!cr_close_model(ctx, &r, gin, S->angle, &gF, &fu, &fv))
+        cr_foot_t ft;
+        if (!cr_close_model(ctx, &r, gin, S->angle, &ft))
             return;
+        gF = ft.g;
+        fu = ft.u;
+        fv = ft.v;
+        t_ok = ft.t_ok;
         /* gin is S's ground direction from E inward */
         gp = end1 ? fl_angle_add(gin, FL_ANGLE_180) : gin;
     } else
@@ -1666,7 +1686,7 @@ static void cr_close(const cr_ctx_t *ctx, int32_t is, bool end1)
         it.garm[2] = fl_angle_add(gp, FL_ANGLE_180);
         it.x.n_arms = 3;
         it.x.confidence = (uint8_t)conf;
-        if (!near && cr_type(&it.x)) {
+        if (!near && t_ok && cr_type(&it.x)) {
             cr_orient(&it.x, it.garm, true);
             c->connectors++;
             cr_add(c, c->garm, &it, mef, l);
