@@ -845,9 +845,12 @@ static void cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         cr_mark_census(l, &cc, vis);
         /* luma points (noise ridges of a dark frame, the bright rims of
          * carpet seams) count only beside 2 class-map points, or in a
-         * cluster of 3 (a far mark: one white run and its blurred ends) */
+         * cluster of 3 (a far mark: one white run and its blurred ends),
+         * or beside one class-map point where the mark is at most 2 line
+         * steps across (2 scan columns cross it at most) */
         if (cc.n_in < 2 || cc.long_in > 0 || cc.n_out > 0 ||
-            (cc.luma_in > 0 && cc.n_in - cc.luma_in < 2 && cc.n_in < 3))
+            (cc.luma_in > 0 && cc.n_in < 3 &&
+             cc.n_in - cc.luma_in < (mh <= 2 * step_q4 ? 1 : 2)))
             continue;
         n_in = cc.n_in;
         cu = cc.su * 8 / n_in; /* Q4 */
