@@ -796,11 +796,13 @@ static void test_eval_fixtures(void)
     }
     CHECK(n >= 60);
     /* 0.966 / 0.760 before the far-corner, edge and mark changes of
-     * crossings.c; 0.968 / 0.804 now */
+     * crossings.c; 0.968 / 0.804 before the far goal-box corners (painted
+     * bridges, near-flank ridges, cr_close) and far marks; 0.962 / 0.902
+     * now */
     floor_target("rendered crossings precision (<= 6 m)",
                  ratio(s.cross_tp, s.cross_tp + s.cross_fp), 0.96, 0.95);
     floor_target("rendered crossings recall (<= 6 m)",
-                 ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.80, 0.90);
+                 ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.90, 0.90);
     for (k = 0; k < 3; k++)   /* bins 0-1, 1-2, 2-3 m */
         if (s.rng_n[k] > 0 && s.rng_max[k] > worst3)
             worst3 = s.rng_max[k];
@@ -833,10 +835,11 @@ static void test_eval_realdata(void)
     /* precision 0.919 at recall 0.553 before the luma line points; 0.880
      * at recall 0.641 with them (white s_hi 48, color.h); 0.919 at 0.767
      * after the far ground tolerance, edge corners, arm widths, merging,
-     * far and edge marks and hidden gaps of crossings.c */
-    floor_target("UvA crossings precision", ratio(s.cross_tp, s.cross_tp + s.cross_fp), 0.91,
+     * far and edge marks and hidden gaps of crossings.c; 0.921 at 0.796
+     * after the far goal-box corners */
+    floor_target("UvA crossings precision", ratio(s.cross_tp, s.cross_tp + s.cross_fp), 0.92,
                  0.85);
-    floor_target("UvA crossings recall", ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.76, 0.75);
+    floor_target("UvA crossings recall", ratio(s.cross_tp, s.cross_tp + s.cross_fn), 0.79, 0.75);
     floor_target("UvA post feet precision", ratio(s.foot_tp, s.foot_tp + s.foot_fp), 0.96, 0.90);
     floor_target("UvA post feet recall", ratio(s.foot_tp, s.foot_tp + s.foot_fn), 0.90, 0.90);
     t_info("UvA type accuracy %.3f over %d matched crossings", ratio(s.type_ok, s.cross_tp),
