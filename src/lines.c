@@ -456,7 +456,12 @@ static void ln_vrun(fl_lines_t *l, const fl_scan_t *s, int32_t i, int32_t j0,
 #define LN_LUMA_DMAX 6       /* largest flank distance, px */
 #define LN_RIDGE_SAMPLES 32  /* samples of a path's ridge check */
 #define LN_RIDGE_BUDGET 256  /* ridge checks of the segment stage per frame */
-#define LN_RIDGE_NEAR 0x1000 /* flag in ln_ridge_pct's need: a line close beside */
+/* Flag in ln_ridge_pct's need: a line close beside.  Only with line steps
+ * of 3 px or more (images from 240 px wide): on the AIBO's 208x160 frames
+ * (2 px steps) it changed the far goal-line and box segments so that the
+ * localizer's heading drifted on simulate seeds 4-6 (2.6-3.0 -> 7.7-11.9
+ * degrees RMSE; seeds 1-3 unaffected); why was not found. */
+#define LN_RIDGE_NEAR 0x1000
 
 /* The frame's budgets (see LN_CLUTTER_BUDGET). */
 static int32_t ln_check_budget(const fl_lines_t *l)
@@ -768,7 +773,8 @@ static int32_t ln_ridge_pct(const fl_lines_t *l, int32_t u0, int32_t v0, int32_t
     const fl_image_t *im = &l->img;
     int32_t du = u1 - u0, dv = v1 - v0, len, n, k, pass = 0, nu, nv, wv, wh, w, d, vm;
     int32_t ou, ov, fu, fv, ru, rv, so, sf;
-    bool near = (need & LN_RIDGE_NEAR) != 0;
+    /* (not on a 2 px line-step grid: see LN_RIDGE_NEAR) */
+    bool near = (need & LN_RIDGE_NEAR) != 0 && l->step_px >= 3;
     need &= ~LN_RIDGE_NEAR;
     if (im->width <= 0 || l->params.luma_contrast_pct <= 0)
         return 0;
