@@ -1038,10 +1038,9 @@ static void cr_border_t(const cr_ctx_t *ctx, int32_t is)
     cr_ray_t r;
     cr_item_t it;
 
-    /* long enough for its direction to be followed (4 line steps: a far
-     * goal box's side stub of 3 is no line to the border), its upper end
-     * running up toward the border */
-    if (S->len_q4 < 4 * step_q4)
+    /* long enough for its direction to be followed (3 line steps), its
+     * upper end running up toward the border */
+    if (S->len_q4 < 3 * step_q4)
         return;
     if (fl_sin_q15(out) > 0)
         out = fl_angle_add(out, FL_ANGLE_180);
