@@ -62,6 +62,7 @@
 #include <string.h>
 
 #define EVEN 0x5555555555555555ULL
+#define ODD 0xAAAAAAAAAAAAAAAAULL
 
 /* Kept out of its caller (gcc's inlining limits are then spent on the
  * caller's hot loops); no effect on results. */
@@ -277,14 +278,14 @@ static uint64_t word_generic(const frame_t *f, int32_t v, int32_t i0, int32_t n)
     return acc << (2 * (32 - n));
 }
 
-/* Row j of band w (n cells, u0 = its first pixel column; row points at
- * pixel row j * rs of plane 0) through the word function of its kind: the
- * candidate rows of phase A (scan_band has this dispatch written out). */
+/* Row j of band w (n cells; row points at pixel row j * rs of plane 0)
+ * through the word function of its kind: the candidate rows of phase A
+ * and the rarer kinds of band_rows (six arguments: all in registers). */
 static uint64_t band_word(const frame_t *f, int32_t kind, const uint8_t *row,
-                          size_t u0, int32_t j, int32_t w, int32_t n)
+                          int32_t j, int32_t w, int32_t n)
 {
     const fl_color_table_t *ct = f->ct;
-    size_t cs = (size_t)f->cs;
+    size_t cs = (size_t)f->cs, u0 = (size_t)w * 32 * cs;
     /* the common kinds first: a predicted compare is cheaper than the
      * jump table */
     if (kind == 4)
@@ -352,8 +353,9 @@ static void add_foot(fl_scan_t *s, int32_t i, int32_t u, int32_t v)
  * word; g1, g2: green of the two rows above in this word (words left of it
  * and this word are final in the map for row j).  True: keep. */
 static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
-                       int32_t k, uint64_t g1, uint64_t g2)
+                       uint64_t g1, uint64_t g2)
 {
+    int32_t k = i & 31;
     int32_t v = j * f->rs, lw, lg = -1, d;
     col_t col;
     if (s->col_checks[i] >= s->params.checks_per_column) {
@@ -580,9 +582,9 @@ static FL_NOINLINE int32_t band_start(const fl_scan_t *s, const frame_t *f,
 {
     int32_t n = s->cols - 32 * w > 32 ? 32 : s->cols - 32 * w;
     int32_t kind = band_kind(f, n), j, m = s->rows;
-    size_t u0 = (size_t)w * 32 * (size_t)f->cs, step = (size_t)f->rs * f->st0;
+    size_t step = (size_t)f->rs * f->st0;
     for (j = j0 + ns - 1; j < s->rows; j += ns) {
-        uint64_t c = band_word(f, kind, f->p0 + (size_t)j * step, u0, j, w, n);
+        uint64_t c = band_word(f, kind, f->p0 + (size_t)j * step, j, w, n);
         if ((c & ~(c >> 1) & EVEN) != 0) {
             m = j;
             break;
@@ -591,20 +593,112 @@ static FL_NOINLINE int32_t band_start(const fl_scan_t *s, const frame_t *f,
     return m - ns + 1 > j0 ? m - ns + 1 : j0;
 }
 
+/* Rows j .. rows - 1 of band w (n cells) classified into the map,
+ * unmasked (phase B then reads them back; the common kinds first: a
+ * predicted compare is cheaper than the jump table). */
+static FL_NOINLINE void band_rows(fl_scan_t *s, const frame_t *f, int32_t kind,
+                                  int32_t j, int32_t w, int32_t n)
+{
+    const fl_color_table_t *ct = f->ct;
+    size_t step = (size_t)f->rs * f->st0, u0 = (size_t)w * 32 * (size_t)f->cs;
+    const uint8_t *row = f->p0 + (size_t)j * step;
+    uint64_t *mp = &s->map[j][w], *end = mp + (size_t)(s->rows - j) * FL_SCAN_WORDS;
+    if (kind == 4) {
+        for (; mp < end; mp += FL_SCAN_WORDS, row += step)
+            *mp = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
+    } else if (kind == 1) {
+        for (; mp < end; mp += FL_SCAN_WORDS, row += step)
+            *mp = word_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern);
+    } else if (kind == 5) {
+        for (; mp < end; mp += FL_SCAN_WORDS, row += step)
+            *mp = word_rgb_1(row + 3 * u0, 3, ct);
+    } else if (kind == 6) {
+        for (; mp < end; mp += FL_SCAN_WORDS, row += step)
+            *mp = word_rgb_2(row + 3 * u0, 6, ct);
+    } else {
+        for (; mp < end; mp += FL_SCAN_WORDS, row += step, j++)
+            *mp = band_word(f, kind, row, j, w, n);
+    }
+}
+
+
+/* The rest of a phase B row once c, lo, hi hold only the cells below the
+ * border (shared by both loops of scan_band): carpet rows (only green and
+ * other, no yellow in the two rows above) take the fast path; else white
+ * run starts get their contrast check, yellow->green transitions become
+ * feet and yellow cells are counted. */
+#define FL_ROW_TAIL                                                           \
+    if ((hi | y1 | y2) == 0) {                                                \
+        /* only green and other (the carpet below the border): no white      \
+         * run, no yellow, no foot; the row's state moves down (y1, y2 are   \
+         * 0 already) */                                                      \
+        *mp = c;                                                              \
+        g2 = g1;                                                              \
+        g1 = lo;                                                              \
+        y3 = 0;                                                               \
+        wprev = 0;                                                            \
+        wrej = 0;                                                             \
+        continue;                                                             \
+    }                                                                         \
+    g = lo & ~hi;                                                             \
+    wh = hi & ~lo;                                                            \
+    y = lo & hi;                                                              \
+    *mp = c;                                                                  \
+    rej = wrej & wh;                                                          \
+    starts = wh & ~wprev;                                                     \
+    if (starts != 0) {                                                        \
+        int32_t last = -4;                                                    \
+        bool keep = true;                                                     \
+        while (starts != 0) {   /* right to left; one check per group */      \
+            int32_t b = lowest_bit(starts), k = 31 - (b >> 1);                \
+            starts &= starts - 1;                                             \
+            if (b != last + 2)                                                \
+                keep = white_keep(s, f, 32 * w + k, j, g1, g2);               \
+            last = b;                                                         \
+            if (!keep) {                                                      \
+                rej |= 1ULL << b;                                             \
+                s->white_rejected++;                                          \
+            }                                                                 \
+        }                                                                     \
+    }                                                                         \
+    if (rej != 0)                                                             \
+        *mp = c & ~(rej | (rej << 1));                                        \
+    wrej = rej;                                                               \
+    wprev = wh;                                                               \
+    /* two yellow samples right above, or above one non-green sample */      \
+    cand = g & ~g1 & ((y1 & y2) | (y2 & y3));                                 \
+    while (cand != 0) {                                                       \
+        int32_t b = lowest_bit(cand), k = 31 - (b >> 1);                      \
+        cand &= cand - 1;                                                     \
+        add_foot(s, 32 * w + k, (32 * w + k) * f->cs, j * f->rs);             \
+    }                                                                         \
+    if (y != 0) {                                                             \
+        count_yellow(ycount, y);                                              \
+        s->yellow_rows[j] = (uint16_t)(s->yellow_rows[j] + popcount64(y));    \
+    }                                                                         \
+    g2 = g1;                                                                  \
+    g1 = g;                                                                   \
+    y3 = y2;                                                                  \
+    y2 = y1;                                                                  \
+    y1 = y;
+
 /* Band w (32 grid columns): rows from j_lo down, each row classified once
- * (32 cells), the run detector for columns still without a border, then
- * the bit logic on the cells below the border.  State lives in locals. */
+ * (32 cells, all rows first, into the map: band_rows), then per row the run
+ * detector for columns still without a border and the bit logic on the
+ * cells below the border, each row's map word rewritten masked.  State
+ * lives in locals.  Two loops: B1 while some column of the band has no
+ * border yet (run counters, cells masked to the found columns), B2 once
+ * all have one (no counters, no masking: the cells beyond a partial band's
+ * last column are 0 from word_generic; carpet rows, the common case, only
+ * move the state down: their map word is final as classified). */
 static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
                                   int32_t j_lo, int32_t ns, int32_t nplanes)
 {
-    const fl_color_table_t *ct = f->ct;
-    int32_t n = s->cols - 32 * w, j, p;
+    int32_t n = s->cols - 32 * w, rows = s->rows, j, p;
     uint64_t found = 0, g1 = 0, g2 = 0, y1 = 0, y2 = 0, y3 = 0, wprev = 0, wrej = 0;
     uint64_t cnt[8] = {0, 0, 0, 0, 0, 0, 0, 0}, m[8], all;
-    uint64_t c0 = 0, c1 = 0, c2 = 0, c3 = 0;
-    uint64_t *ycount = s->ycount[w];
-    size_t cs = (size_t)f->cs, u0 = (size_t)w * 32 * cs, step = (size_t)f->rs * f->st0;
-    const uint8_t *row;
+    uint64_t c0 = 0, c1 = 0, c2 = 0, c3 = 0, m0, m1, m2, m3;
+    uint64_t *ycount = s->ycount[w], *mp;
     int32_t kind;
     if (n > 32)
         n = 32;
@@ -612,34 +706,31 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
     kind = band_kind(f, n);
     for (p = 0; p < 8; p++)
         m[p] = (ns >> p) & 1 ? 0 : ~0ULL;
+    m0 = m[0];
+    m1 = m[1];
+    m2 = m[2];
+    m3 = m[3];
     memset(ycount, 0, sizeof s->ycount[w]);
-    for (j = 0; j < j_lo && j < s->rows; j++)
+    for (j = 0; j < j_lo && j < rows; j++)
         s->map[j][w] = 0;
-    row = f->p0 + (size_t)j_lo * step;
-    for (j = j_lo; j < s->rows; j++, row += step) {
-        uint64_t c, lo, hi, g, wh, y, starts, rej, cand;
-        /* band_word's dispatch, written out (the common kinds first: a
-         * predicted compare is cheaper than the jump table) */
-        if (kind == 4)
-            c = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
-        else if (kind == 1)
-            c = word_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern);
-        else switch (kind) {
-        case 2: c = word_yuyv_even(row + 2 * u0, 2 * cs, ct->chroma, ct->pattern); break;
-        case 3: c = word_rgb(row + 3 * u0, 3 * cs, ct); break;
-        case 5: c = word_rgb_1(row + 3 * u0, 3, ct); break;
-        case 6: c = word_rgb_2(row + 3 * u0, 6, ct); break;
-        default: c = word_generic(f, j * f->rs, 32 * w, n); break;
-        }
-        lo = c & EVEN;
-        hi = (c >> 1) & EVEN;
-        if (found != all) {
+    mp = &s->map[0][w] + (size_t)j_lo * FL_SCAN_WORDS;
+    j = j_lo;
+    /* B1: until every column of the band has its border */
+    if (j_lo < rows)
+        band_rows(s, f, kind, j_lo, w, n);
+    {
+        for (; j < rows && found != all; j++, mp += FL_SCAN_WORDS) {
+            uint64_t c = *mp, lo, hi, g, wh, y, starts, rej, cand;
             /* bit-sliced run counters: +1 where green, 0 elsewhere */
-            uint64_t gr = lo & ~hi, x = gr & ~found, eq;
-            /* A counter never exceeds ns (a column that reaches ns is
-             * found and leaves the count), so it equals ns exactly when
-             * it has every bit of ns set: eq = x & the planes of ns's
-             * set bits (m[p] all ones for the others). */
+            uint64_t gr, x, eq;
+            lo = c & EVEN;
+            hi = (c >> 1) & EVEN;
+            gr = lo & ~hi;
+            x = gr & ~found;
+            /* A counter never exceeds ns (a column that reaches ns is found
+             * and leaves the count), so it equals ns exactly when it has
+             * every bit of ns set: eq = x & the planes of ns's set bits
+             * (m[p] all ones for the others). */
             if (nplanes <= 4) {   /* the common ns 1..15: in registers */
                 uint64_t t = c0 & x, t2;
                 c0 = ~c0 & x;
@@ -648,7 +739,7 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
                 t = c2 & t2;
                 c2 = (c2 ^ t2) & x;
                 c3 = (c3 ^ t) & x;
-                eq = x & (c0 | m[0]) & (c1 | m[1]) & (c2 | m[2]) & (c3 | m[3]);
+                eq = x & (c0 | m0) & (c1 | m1) & (c2 | m2) & (c3 | m3);
             } else {
                 for (p = 0; p < nplanes; p++) {
                     uint64_t t = cnt[p] & x;
@@ -674,69 +765,44 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
                     border_found(s, f, 32 * w + 31 - (b >> 1), j, ns);
                 }
             } else if (found == 0) {
-                /* no border in the band yet: the row is all masked and
-                 * the state (g, y, w of the rows above) is still all 0 */
-                s->map[j][w] = 0;
+                /* no border in the band yet: the row is all masked and the
+                 * state (g, y, w of the rows above) is still all 0 */
+                *mp = 0;
                 continue;
             }
+            c &= found | (found << 1);
+            lo &= found;
+            hi &= found;
+            FL_ROW_TAIL
         }
-        c &= found | (found << 1);
-        lo &= found;
-        hi &= found;
-        if ((hi | y1 | y2) == 0) {
-            /* only green and other (the carpet below the border): no white
-             * run, no yellow, no foot; the row's state moves down */
-            s->map[j][w] = c;
-            g2 = g1;
-            g1 = lo;
+    }
+    /* B2: every column has its border: no counters, no masking (a partial
+     * band's cells beyond its last column are 0 from word_generic) */
+    while (j < rows) {
+        uint64_t c = *mp, lo, hi, g, wh, y, starts, rej, cand;
+        if ((c & ODD) == 0 && (y1 | y2) == 0) {
+            /* carpet rows (only green and other, no yellow in the two rows
+             * above): the map holds them already; the state moves down */
+            uint64_t *mq = mp;
+            do {
+                g2 = g1;
+                g1 = c & EVEN;
+                mq += FL_SCAN_WORDS;
+                j++;
+            } while (j < rows && ((c = *mq) & ODD) == 0);
+            mp = mq;
             y3 = 0;
-            y2 = 0;
-            y1 = 0;
             wprev = 0;
             wrej = 0;
             continue;
         }
-        g = lo & ~hi;
-        wh = hi & ~lo;
-        y = lo & hi;
-        s->map[j][w] = c;
-        rej = wrej & wh;
-        starts = wh & ~wprev;
-        if (starts != 0) {
-            int32_t last = -4;
-            bool keep = true;
-            while (starts != 0) {   /* right to left; one check per group */
-                int32_t b = lowest_bit(starts), k = 31 - (b >> 1);
-                starts &= starts - 1;
-                if (b != last + 2)
-                    keep = white_keep(s, f, 32 * w + k, j, k, g1, g2);
-                last = b;
-                if (!keep) {
-                    rej |= 1ULL << b;
-                    s->white_rejected++;
-                }
-            }
-        }
-        if (rej != 0)
-            s->map[j][w] = c & ~(rej | (rej << 1));
-        wrej = rej;
-        wprev = wh;
-        /* two yellow samples right above, or above one non-green sample */
-        cand = g & ~g1 & ((y1 & y2) | (y2 & y3));
-        while (cand != 0) {
-            int32_t b = lowest_bit(cand), k = 31 - (b >> 1);
-            cand &= cand - 1;
-            add_foot(s, 32 * w + k, (32 * w + k) * f->cs, j * f->rs);
-        }
-        if (y != 0) {
-            count_yellow(ycount, y);
-            s->yellow_rows[j] = (uint16_t)(s->yellow_rows[j] + popcount64(y));
-        }
-        g2 = g1;
-        g1 = g;
-        y3 = y2;
-        y2 = y1;
-        y1 = y;
+        lo = c & EVEN;
+        hi = (c >> 1) & EVEN;
+        do {
+            FL_ROW_TAIL
+        } while (0);
+        j++;
+        mp += FL_SCAN_WORDS;
     }
     for (p = 0; p < FL_SCAN_COUNT_BITS; p++) {   /* bit-sliced counts -> columns */
         uint64_t x = ycount[p];
@@ -748,6 +814,7 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
         }
     }
 }
+#undef FL_ROW_TAIL
 
 /* Green clutter beyond the carpet (a couch, a bin, a shirt in carpet
  * green) stands up from the floor: its columns form a bump above the
