@@ -784,12 +784,14 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
             /* carpet rows (only green and other, no yellow in the two rows
              * above): the map holds them already; the state moves down */
             uint64_t *mq = mp;
+            int32_t j1 = j;
             do {
-                g2 = g1;
-                g1 = c & EVEN;
                 mq += FL_SCAN_WORDS;
                 j++;
             } while (j < rows && ((c = *mq) & ODD) == 0);
+            /* green of the last two rows (g1 when only one) */
+            g2 = j - j1 >= 2 ? mq[-2 * FL_SCAN_WORDS] & EVEN : g1;
+            g1 = mq[-FL_SCAN_WORDS] & EVEN;
             mp = mq;
             y3 = 0;
             wprev = 0;
