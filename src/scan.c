@@ -505,9 +505,10 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
         }
         if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1 &&
             green_near_top(s, f, i)) {
-            /* a line cut by the top of an image that is all ground */
+            /* a line cut by the top of an image that is all ground (the
+             * walk found every sample above the border white) */
             for (j = 0; j < jb; j++)
-                s->map[j][i >> 5] |= (uint64_t)col_class(&col, ct, j * rs) << shift;
+                s->map[j][i >> 5] |= (uint64_t)FL_CLASS_WHITE << shift;
             s->first_row[i] = 0;
             s->border_v[i] = 0;
             return;
@@ -551,8 +552,11 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
         } else {
             return;
         }
+        /* the walks classified these samples: green up to jw, white
+         * below it */
         for (j = jg; j < jb; j++)
-            s->map[j][i >> 5] |= (uint64_t)col_class(&col, ct, j * rs) << shift;
+            s->map[j][i >> 5] |= (uint64_t)(j <= jw ? FL_CLASS_GREEN : FL_CLASS_WHITE)
+                                 << shift;
         jb = jg;
         s->first_row[i] = (int16_t)jb;
         s->border_v[i] = (int16_t)(jb * rs);
