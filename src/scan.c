@@ -432,6 +432,7 @@ static void border_found(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
     }
     s->border_v[i] = (int16_t)v;
     s->first_row[i] = (int16_t)st;
+    s->gend_row[i] = (int16_t)st;
     s->n_border++;
 }
 
@@ -626,6 +627,18 @@ static FL_NOINLINE void band_rows(fl_scan_t *s, const frame_t *f, int32_t kind,
 }
 
 
+/* Columns (bits of leave) of band w whose first green run below the
+ * border ends at grid row j: s->gend (what rerun_column's first walk
+ * would find). */
+static void gend_record(fl_scan_t *s, int32_t w, int32_t j, uint64_t leave)
+{
+    do {
+        int32_t b = lowest_bit(leave);
+        leave &= leave - 1;
+        s->gend[32 * w + 31 - (b >> 1)] = (int16_t)j;
+    } while (leave != 0);
+}
+
 /* The rest of a phase B row once c, lo, hi hold only the cells below the
  * border (shared by both loops of scan_band): carpet rows (only green and
  * other, no yellow in the two rows above) take the fast path; else white
@@ -700,6 +713,7 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
 {
     int32_t n = s->cols - 32 * w, rows = s->rows, j, p;
     uint64_t found = 0, g1 = 0, g2 = 0, y1 = 0, y2 = 0, y3 = 0, wprev = 0, wrej = 0;
+    uint64_t ing = 0;   /* found, still in the border's green run */
     uint64_t cnt[8] = {0, 0, 0, 0, 0, 0, 0, 0}, m[8], all;
     uint64_t c0 = 0, c1 = 0, c2 = 0, c3 = 0, m0, m1, m2, m3;
     uint64_t *ycount = s->ycount[w], *mp;
@@ -761,6 +775,7 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
                 uint64_t e = eq;
                 int32_t jj;
                 found |= eq;
+                ing |= eq;
                 for (jj = j - ns + 1; jj < j; jj++)  /* the run was masked: green */
                     s->map[jj][w] |= eq;
                 while (e != 0) {
@@ -773,6 +788,10 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
                  * state (g, y, w of the rows above) is still all 0 */
                 *mp = 0;
                 continue;
+            }
+            if ((ing & ~gr) != 0) {   /* (ing is within found) */
+                gend_record(s, w, j, ing & ~gr);
+                ing &= gr;
             }
             c &= found | (found << 1);
             lo &= found;
@@ -787,15 +806,27 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
         if ((c & ODD) == 0 && (y1 | y2) == 0) {
             /* carpet rows (only green and other, no yellow in the two rows
              * above): the map holds them already; the state moves down */
-            uint64_t *mq = mp;
+            uint64_t *mq = mp, acc = c;
             int32_t j1 = j;
             do {
+                acc &= c;
                 mq += FL_SCAN_WORDS;
                 j++;
             } while (j < rows && ((c = *mq) & ODD) == 0);
             /* green of the last two rows (g1 when only one) */
             g2 = j - j1 >= 2 ? mq[-2 * FL_SCAN_WORDS] & EVEN : g1;
             g1 = mq[-FL_SCAN_WORDS] & EVEN;
+            if ((ing & ~acc) != 0) {
+                /* columns that met other in these rows: find where */
+                uint64_t leave = ing & ~acc;
+                ing &= acc;
+                for (; leave != 0; mp += FL_SCAN_WORDS, j1++) {
+                    if ((leave & ~*mp) != 0) {
+                        gend_record(s, w, j1, leave & ~*mp);
+                        leave &= *mp;
+                    }
+                }
+            }
             mp = mq;
             y3 = 0;
             wprev = 0;
@@ -804,12 +835,17 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
         }
         lo = c & EVEN;
         hi = (c >> 1) & EVEN;
+        if ((ing & ~(lo & ~hi)) != 0) {
+            gend_record(s, w, j, ing & ~(lo & ~hi));
+            ing &= lo & ~hi;
+        }
         do {
             FL_ROW_TAIL
         } while (0);
         j++;
         mp += FL_SCAN_WORDS;
     }
+    s->gend_none[w] = ing;   /* green down to the last row */
     for (p = 0; p < FL_SCAN_COUNT_BITS; p++) {   /* bit-sliced counts -> columns */
         uint64_t x = ycount[p];
         while (x != 0) {
@@ -842,10 +878,21 @@ static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
     int32_t j = s->first_row[i], run = 0, st = -1, jj, k, v, lo, n_other = 0, n_white = 0;
     int32_t wi = i >> 5, sh = 62 - 2 * (i & 31);
     int32_t lim = level - ns < s->rows - 1 ? level - ns : s->rows - 1;
-    while (j <= lim && ((s->map[j][wi] >> sh) & 3) == FL_CLASS_GREEN)
-        j++;
-    if (j > level - ns)
-        return false;   /* the green (nearly) reaches the level: carpet */
+    if (s->first_row[i] == s->gend_row[i]) {
+        /* phase B saw where this border's green run ends (the cells from
+         * its border down are as phase B left them): the walk below would
+         * stop there */
+        if (s->gend_none[wi] & (1ULL << sh))
+            return false;   /* green to the bottom */
+        j = s->gend[i];
+        if (j > level - ns)
+            return false;
+    } else {
+        while (j <= lim && ((s->map[j][wi] >> sh) & 3) == FL_CLASS_GREEN)
+            j++;
+        if (j > level - ns)
+            return false;   /* the green (nearly) reaches the level: carpet */
+    }
     /* a run completing below row level + 2 ns - 1 would start below
      * level + ns and be refused: the walk stops there */
     lim = level + 2 * ns - 1 < s->rows - 1 ? level + 2 * ns - 1 : s->rows - 1;
