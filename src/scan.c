@@ -112,6 +112,11 @@ typedef struct {
     const uint8_t *p0, *p1, *p2;
     size_t st0, st1, st2;
     int32_t cs, rs;
+    /* col_init's layout, per format: pixel u's Y (R) at py + ky u, its
+     * chroma at pcb / pcr + kc (u >> csh); rows scb / scr apart */
+    const uint8_t *py, *pcb, *pcr;
+    size_t ky, kc, scb, scr;
+    int32_t csh;
 } frame_t;
 
 /* One image column as three byte pointers (Y, Cb, Cr of pixel (u, 0); for
@@ -124,22 +129,14 @@ typedef struct {
 
 static inline void col_init(col_t *c, const frame_t *f, int32_t u)
 {
-    size_t uu = (size_t)u;
+    size_t uu = (size_t)u, ch = uu >> f->csh;
     c->rgb = f->fmt == FL_FMT_RGB888;
     c->sy = f->st0;
-    c->scb = f->fmt == FL_FMT_YCBCR_PLANAR ? f->st1 : f->st0;
-    c->scr = f->fmt == FL_FMT_YCBCR_PLANAR ? f->st2 : f->st0;
-    if (f->fmt == FL_FMT_RGB888) {
-        c->y = c->cb = c->cr = f->p0 + 3 * uu;
-    } else if (f->fmt == FL_FMT_YUYV422) {
-        c->y = f->p0 + 2 * uu;
-        c->cb = f->p0 + 4 * (uu >> 1) + 1;  /* the pixel pair's chroma */
-        c->cr = c->cb + 2;
-    } else {
-        c->y = f->p0 + uu;
-        c->cb = f->p1 + uu;
-        c->cr = f->p2 + uu;
-    }
+    c->scb = f->scb;
+    c->scr = f->scr;
+    c->y = f->py + f->ky * uu;
+    c->cb = f->pcb + f->kc * ch;
+    c->cr = f->pcr + f->kc * ch;
 }
 
 /* Class of the column's pixel in row v. */
@@ -1221,6 +1218,27 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
     f.st1 = (size_t)img->stride[1];
     f.st2 = (size_t)img->stride[2];
     f.cs = s->params.col_step;
+    /* col_init's layout (see frame_t) */
+    f.py = f.p0;
+    f.scb = f.scr = f.st0;
+    if (f.fmt == FL_FMT_RGB888) {
+        f.pcb = f.pcr = f.p0;
+        f.ky = f.kc = 3;
+        f.csh = 0;
+    } else if (f.fmt == FL_FMT_YUYV422) {
+        f.pcb = f.p0 + 1;   /* the pixel pair's chroma */
+        f.pcr = f.p0 + 3;
+        f.ky = 2;
+        f.kc = 4;
+        f.csh = 1;
+    } else {
+        f.pcb = f.p1;
+        f.pcr = f.p2;
+        f.scb = f.st1;
+        f.scr = f.st2;
+        f.ky = f.kc = 1;
+        f.csh = 0;
+    }
     f.rs = s->params.row_step;
 
     empty_result(s, FL_OK);
