@@ -872,9 +872,10 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
 static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
                          int32_t t, int32_t level)
 {
-    int32_t j = s->first_row[i], run = 0, st = -1, jj, k, v, lo, n_other = 0, n_white = 0;
+    int32_t j = s->first_row[i], run = 0, st = -1, jj, k, v, lo, n_gap = 0;
     int32_t wi = i >> 5, sh = 62 - 2 * (i & 31);
     int32_t lim = level - ns < s->rows - 1 ? level - ns : s->rows - 1;
+    uint64_t cell = 3ULL << sh, green = (uint64_t)FL_CLASS_GREEN << sh;
     if (s->first_row[i] == s->gend_row[i]) {
         /* phase B saw where this border's green run ends (the cells from
          * its border down are as phase B left them): the walk below would
@@ -893,21 +894,22 @@ static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
     /* a run completing below row level + 2 ns - 1 would start below
      * level + ns and be refused: the walk stops there */
     lim = level + 2 * ns - 1 < s->rows - 1 ? level + 2 * ns - 1 : s->rows - 1;
-    for (; j <= lim; j++) {
-        int32_t c = (int32_t)((s->map[j][wi] >> sh) & 3);
-        if (c == FL_CLASS_GREEN) {
-            if (++run >= ns) {
-                st = j - ns + 1;
-                break;
+    if (j <= lim) {
+        const uint64_t *q = &s->map[j][wi];
+        for (; j <= lim; j++, q += FL_SCAN_WORDS) {
+            if ((*q & cell) == green) {
+                if (++run >= ns) {
+                    st = j - ns + 1;
+                    break;
+                }
+            } else {
+                run = 0;
+                n_gap++;   /* other, white or yellow */
             }
-        } else {
-            run = 0;
-            n_other += c != FL_CLASS_WHITE;
-            n_white += c == FL_CLASS_WHITE;
         }
     }
-    if (st < 0 || st < level - t || st > level + ns || n_other + n_white < ns ||
-        (n_other == 0 && n_white < ns))
+    /* ... after a gap of at least ns other or white samples */
+    if (st < 0 || st < level - t || st > level + ns || n_gap < ns)
         return false;
     for (jj = s->first_row[i]; jj < st; jj++) {
         if (map_class(s, i, jj) == FL_CLASS_YELLOW) {
