@@ -1067,39 +1067,79 @@ static void repair_borders(fl_scan_t *s, const frame_t *f)
 
 /* ---- phase C: posts above the border ---------------------------------------------------- */
 
-static void trace_posts(fl_scan_t *s, const frame_t *f)
+/* Index of the highest set bit of x != 0 (binary search). */
+static int32_t highest_bit(uint64_t x)
+{
+    int32_t n = 0;
+    if (x >> 32) {
+        x >>= 32;
+        n += 32;
+    }
+    if (x >> 16) {
+        x >>= 16;
+        n += 16;
+    }
+    if (x >> 8) {
+        x >>= 8;
+        n += 8;
+    }
+    if (x >> 4) {
+        x >>= 4;
+        n += 4;
+    }
+    if (x >> 2) {
+        x >>= 2;
+        n += 2;
+    }
+    return x >> 1 ? n + 1 : n;
+}
+
+/* Column i with its post_top bit set (phase B or the repair saw yellow
+ * right above the border): follow the yellow up, keep it, and a foot at
+ * the border when it is a post. */
+static void trace_post(fl_scan_t *s, const frame_t *f, int32_t i)
 {
     const fl_color_table_t *ct = f->ct;
-    int32_t i;
-    for (i = 0; i < s->cols; i++) {
-        int32_t jb = s->first_row[i], jj, gap = 0, n = 0;
-        bool yellow = false;
-        col_t col;
-        if (jb >= s->rows)
-            continue;
-        if (!(s->post_top[i >> 5] & (1ULL << (62 - 2 * (i & 31)))))
-            continue;   /* phase B saw no yellow right above this border */
-        col_init(&col, f, i * f->cs);
-        for (jj = jb - 1; jj >= 0 && jj >= jb - 2; jj--)
-            if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
-                yellow = true;
-                break;
-            }
-        if (!yellow)
-            continue;
-        for (jj = jb - 1; jj >= 0; jj--) {
-            if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
-                s->map[jj][i >> 5] |= 3ULL << (62 - 2 * (i & 31));
-                s->yellow_cols[i]++;
-                s->yellow_rows[jj]++;
-                n++;
-                gap = 0;
-            } else if (++gap > 1) {
-                break;
-            }
+    int32_t jb = s->first_row[i], jj, gap = 0, n = 0;
+    bool yellow = false;
+    col_t col;
+    if (jb >= s->rows)
+        return;
+    col_init(&col, f, i * f->cs);
+    for (jj = jb - 1; jj >= 0 && jj >= jb - 2; jj--)
+        if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
+            yellow = true;
+            break;
         }
-        if (n >= 2)   /* a post, not a yellowish speck at the carpet edge */
-            add_foot(s, i, i * f->cs, s->border_v[i]);
+    if (!yellow)
+        return;
+    for (jj = jb - 1; jj >= 0; jj--) {
+        if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
+            s->map[jj][i >> 5] |= 3ULL << (62 - 2 * (i & 31));
+            s->yellow_cols[i]++;
+            s->yellow_rows[jj]++;
+            n++;
+            gap = 0;
+        } else if (++gap > 1) {
+            break;
+        }
+    }
+    if (n >= 2)   /* a post, not a yellowish speck at the carpet edge */
+        add_foot(s, i, i * f->cs, s->border_v[i]);
+}
+
+/* The columns with a post_top bit, left to right (the highest bit of
+ * each word first). */
+static void trace_posts(fl_scan_t *s, const frame_t *f)
+{
+    int32_t w;
+    for (w = 0; w < s->words; w++) {
+        uint64_t x = s->post_top[w];
+        while (x != 0) {
+            int32_t b = highest_bit(x);
+            x &= ~(1ULL << b);
+            trace_post(s, f, 32 * w + 31 - (b >> 1));
+        }
     }
 }
 
