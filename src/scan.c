@@ -1184,7 +1184,8 @@ static void estimate_field(fl_scan_t *s, const frame_t *f)
             s->hue_hist[hsv.h]++;
             ss += hsv.s;
             sv += hsv.v;
-            sl += fl_luma_from_rgb(rgb[0], rgb[1], rgb[2]);
+            /* fl_luma_from_rgb, inline */
+            sl += (uint32_t)(19595 * rgb[0] + 38470 * rgb[1] + 7471 * rgb[2] + 32768) >> 16;
             n++;
         }
     }
