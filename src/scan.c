@@ -576,35 +576,42 @@ static int32_t band_kind(const frame_t *f, int32_t n)
 }
 
 /* Phase A for band w: the first of the rows j0 + ns - 1, j0 + 2 ns - 1,
- * ... with a green cell.  Every run of ns green samples below j0 contains
- * one of these rows, so no run in the band starts before that row - (ns -
- * 1): the band's first row (j0 at the least). */
-static FL_NOINLINE int32_t band_start(const fl_scan_t *s, const frame_t *f,
+ * ... with a green cell (rows: none; its word, as classified, is left in
+ * the map for band_rows).  Every run of ns green samples below j0
+ * contains one of these rows, so no run in the band starts before that
+ * row - (ns - 1): the band's first row is max(j0, that). */
+static FL_NOINLINE int32_t band_start(fl_scan_t *s, const frame_t *f,
                                       int32_t w, int32_t j0, int32_t ns)
 {
     int32_t n = s->cols - 32 * w > 32 ? 32 : s->cols - 32 * w;
-    int32_t kind = band_kind(f, n), j, m = s->rows;
+    int32_t kind = band_kind(f, n), j;
     size_t step = (size_t)f->rs * f->st0;
     for (j = j0 + ns - 1; j < s->rows; j += ns) {
         uint64_t c = band_word(f, kind, f->p0 + (size_t)j * step, j, w, n);
         if ((c & ~(c >> 1) & EVEN) != 0) {
-            m = j;
-            break;
+            s->map[j][w] = c;
+            return j;
         }
     }
-    return m - ns + 1 > j0 ? m - ns + 1 : j0;
+    return s->rows;
 }
 
-/* Rows j .. rows - 1 of band w (n cells) classified into the map,
- * unmasked (phase B then reads them back; the common kinds first: a
- * predicted compare is cheaper than the jump table). */
-static FL_NOINLINE void band_rows(fl_scan_t *s, const frame_t *f, int32_t kind,
-                                  int32_t j, int32_t w, int32_t n)
+/* Rows j .. jend - 1 of band w classified into the map, unmasked (phase
+ * B then reads them back; the common kinds first: a predicted compare is
+ * cheaper than the jump table). */
+static FL_NOINLINE void band_rows(fl_scan_t *s, const frame_t *f, int32_t j,
+                                  int32_t jend, int32_t w)
 {
     const fl_color_table_t *ct = f->ct;
+    int32_t n = s->cols - 32 * w > 32 ? 32 : s->cols - 32 * w, kind = band_kind(f, n);
     size_t step = (size_t)f->rs * f->st0, u0 = (size_t)w * 32 * (size_t)f->cs;
-    const uint8_t *row = f->p0 + (size_t)j * step;
-    uint64_t *mp = &s->map[j][w], *end = mp + (size_t)(s->rows - j) * FL_SCAN_WORDS;
+    const uint8_t *row;
+    uint64_t *mp, *end;
+    if (j >= jend)
+        return;
+    row = f->p0 + (size_t)j * step;
+    mp = &s->map[j][w];
+    end = mp + (size_t)(jend - j) * FL_SCAN_WORDS;
     if (kind == 4) {
         for (; mp < end; mp += FL_SCAN_WORDS, row += step)
             *mp = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
@@ -706,19 +713,19 @@ static void gend_record(fl_scan_t *s, int32_t w, int32_t j, uint64_t leave)
  * last column are 0 from word_generic; carpet rows, the common case, only
  * move the state down: their map word is final as classified). */
 static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
-                                  int32_t j_lo, int32_t ns, int32_t nplanes)
+                                  int32_t j0, int32_t jm, int32_t ns)
 {
+    /* jm: phase A's row (band_start; its word is in the map already) */
+    int32_t j_lo = jm - ns + 1 > j0 ? jm - ns + 1 : j0, nplanes;
     int32_t n = s->cols - 32 * w, rows = s->rows, j, p;
     uint64_t found = 0, g1 = 0, g2 = 0, y1 = 0, y2 = 0, y3 = 0, wprev = 0, wrej = 0;
     uint64_t ing = 0;   /* found, still in the border's green run */
     uint64_t cnt[8] = {0, 0, 0, 0, 0, 0, 0, 0}, m[8], all;
     uint64_t c0 = 0, c1 = 0, c2 = 0, c3 = 0, m0, m1, m2, m3;
     uint64_t *ycount = s->ycount[w], *mp;
-    int32_t kind;
     if (n > 32)
         n = 32;
     all = n == 32 ? EVEN : EVEN & ~((1ULL << (64 - 2 * n)) - 1);
-    kind = band_kind(f, n);
     for (p = 0; p < 8; p++)
         m[p] = (ns >> p) & 1 ? 0 : ~0ULL;
     m0 = m[0];
@@ -731,8 +738,10 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
     mp = &s->map[0][w] + (size_t)j_lo * FL_SCAN_WORDS;
     j = j_lo;
     /* B1: until every column of the band has its border */
-    if (j_lo < rows)
-        band_rows(s, f, kind, j_lo, w, n);
+    for (nplanes = 1; (1 << nplanes) <= ns; nplanes++)
+        ;
+    band_rows(s, f, j_lo, jm, w);
+    band_rows(s, f, jm + 1, rows, w);
     {
         for (; j < rows && found != all; j++, mp += FL_SCAN_WORDS) {
             uint64_t c = *mp, lo, hi, g, wh, y, starts, rej, cand;
@@ -1234,7 +1243,7 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
 {
     frame_t f;
     fl_status_t st;
-    int32_t cols, rows, w, j0, ns, nplanes, max_white;
+    int32_t cols, rows, w, j0, ns, max_white;
     if (s == NULL)
         return 0;
     if (colors == NULL || img == NULL) {
@@ -1308,8 +1317,6 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
     /* A */
     ns = (s->params.border_run_px + f.rs - 1) / f.rs;
     max_white = (2 * s->params.border_run_px + f.rs - 1) / f.rs;
-    for (nplanes = 1; (1 << nplanes) <= ns; nplanes++)
-        ;
     /* B */
     memset(s->col_feet, 0, (size_t)cols);
     memset(s->col_checks, 0, (size_t)cols);
@@ -1321,7 +1328,7 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
         s->border_v[w] = (int16_t)s->height;
     }
     for (w = 0; w < s->words; w++)
-        scan_band(s, &f, w, band_start(s, &f, w, j0, ns), ns, nplanes);
+        scan_band(s, &f, w, j0, band_start(s, &f, w, j0, ns), ns);
     for (w = 0; w < cols; w++) {
         if (s->border_v[w] >= s->height)
             s->first_row[w] = (int16_t)rows;   /* no run found */
