@@ -11,14 +11,19 @@
  *     (cost ~1/ns of a classification per row above the band's highest
  *     border).
  *  B  bands of 32 grid columns, top-down from the band's earliest possible
- *     run start: each row classified once into 32 2-bit codes (table
- *     lookups; YUYV pixel pairs share one chroma lookup), bit-sliced run
- *     counters find the first run of ns green samples per column (the
- *     border; refined to the pixel between grid rows), the cells below the
- *     border are stored, white run starts (W & ~W_above) get the contrast
- *     check (one per horizontal group), rejected runs are cleared to their
- *     end, yellow->green transitions become feet, yellow cells go to
- *     bit-sliced column counters.
+ *     run start: first every row of the band is classified once into 32
+ *     2-bit codes, written to the map (band_rows: table lookups; YUYV pixel
+ *     pairs share one chroma lookup), then the row logic reads the words
+ *     back: bit-sliced run counters find the first run of ns green samples
+ *     per column (the border; refined to the pixel between grid rows) and
+ *     the cells above it are masked (B1, while a column of the band has no
+ *     border yet); white run starts (W & ~W_above) get the contrast check
+ *     (one per horizontal group), rejected runs are cleared to their end,
+ *     yellow->green transitions become feet, yellow cells go to bit-sliced
+ *     column counters; once every column has its border (B2) carpet rows
+ *     (only green and other, no yellow above) are a tight loop that only
+ *     moves the state down.  B also records where each border's first
+ *     green run ends (gend), for the bump re-runs.
  *  A' then per column, scalar and short: extend the border up over a thin
  *     line with carpet (or a post) above it; reject green clutter beyond the
  *     carpet (bumps above the border of the flat stretch next to them,
@@ -35,27 +40,34 @@
  * Invariant: map cells above a column's border are OTHER except yellow
  *  kept by C; below it they hold the colour class (white only after its
  *  contrast check passed or the per-column check cap was reached).
- * Memory: fl_scan_t only (85 824 bytes at the default capacities);
+ * Memory: fl_scan_t only (88 544 bytes at the default capacities);
  *  the stack holds a few words and one 8-entry window.
  * Cost (x86-64 host, gcc 12 -O2, callgrind, tools/callgrind.sh, UvA 2013
- *  320x240 frame): full resolution YUYV 783k instructions per frame (10.2
- *  per pixel), RGB 1.18M (15.4); default 2 x 2 grid YUYV 298k (3.9 per
- *  image pixel, 15.5 per grid cell), RGB 401k (5.2).  Where a grid cell's
- *  cost goes (default YUYV, per frame): the lookups of phase B ~142k (9
- *  instructions per classified cell: at col_step 2 every sample is the
- *  even pixel of its own YUYV pair, so the chroma lookup is not shared as
- *  at full resolution, where a pair costs 12 = 6 per pixel; the band
- *  starts at the earliest possible run start of its 32 columns, ~15.6k
- *  cells classified for ~13k below the border; an RGB cell costs 12: three
- *  byte loads, R - G and B - G, two bucket loads, the cell, the pattern),
- *  the candidate rows of A ~11k, the bit logic of B ~56k (~115 per 32-cell
- *  row word), and the per-column scalar phases ~90k, which do not shrink
- *  with the grid: A' extend ~20k and bumps ~17k, C ~7k, D ~13k (exact HSV
- *  of ~84 samples), border refinement, white checks and col_init/col_class
- *  of the scalar walks the rest.  At full resolution the bump re-runs walk
- *  longer columns (~120k of the YUYV frame).  Worst case bounded by cells
- *  + per-column caps (noise frames in bench_scan: full RGB 1.16M, YUYV
- *  694k; default RGB 365k, YUYV 289k).
+ *  320x240 frame): full resolution YUYV 687k instructions per frame (8.9
+ *  per pixel), RGB 1.08M (14.1); default 2 x 2 grid YUYV 280k (3.6 per
+ *  image pixel, 14.6 per grid cell), RGB 361k (4.7).  Where the default
+ *  YUYV frame's instructions go: the lookups of phase B ~145k (9 per
+ *  classified cell: at col_step 2 every sample is the even pixel of its
+ *  own YUYV pair, so the chroma lookup is not shared as at full
+ *  resolution, where a pair costs 12 = 6 per pixel; the band starts at the
+ *  earliest possible run start of its 32 columns, ~15.2k cells classified
+ *  for ~13k below the border; an RGB cell costs 12: three byte loads, R -
+ *  G and B - G, two bucket loads, the cell, the pattern, the accumulate),
+ *  the candidate rows of A ~11k, the row logic of B ~43k (white checks and
+ *  border refinement included), and the per-column scalar phases ~81k,
+ *  which do not shrink with the grid: bumps ~17k (the outer loops; the
+ *  re-runs' walks are short here), A' extend ~15k, D ~12k (exact HSV of
+ *  ~84 samples), C, repair and the col_init/col_class of the scalar walks
+ *  the rest.  Full resolution YUYV: lookups ~355k, A ~22k, B's row logic
+ *  ~82k, bumps ~85k (~300 re-runs per frame that change nothing: the walk
+ *  down the green is O(1) from gend, the walk through the gap below it is
+ *  not), the other per-column phases ~143k.  The 5 instructions per pixel
+ *  of issue 4 are out of reach for this design: the lookups alone are 6
+ *  per pixel (YUYV) and 12 (RGB), and a cheaper classification would need
+ *  a bigger table than the 256 KiB budget (an RGB table indexed by raw
+ *  R - G and B - G is 522 KB).  Worst case bounded by cells + per-column
+ *  caps (noise frames in bench_scan: full RGB 1.15M, YUYV 692k; default
+ *  RGB 363k, YUYV 291k).
  */
 #include "fieldloc/scan.h"
 
