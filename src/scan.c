@@ -749,73 +749,71 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
         s->map[j][w] = 0;
     mp = &s->map[0][w] + (size_t)j_lo * FL_SCAN_WORDS;
     j = j_lo;
-    /* B1: until every column of the band has its border */
     for (nplanes = 1; (1 << nplanes) <= ns; nplanes++)
         ;
     band_rows(s, f, j_lo, jm, w);
     band_rows(s, f, jm + 1, rows, w);
-    {
-        for (; j < rows && found != all; j++, mp += FL_SCAN_WORDS) {
-            uint64_t c = *mp, lo, hi, g, wh, y, starts, rej, cand;
-            /* bit-sliced run counters: +1 where green, 0 elsewhere */
-            uint64_t gr, x, eq;
-            lo = c & EVEN;
-            hi = (c >> 1) & EVEN;
-            gr = lo & ~hi;
+    /* B1: until every column of the band has its border */
+    for (; j < rows && found != all; j++, mp += FL_SCAN_WORDS) {
+        uint64_t c = *mp, lo, hi, g, wh, y, starts, rej, cand;
+        /* bit-sliced run counters: +1 where green, 0 elsewhere */
+        uint64_t gr, x, eq;
+        lo = c & EVEN;
+        hi = (c >> 1) & EVEN;
+        gr = lo & ~hi;
+        x = gr & ~found;
+        /* A counter never exceeds ns (a column that reaches ns is found
+         * and leaves the count), so it equals ns exactly when it has
+         * every bit of ns set: eq = x & the planes of ns's set bits
+         * (m[p] all ones for the others). */
+        if (nplanes <= 4) {   /* the common ns 1..15: in registers */
+            uint64_t t = c0 & x, t2;
+            c0 = ~c0 & x;
+            t2 = c1 & t;
+            c1 = (c1 ^ t) & x;
+            t = c2 & t2;
+            c2 = (c2 ^ t2) & x;
+            c3 = (c3 ^ t) & x;
+            eq = x & (c0 | m0) & (c1 | m1) & (c2 | m2) & (c3 | m3);
+        } else {
+            for (p = 0; p < nplanes; p++) {
+                uint64_t t = cnt[p] & x;
+                cnt[p] ^= x;
+                x = t;
+            }
             x = gr & ~found;
-            /* A counter never exceeds ns (a column that reaches ns is found
-             * and leaves the count), so it equals ns exactly when it has
-             * every bit of ns set: eq = x & the planes of ns's set bits
-             * (m[p] all ones for the others). */
-            if (nplanes <= 4) {   /* the common ns 1..15: in registers */
-                uint64_t t = c0 & x, t2;
-                c0 = ~c0 & x;
-                t2 = c1 & t;
-                c1 = (c1 ^ t) & x;
-                t = c2 & t2;
-                c2 = (c2 ^ t2) & x;
-                c3 = (c3 ^ t) & x;
-                eq = x & (c0 | m0) & (c1 | m1) & (c2 | m2) & (c3 | m3);
-            } else {
-                for (p = 0; p < nplanes; p++) {
-                    uint64_t t = cnt[p] & x;
-                    cnt[p] ^= x;
-                    x = t;
-                }
-                x = gr & ~found;
-                eq = x;
-                for (p = 0; p < nplanes; p++) {
-                    cnt[p] &= x;
-                    eq &= cnt[p] | m[p];
-                }
+            eq = x;
+            for (p = 0; p < nplanes; p++) {
+                cnt[p] &= x;
+                eq &= cnt[p] | m[p];
             }
-            if (eq != 0) {
-                uint64_t e = eq;
-                int32_t jj;
-                found |= eq;
-                ing |= eq;
-                for (jj = j - ns + 1; jj < j; jj++)  /* the run was masked: green */
-                    s->map[jj][w] |= eq;
-                while (e != 0) {
-                    int32_t b = lowest_bit(e);
-                    e &= e - 1;
-                    border_found(s, f, 32 * w + 31 - (b >> 1), j, ns);
-                }
-            } else if (found == 0) {
-                /* no border in the band yet: the row is all masked and the
-                 * state (g, y, w of the rows above) is still all 0 */
-                *mp = 0;
-                continue;
-            }
-            if ((ing & ~gr) != 0) {   /* (ing is within found) */
-                gend_record(s, w, j, ing & ~gr);
-                ing &= gr;
-            }
-            c &= found | (found << 1);
-            lo &= found;
-            hi &= found;
-            FL_ROW_TAIL
         }
+        if (eq != 0) {
+            uint64_t e = eq;
+            int32_t jj;
+            found |= eq;
+            ing |= eq;
+            for (jj = j - ns + 1; jj < j; jj++)  /* the run was masked: green */
+                s->map[jj][w] |= eq;
+            while (e != 0) {
+                int32_t b = lowest_bit(e);
+                e &= e - 1;
+                border_found(s, f, 32 * w + 31 - (b >> 1), j, ns);
+            }
+        } else if (found == 0) {
+            /* no border in the band yet: the row is all masked and the
+             * state (g, y, w of the rows above) is still all 0 */
+            *mp = 0;
+            continue;
+        }
+        if ((ing & ~gr) != 0) {   /* (ing is within found) */
+            gend_record(s, w, j, ing & ~gr);
+            ing &= gr;
+        }
+        c &= found | (found << 1);
+        lo &= found;
+        hi &= found;
+        FL_ROW_TAIL
     }
     /* B2: every column has its border: no counters, no masking (a partial
      * band's cells beyond its last column are 0 from word_generic) */
