@@ -11,14 +11,19 @@
  *     (cost ~1/ns of a classification per row above the band's highest
  *     border).
  *  B  bands of 32 grid columns, top-down from the band's earliest possible
- *     run start: each row classified once into 32 2-bit codes (table
- *     lookups; YUYV pixel pairs share one chroma lookup), bit-sliced run
- *     counters find the first run of ns green samples per column (the
- *     border; refined to the pixel between grid rows), the cells below the
- *     border are stored, white run starts (W & ~W_above) get the contrast
- *     check (one per horizontal group), rejected runs are cleared to their
- *     end, yellow->green transitions become feet, yellow cells go to
- *     bit-sliced column counters.
+ *     run start: first every row of the band is classified once into 32
+ *     2-bit codes, written to the map (band_rows: table lookups; YUYV pixel
+ *     pairs share one chroma lookup), then the row logic reads the words
+ *     back: bit-sliced run counters find the first run of ns green samples
+ *     per column (the border; refined to the pixel between grid rows) and
+ *     the cells above it are masked (B1, while a column of the band has no
+ *     border yet); white run starts (W & ~W_above) get the contrast check
+ *     (one per horizontal group), rejected runs are cleared to their end,
+ *     yellow->green transitions become feet, yellow cells go to bit-sliced
+ *     column counters; once every column has its border (B2) carpet rows
+ *     (only green and other, no yellow above) are a tight loop that only
+ *     moves the state down.  B also records where each border's first
+ *     green run ends (gend), for the bump re-runs.
  *  A' then per column, scalar and short: extend the border up over a thin
  *     line with carpet (or a post) above it; reject green clutter beyond the
  *     carpet (bumps above the border of the flat stretch next to them,
@@ -35,33 +40,41 @@
  * Invariant: map cells above a column's border are OTHER except yellow
  *  kept by C; below it they hold the colour class (white only after its
  *  contrast check passed or the per-column check cap was reached).
- * Memory: fl_scan_t only (85 824 bytes at the default capacities);
+ * Memory: fl_scan_t only (88 544 bytes at the default capacities);
  *  the stack holds a few words and one 8-entry window.
  * Cost (x86-64 host, gcc 12 -O2, callgrind, tools/callgrind.sh, UvA 2013
- *  320x240 frame): full resolution YUYV 783k instructions per frame (10.2
- *  per pixel), RGB 1.18M (15.4); default 2 x 2 grid YUYV 298k (3.9 per
- *  image pixel, 15.5 per grid cell), RGB 401k (5.2).  Where a grid cell's
- *  cost goes (default YUYV, per frame): the lookups of phase B ~142k (9
- *  instructions per classified cell: at col_step 2 every sample is the
- *  even pixel of its own YUYV pair, so the chroma lookup is not shared as
- *  at full resolution, where a pair costs 12 = 6 per pixel; the band
- *  starts at the earliest possible run start of its 32 columns, ~15.6k
- *  cells classified for ~13k below the border; an RGB cell costs 12: three
- *  byte loads, R - G and B - G, two bucket loads, the cell, the pattern),
- *  the candidate rows of A ~11k, the bit logic of B ~56k (~115 per 32-cell
- *  row word), and the per-column scalar phases ~90k, which do not shrink
- *  with the grid: A' extend ~20k and bumps ~17k, C ~7k, D ~13k (exact HSV
- *  of ~84 samples), border refinement, white checks and col_init/col_class
- *  of the scalar walks the rest.  At full resolution the bump re-runs walk
- *  longer columns (~120k of the YUYV frame).  Worst case bounded by cells
- *  + per-column caps (noise frames in bench_scan: full RGB 1.16M, YUYV
- *  694k; default RGB 365k, YUYV 289k).
+ *  320x240 frame): full resolution YUYV 687k instructions per frame (8.9
+ *  per pixel), RGB 1.08M (14.1); default 2 x 2 grid YUYV 280k (3.6 per
+ *  image pixel, 14.6 per grid cell), RGB 361k (4.7).  Where the default
+ *  YUYV frame's instructions go: the lookups of phase B ~145k (9 per
+ *  classified cell: at col_step 2 every sample is the even pixel of its
+ *  own YUYV pair, so the chroma lookup is not shared as at full
+ *  resolution, where a pair costs 12 = 6 per pixel; the band starts at the
+ *  earliest possible run start of its 32 columns, ~15.2k cells classified
+ *  for ~13k below the border; an RGB cell costs 12: three byte loads, R -
+ *  G and B - G, two bucket loads, the cell, the pattern, the accumulate),
+ *  the candidate rows of A ~11k, the row logic of B ~43k (white checks and
+ *  border refinement included), and the per-column scalar phases ~81k,
+ *  which do not shrink with the grid: bumps ~17k (the outer loops; the
+ *  re-runs' walks are short here), A' extend ~15k, D ~12k (exact HSV of
+ *  ~84 samples), C, repair and the col_init/col_class of the scalar walks
+ *  the rest.  Full resolution YUYV: lookups ~355k, A ~22k, B's row logic
+ *  ~82k, bumps ~85k (~300 re-runs per frame that change nothing: the walk
+ *  down the green is O(1) from gend, the walk through the gap below it is
+ *  not), the other per-column phases ~143k.  The 5 instructions per pixel
+ *  of issue 4 are out of reach for this design: the lookups alone are 6
+ *  per pixel (YUYV) and 12 (RGB), and a cheaper classification would need
+ *  a bigger table than the 256 KiB budget (an RGB table indexed by raw
+ *  R - G and B - G is 522 KB).  Worst case bounded by cells + per-column
+ *  caps (noise frames in bench_scan: full RGB 1.15M, YUYV 692k; default
+ *  RGB 363k, YUYV 291k).
  */
 #include "fieldloc/scan.h"
 
 #include <string.h>
 
 #define EVEN 0x5555555555555555ULL
+#define ODD 0xAAAAAAAAAAAAAAAAULL
 
 /* Kept out of its caller (gcc's inlining limits are then spent on the
  * caller's hot loops); no effect on results. */
@@ -111,6 +124,11 @@ typedef struct {
     const uint8_t *p0, *p1, *p2;
     size_t st0, st1, st2;
     int32_t cs, rs;
+    /* col_init's layout, per format: pixel u's Y (R) at py + ky u, its
+     * chroma at pcb / pcr + kc (u >> csh); rows scb / scr apart */
+    const uint8_t *py, *pcb, *pcr;
+    size_t ky, kc, scb, scr;
+    int32_t csh;
 } frame_t;
 
 /* One image column as three byte pointers (Y, Cb, Cr of pixel (u, 0); for
@@ -123,22 +141,14 @@ typedef struct {
 
 static inline void col_init(col_t *c, const frame_t *f, int32_t u)
 {
-    size_t uu = (size_t)u;
+    size_t uu = (size_t)u, ch = uu >> f->csh;
     c->rgb = f->fmt == FL_FMT_RGB888;
     c->sy = f->st0;
-    c->scb = f->fmt == FL_FMT_YCBCR_PLANAR ? f->st1 : f->st0;
-    c->scr = f->fmt == FL_FMT_YCBCR_PLANAR ? f->st2 : f->st0;
-    if (f->fmt == FL_FMT_RGB888) {
-        c->y = c->cb = c->cr = f->p0 + 3 * uu;
-    } else if (f->fmt == FL_FMT_YUYV422) {
-        c->y = f->p0 + 2 * uu;
-        c->cb = f->p0 + 4 * (uu >> 1) + 1;  /* the pixel pair's chroma */
-        c->cr = c->cb + 2;
-    } else {
-        c->y = f->p0 + uu;
-        c->cb = f->p1 + uu;
-        c->cr = f->p2 + uu;
-    }
+    c->scb = f->scb;
+    c->scr = f->scr;
+    c->y = f->py + f->ky * uu;
+    c->cb = f->pcb + f->kc * ch;
+    c->cr = f->pcr + f->kc * ch;
 }
 
 /* Class of the column's pixel in row v. */
@@ -277,14 +287,14 @@ static uint64_t word_generic(const frame_t *f, int32_t v, int32_t i0, int32_t n)
     return acc << (2 * (32 - n));
 }
 
-/* Row j of band w (n cells, u0 = its first pixel column; row points at
- * pixel row j * rs of plane 0) through the word function of its kind: the
- * candidate rows of phase A (scan_band has this dispatch written out). */
+/* Row j of band w (n cells; row points at pixel row j * rs of plane 0)
+ * through the word function of its kind: the candidate rows of phase A
+ * and the rarer kinds of band_rows (six arguments: all in registers). */
 static uint64_t band_word(const frame_t *f, int32_t kind, const uint8_t *row,
-                          size_t u0, int32_t j, int32_t w, int32_t n)
+                          int32_t j, int32_t w, int32_t n)
 {
     const fl_color_table_t *ct = f->ct;
-    size_t cs = (size_t)f->cs;
+    size_t cs = (size_t)f->cs, u0 = (size_t)w * 32 * cs;
     /* the common kinds first: a predicted compare is cheaper than the
      * jump table */
     if (kind == 4)
@@ -352,8 +362,9 @@ static void add_foot(fl_scan_t *s, int32_t i, int32_t u, int32_t v)
  * word; g1, g2: green of the two rows above in this word (words left of it
  * and this word are final in the map for row j).  True: keep. */
 static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
-                       int32_t k, uint64_t g1, uint64_t g2)
+                       uint64_t g1, uint64_t g2)
 {
+    int32_t k = i & 31;
     int32_t v = j * f->rs, lw, lg = -1, d;
     col_t col;
     if (s->col_checks[i] >= s->params.checks_per_column) {
@@ -430,6 +441,7 @@ static void border_found(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
     }
     s->border_v[i] = (int16_t)v;
     s->first_row[i] = (int16_t)st;
+    s->gend_row[i] = (int16_t)st;
     s->n_border++;
 }
 
@@ -503,9 +515,10 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
         }
         if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1 &&
             green_near_top(s, f, i)) {
-            /* a line cut by the top of an image that is all ground */
+            /* a line cut by the top of an image that is all ground (the
+             * walk found every sample above the border white) */
             for (j = 0; j < jb; j++)
-                s->map[j][i >> 5] |= (uint64_t)col_class(&col, ct, j * rs) << shift;
+                s->map[j][i >> 5] |= (uint64_t)FL_CLASS_WHITE << shift;
             s->first_row[i] = 0;
             s->border_v[i] = 0;
             return;
@@ -549,8 +562,11 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
         } else {
             return;
         }
+        /* the walks classified these samples: green up to jw, white
+         * below it */
         for (j = jg; j < jb; j++)
-            s->map[j][i >> 5] |= (uint64_t)col_class(&col, ct, j * rs) << shift;
+            s->map[j][i >> 5] |= (uint64_t)(j <= jw ? FL_CLASS_GREEN : FL_CLASS_WHITE)
+                                 << shift;
         jb = jg;
         s->first_row[i] = (int16_t)jb;
         s->border_v[i] = (int16_t)(jb * rs);
@@ -572,172 +588,280 @@ static int32_t band_kind(const frame_t *f, int32_t n)
 }
 
 /* Phase A for band w: the first of the rows j0 + ns - 1, j0 + 2 ns - 1,
- * ... with a green cell.  Every run of ns green samples below j0 contains
- * one of these rows, so no run in the band starts before that row - (ns -
- * 1): the band's first row (j0 at the least). */
-static FL_NOINLINE int32_t band_start(const fl_scan_t *s, const frame_t *f,
+ * ... with a green cell (rows: none; its word, as classified, is left in
+ * the map for band_rows).  Every run of ns green samples below j0
+ * contains one of these rows, so no run in the band starts before that
+ * row - (ns - 1): the band's first row is max(j0, that). */
+static FL_NOINLINE int32_t band_start(fl_scan_t *s, const frame_t *f,
                                       int32_t w, int32_t j0, int32_t ns)
 {
     int32_t n = s->cols - 32 * w > 32 ? 32 : s->cols - 32 * w;
-    int32_t kind = band_kind(f, n), j, m = s->rows;
-    size_t u0 = (size_t)w * 32 * (size_t)f->cs, step = (size_t)f->rs * f->st0;
+    int32_t kind = band_kind(f, n), j;
+    size_t step = (size_t)f->rs * f->st0;
     for (j = j0 + ns - 1; j < s->rows; j += ns) {
-        uint64_t c = band_word(f, kind, f->p0 + (size_t)j * step, u0, j, w, n);
+        uint64_t c = band_word(f, kind, f->p0 + (size_t)j * step, j, w, n);
         if ((c & ~(c >> 1) & EVEN) != 0) {
-            m = j;
-            break;
+            s->map[j][w] = c;
+            return j;
         }
     }
-    return m - ns + 1 > j0 ? m - ns + 1 : j0;
+    return s->rows;
 }
 
-/* Band w (32 grid columns): rows from j_lo down, each row classified once
- * (32 cells), the run detector for columns still without a border, then
- * the bit logic on the cells below the border.  State lives in locals. */
-static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
-                                  int32_t j_lo, int32_t ns, int32_t nplanes)
+/* Rows j .. jend - 1 of band w classified into the map, unmasked (phase
+ * B then reads them back; the common kinds first: a predicted compare is
+ * cheaper than the jump table). */
+static FL_NOINLINE void band_rows(fl_scan_t *s, const frame_t *f, int32_t j,
+                                  int32_t jend, int32_t w)
 {
     const fl_color_table_t *ct = f->ct;
-    int32_t n = s->cols - 32 * w, j, p;
-    uint64_t found = 0, g1 = 0, g2 = 0, y1 = 0, y2 = 0, y3 = 0, wprev = 0, wrej = 0;
-    uint64_t cnt[8] = {0, 0, 0, 0, 0, 0, 0, 0}, m[8], all;
-    uint64_t c0 = 0, c1 = 0, c2 = 0, c3 = 0;
-    uint64_t *ycount = s->ycount[w];
-    size_t cs = (size_t)f->cs, u0 = (size_t)w * 32 * cs, step = (size_t)f->rs * f->st0;
+    int32_t n = s->cols - 32 * w > 32 ? 32 : s->cols - 32 * w, kind = band_kind(f, n);
+    size_t step = (size_t)f->rs * f->st0, u0 = (size_t)w * 32 * (size_t)f->cs;
     const uint8_t *row;
-    int32_t kind;
+    uint64_t *mp, *end;
+    if (j >= jend)
+        return;
+    row = f->p0 + (size_t)j * step;
+    mp = &s->map[j][w];
+    end = mp + (size_t)(jend - j) * FL_SCAN_WORDS;
+    if (kind == 4) {
+        for (; mp < end; mp += FL_SCAN_WORDS, row += step)
+            *mp = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
+    } else if (kind == 1) {
+        for (; mp < end; mp += FL_SCAN_WORDS, row += step)
+            *mp = word_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern);
+    } else if (kind == 5) {
+        for (; mp < end; mp += FL_SCAN_WORDS, row += step)
+            *mp = word_rgb_1(row + 3 * u0, 3, ct);
+    } else if (kind == 6) {
+        for (; mp < end; mp += FL_SCAN_WORDS, row += step)
+            *mp = word_rgb_2(row + 3 * u0, 6, ct);
+    } else {
+        for (; mp < end; mp += FL_SCAN_WORDS, row += step, j++)
+            *mp = band_word(f, kind, row, j, w, n);
+    }
+}
+
+
+/* Columns (bits of leave) of band w whose first green run below the
+ * border ends at grid row j: s->gend (what rerun_column's first walk
+ * would find). */
+static void gend_record(fl_scan_t *s, int32_t w, int32_t j, uint64_t leave)
+{
+    do {
+        int32_t b = lowest_bit(leave);
+        leave &= leave - 1;
+        s->gend[32 * w + 31 - (b >> 1)] = (int16_t)j;
+    } while (leave != 0);
+}
+
+/* The rest of a phase B row once c, lo, hi hold only the cells below the
+ * border (shared by both loops of scan_band): carpet rows (only green and
+ * other, no yellow in the two rows above) take the fast path; else white
+ * run starts get their contrast check, yellow->green transitions become
+ * feet and yellow cells are counted. */
+#define FL_ROW_TAIL                                                           \
+    if ((hi | y1 | y2) == 0) {                                                \
+        /* only green and other (the carpet below the border): no white      \
+         * run, no yellow, no foot; the row's state moves down (y1, y2 are   \
+         * 0 already) */                                                      \
+        *mp = c;                                                              \
+        g2 = g1;                                                              \
+        g1 = lo;                                                              \
+        y3 = 0;                                                               \
+        wprev = 0;                                                            \
+        wrej = 0;                                                             \
+        continue;                                                             \
+    }                                                                         \
+    g = lo & ~hi;                                                             \
+    wh = hi & ~lo;                                                            \
+    y = lo & hi;                                                              \
+    *mp = c;                                                                  \
+    rej = wrej & wh;                                                          \
+    starts = wh & ~wprev;                                                     \
+    if (starts != 0) {                                                        \
+        int32_t last = -4;                                                    \
+        bool keep = true;                                                     \
+        while (starts != 0) {   /* right to left; one check per group */      \
+            int32_t b = lowest_bit(starts), k = 31 - (b >> 1);                \
+            starts &= starts - 1;                                             \
+            if (b != last + 2)                                                \
+                keep = white_keep(s, f, 32 * w + k, j, g1, g2);               \
+            last = b;                                                         \
+            if (!keep) {                                                      \
+                rej |= 1ULL << b;                                             \
+                s->white_rejected++;                                          \
+            }                                                                 \
+        }                                                                     \
+    }                                                                         \
+    if (rej != 0)                                                             \
+        *mp = c & ~(rej | (rej << 1));                                        \
+    wrej = rej;                                                               \
+    wprev = wh;                                                               \
+    /* two yellow samples right above, or above one non-green sample */      \
+    cand = g & ~g1 & ((y1 & y2) | (y2 & y3));                                 \
+    while (cand != 0) {                                                       \
+        int32_t b = lowest_bit(cand), k = 31 - (b >> 1);                      \
+        cand &= cand - 1;                                                     \
+        add_foot(s, 32 * w + k, (32 * w + k) * f->cs, j * f->rs);             \
+    }                                                                         \
+    if (y != 0) {                                                             \
+        count_yellow(ycount, y);                                              \
+        s->yellow_rows[j] = (uint16_t)(s->yellow_rows[j] + popcount64(y));    \
+    }                                                                         \
+    g2 = g1;                                                                  \
+    g1 = g;                                                                   \
+    y3 = y2;                                                                  \
+    y2 = y1;                                                                  \
+    y1 = y;
+
+/* Band w (32 grid columns): rows from j_lo down, each row classified once
+ * (32 cells, all rows first, into the map: band_rows), then per row the run
+ * detector for columns still without a border and the bit logic on the
+ * cells below the border, each row's map word rewritten masked.  State
+ * lives in locals.  Two loops: B1 while some column of the band has no
+ * border yet (run counters, cells masked to the found columns), B2 once
+ * all have one (no counters, no masking: the cells beyond a partial band's
+ * last column are 0 from word_generic; carpet rows, the common case, only
+ * move the state down: their map word is final as classified). */
+static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
+                                  int32_t j0, int32_t jm, int32_t ns)
+{
+    /* jm: phase A's row (band_start; its word is in the map already) */
+    int32_t j_lo = jm - ns + 1 > j0 ? jm - ns + 1 : j0, nplanes;
+    int32_t n = s->cols - 32 * w, rows = s->rows, j, p;
+    uint64_t found = 0, g1 = 0, g2 = 0, y1 = 0, y2 = 0, y3 = 0, wprev = 0, wrej = 0;
+    uint64_t ing = 0;   /* found, still in the border's green run */
+    uint64_t cnt[8] = {0, 0, 0, 0, 0, 0, 0, 0}, m[8], all;
+    uint64_t c0 = 0, c1 = 0, c2 = 0, c3 = 0, m0, m1, m2, m3;
+    uint64_t *ycount = s->ycount[w], *mp;
     if (n > 32)
         n = 32;
     all = n == 32 ? EVEN : EVEN & ~((1ULL << (64 - 2 * n)) - 1);
-    kind = band_kind(f, n);
     for (p = 0; p < 8; p++)
         m[p] = (ns >> p) & 1 ? 0 : ~0ULL;
+    m0 = m[0];
+    m1 = m[1];
+    m2 = m[2];
+    m3 = m[3];
     memset(ycount, 0, sizeof s->ycount[w]);
-    for (j = 0; j < j_lo && j < s->rows; j++)
+    for (j = 0; j < j_lo && j < rows; j++)
         s->map[j][w] = 0;
-    row = f->p0 + (size_t)j_lo * step;
-    for (j = j_lo; j < s->rows; j++, row += step) {
-        uint64_t c, lo, hi, g, wh, y, starts, rej, cand;
-        /* band_word's dispatch, written out (the common kinds first: a
-         * predicted compare is cheaper than the jump table) */
-        if (kind == 4)
-            c = word_yuyv_2(row + 2 * u0, 4, ct->chroma, ct->pattern);
-        else if (kind == 1)
-            c = word_yuyv_pairs(row + 2 * u0, ct->chroma, ct->pattern);
-        else switch (kind) {
-        case 2: c = word_yuyv_even(row + 2 * u0, 2 * cs, ct->chroma, ct->pattern); break;
-        case 3: c = word_rgb(row + 3 * u0, 3 * cs, ct); break;
-        case 5: c = word_rgb_1(row + 3 * u0, 3, ct); break;
-        case 6: c = word_rgb_2(row + 3 * u0, 6, ct); break;
-        default: c = word_generic(f, j * f->rs, 32 * w, n); break;
-        }
+    mp = &s->map[0][w] + (size_t)j_lo * FL_SCAN_WORDS;
+    j = j_lo;
+    for (nplanes = 1; (1 << nplanes) <= ns; nplanes++)
+        ;
+    band_rows(s, f, j_lo, jm, w);
+    band_rows(s, f, jm + 1, rows, w);
+    /* B1: until every column of the band has its border */
+    for (; j < rows && found != all; j++, mp += FL_SCAN_WORDS) {
+        uint64_t c = *mp, lo, hi, g, wh, y, starts, rej, cand;
+        /* bit-sliced run counters: +1 where green, 0 elsewhere */
+        uint64_t gr, x, eq;
         lo = c & EVEN;
         hi = (c >> 1) & EVEN;
-        if (found != all) {
-            /* bit-sliced run counters: +1 where green, 0 elsewhere */
-            uint64_t gr = lo & ~hi, x = gr & ~found, eq;
-            /* A counter never exceeds ns (a column that reaches ns is
-             * found and leaves the count), so it equals ns exactly when
-             * it has every bit of ns set: eq = x & the planes of ns's
-             * set bits (m[p] all ones for the others). */
-            if (nplanes <= 4) {   /* the common ns 1..15: in registers */
-                uint64_t t = c0 & x, t2;
-                c0 = ~c0 & x;
-                t2 = c1 & t;
-                c1 = (c1 ^ t) & x;
-                t = c2 & t2;
-                c2 = (c2 ^ t2) & x;
-                c3 = (c3 ^ t) & x;
-                eq = x & (c0 | m[0]) & (c1 | m[1]) & (c2 | m[2]) & (c3 | m[3]);
-            } else {
-                for (p = 0; p < nplanes; p++) {
-                    uint64_t t = cnt[p] & x;
-                    cnt[p] ^= x;
-                    x = t;
-                }
-                x = gr & ~found;
-                eq = x;
-                for (p = 0; p < nplanes; p++) {
-                    cnt[p] &= x;
-                    eq &= cnt[p] | m[p];
-                }
+        gr = lo & ~hi;
+        x = gr & ~found;
+        /* A counter never exceeds ns (a column that reaches ns is found
+         * and leaves the count), so it equals ns exactly when it has
+         * every bit of ns set: eq = x & the planes of ns's set bits
+         * (m[p] all ones for the others). */
+        if (nplanes <= 4) {   /* the common ns 1..15: in registers */
+            uint64_t t = c0 & x, t2;
+            c0 = ~c0 & x;
+            t2 = c1 & t;
+            c1 = (c1 ^ t) & x;
+            t = c2 & t2;
+            c2 = (c2 ^ t2) & x;
+            c3 = (c3 ^ t) & x;
+            eq = x & (c0 | m0) & (c1 | m1) & (c2 | m2) & (c3 | m3);
+        } else {
+            for (p = 0; p < nplanes; p++) {
+                uint64_t t = cnt[p] & x;
+                cnt[p] ^= x;
+                x = t;
             }
-            if (eq != 0) {
-                uint64_t e = eq;
-                int32_t jj;
-                found |= eq;
-                for (jj = j - ns + 1; jj < j; jj++)  /* the run was masked: green */
-                    s->map[jj][w] |= eq;
-                while (e != 0) {
-                    int32_t b = lowest_bit(e);
-                    e &= e - 1;
-                    border_found(s, f, 32 * w + 31 - (b >> 1), j, ns);
-                }
-            } else if (found == 0) {
-                /* no border in the band yet: the row is all masked and
-                 * the state (g, y, w of the rows above) is still all 0 */
-                s->map[j][w] = 0;
-                continue;
+            x = gr & ~found;
+            eq = x;
+            for (p = 0; p < nplanes; p++) {
+                cnt[p] &= x;
+                eq &= cnt[p] | m[p];
             }
+        }
+        if (eq != 0) {
+            uint64_t e = eq;
+            int32_t jj;
+            found |= eq;
+            ing |= eq;
+            for (jj = j - ns + 1; jj < j; jj++)  /* the run was masked: green */
+                s->map[jj][w] |= eq;
+            while (e != 0) {
+                int32_t b = lowest_bit(e);
+                e &= e - 1;
+                border_found(s, f, 32 * w + 31 - (b >> 1), j, ns);
+            }
+        } else if (found == 0) {
+            /* no border in the band yet: the row is all masked and the
+             * state (g, y, w of the rows above) is still all 0 */
+            *mp = 0;
+            continue;
+        }
+        if ((ing & ~gr) != 0) {   /* (ing is within found) */
+            gend_record(s, w, j, ing & ~gr);
+            ing &= gr;
         }
         c &= found | (found << 1);
         lo &= found;
         hi &= found;
-        if ((hi | y1 | y2) == 0) {
-            /* only green and other (the carpet below the border): no white
-             * run, no yellow, no foot; the row's state moves down */
-            s->map[j][w] = c;
-            g2 = g1;
-            g1 = lo;
+        FL_ROW_TAIL
+    }
+    /* B2: every column has its border: no counters, no masking (a partial
+     * band's cells beyond its last column are 0 from word_generic) */
+    while (j < rows) {
+        uint64_t c = *mp, lo, hi, g, wh, y, starts, rej, cand;
+        if ((c & ODD) == 0 && (y1 | y2) == 0) {
+            /* carpet rows (only green and other, no yellow in the two rows
+             * above): the map holds them already; the state moves down */
+            uint64_t *mq = mp, acc = c;
+            int32_t j1 = j;
+            do {
+                acc &= c;
+                mq += FL_SCAN_WORDS;
+                j++;
+            } while (j < rows && ((c = *mq) & ODD) == 0);
+            /* green of the last two rows (g1 when only one) */
+            g2 = j - j1 >= 2 ? mq[-2 * FL_SCAN_WORDS] & EVEN : g1;
+            g1 = mq[-FL_SCAN_WORDS] & EVEN;
+            if ((ing & ~acc) != 0) {
+                /* columns that met other in these rows: find where */
+                uint64_t leave = ing & ~acc;
+                ing &= acc;
+                for (; leave != 0; mp += FL_SCAN_WORDS, j1++) {
+                    if ((leave & ~*mp) != 0) {
+                        gend_record(s, w, j1, leave & ~*mp);
+                        leave &= *mp;
+                    }
+                }
+            }
+            mp = mq;
             y3 = 0;
-            y2 = 0;
-            y1 = 0;
             wprev = 0;
             wrej = 0;
             continue;
         }
-        g = lo & ~hi;
-        wh = hi & ~lo;
-        y = lo & hi;
-        s->map[j][w] = c;
-        rej = wrej & wh;
-        starts = wh & ~wprev;
-        if (starts != 0) {
-            int32_t last = -4;
-            bool keep = true;
-            while (starts != 0) {   /* right to left; one check per group */
-                int32_t b = lowest_bit(starts), k = 31 - (b >> 1);
-                starts &= starts - 1;
-                if (b != last + 2)
-                    keep = white_keep(s, f, 32 * w + k, j, k, g1, g2);
-                last = b;
-                if (!keep) {
-                    rej |= 1ULL << b;
-                    s->white_rejected++;
-                }
-            }
+        lo = c & EVEN;
+        hi = (c >> 1) & EVEN;
+        if ((ing & ~(lo & ~hi)) != 0) {
+            gend_record(s, w, j, ing & ~(lo & ~hi));
+            ing &= lo & ~hi;
         }
-        if (rej != 0)
-            s->map[j][w] = c & ~(rej | (rej << 1));
-        wrej = rej;
-        wprev = wh;
-        /* two yellow samples right above, or above one non-green sample */
-        cand = g & ~g1 & ((y1 & y2) | (y2 & y3));
-        while (cand != 0) {
-            int32_t b = lowest_bit(cand), k = 31 - (b >> 1);
-            cand &= cand - 1;
-            add_foot(s, 32 * w + k, (32 * w + k) * f->cs, j * f->rs);
-        }
-        if (y != 0) {
-            count_yellow(ycount, y);
-            s->yellow_rows[j] = (uint16_t)(s->yellow_rows[j] + popcount64(y));
-        }
-        g2 = g1;
-        g1 = g;
-        y3 = y2;
-        y2 = y1;
-        y1 = y;
+        do {
+            FL_ROW_TAIL
+        } while (0);
+        j++;
+        mp += FL_SCAN_WORDS;
     }
+    s->gend_none[w] = ing;   /* green down to the last row */
     for (p = 0; p < FL_SCAN_COUNT_BITS; p++) {   /* bit-sliced counts -> columns */
         uint64_t x = ycount[p];
         while (x != 0) {
@@ -748,6 +872,7 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
         }
     }
 }
+#undef FL_ROW_TAIL
 
 /* Green clutter beyond the carpet (a couch, a bin, a shirt in carpet
  * green) stands up from the floor: its columns form a bump above the
@@ -766,31 +891,44 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
 static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
                          int32_t t, int32_t level)
 {
-    int32_t j = s->first_row[i], run = 0, st = -1, jj, k, v, lo, n_other = 0, n_white = 0;
+    int32_t j = s->first_row[i], run = 0, st = -1, jj, k, v, lo, n_gap = 0;
     int32_t wi = i >> 5, sh = 62 - 2 * (i & 31);
     int32_t lim = level - ns < s->rows - 1 ? level - ns : s->rows - 1;
-    while (j <= lim && ((s->map[j][wi] >> sh) & 3) == FL_CLASS_GREEN)
-        j++;
-    if (j > level - ns)
-        return false;   /* the green (nearly) reaches the level: carpet */
+    uint64_t cell = 3ULL << sh, green = (uint64_t)FL_CLASS_GREEN << sh;
+    if (s->first_row[i] == s->gend_row[i]) {
+        /* phase B saw where this border's green run ends (the cells from
+         * its border down are as phase B left them): the walk below would
+         * stop there */
+        if (s->gend_none[wi] & (1ULL << sh))
+            return false;   /* green to the bottom */
+        j = s->gend[i];
+        if (j > level - ns)
+            return false;
+    } else {
+        while (j <= lim && ((s->map[j][wi] >> sh) & 3) == FL_CLASS_GREEN)
+            j++;
+        if (j > level - ns)
+            return false;   /* the green (nearly) reaches the level: carpet */
+    }
     /* a run completing below row level + 2 ns - 1 would start below
      * level + ns and be refused: the walk stops there */
     lim = level + 2 * ns - 1 < s->rows - 1 ? level + 2 * ns - 1 : s->rows - 1;
-    for (; j <= lim; j++) {
-        int32_t c = (int32_t)((s->map[j][wi] >> sh) & 3);
-        if (c == FL_CLASS_GREEN) {
-            if (++run >= ns) {
-                st = j - ns + 1;
-                break;
+    if (j <= lim) {
+        const uint64_t *q = &s->map[j][wi];
+        for (; j <= lim; j++, q += FL_SCAN_WORDS) {
+            if ((*q & cell) == green) {
+                if (++run >= ns) {
+                    st = j - ns + 1;
+                    break;
+                }
+            } else {
+                run = 0;
+                n_gap++;   /* other, white or yellow */
             }
-        } else {
-            run = 0;
-            n_other += c != FL_CLASS_WHITE;
-            n_white += c == FL_CLASS_WHITE;
         }
     }
-    if (st < 0 || st < level - t || st > level + ns || n_other + n_white < ns ||
-        (n_other == 0 && n_white < ns))
+    /* ... after a gap of at least ns other or white samples */
+    if (st < 0 || st < level - t || st > level + ns || n_gap < ns)
         return false;
     for (jj = s->first_row[i]; jj < st; jj++) {
         if (map_class(s, i, jj) == FL_CLASS_YELLOW) {
@@ -948,39 +1086,79 @@ static void repair_borders(fl_scan_t *s, const frame_t *f)
 
 /* ---- phase C: posts above the border ---------------------------------------------------- */
 
-static void trace_posts(fl_scan_t *s, const frame_t *f)
+/* Index of the highest set bit of x != 0 (binary search). */
+static int32_t highest_bit(uint64_t x)
+{
+    int32_t n = 0;
+    if (x >> 32) {
+        x >>= 32;
+        n += 32;
+    }
+    if (x >> 16) {
+        x >>= 16;
+        n += 16;
+    }
+    if (x >> 8) {
+        x >>= 8;
+        n += 8;
+    }
+    if (x >> 4) {
+        x >>= 4;
+        n += 4;
+    }
+    if (x >> 2) {
+        x >>= 2;
+        n += 2;
+    }
+    return x >> 1 ? n + 1 : n;
+}
+
+/* Column i with its post_top bit set (phase B or the repair saw yellow
+ * right above the border): follow the yellow up, keep it, and a foot at
+ * the border when it is a post. */
+static void trace_post(fl_scan_t *s, const frame_t *f, int32_t i)
 {
     const fl_color_table_t *ct = f->ct;
-    int32_t i;
-    for (i = 0; i < s->cols; i++) {
-        int32_t jb = s->first_row[i], jj, gap = 0, n = 0;
-        bool yellow = false;
-        col_t col;
-        if (jb >= s->rows)
-            continue;
-        if (!(s->post_top[i >> 5] & (1ULL << (62 - 2 * (i & 31)))))
-            continue;   /* phase B saw no yellow right above this border */
-        col_init(&col, f, i * f->cs);
-        for (jj = jb - 1; jj >= 0 && jj >= jb - 2; jj--)
-            if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
-                yellow = true;
-                break;
-            }
-        if (!yellow)
-            continue;
-        for (jj = jb - 1; jj >= 0; jj--) {
-            if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
-                s->map[jj][i >> 5] |= 3ULL << (62 - 2 * (i & 31));
-                s->yellow_cols[i]++;
-                s->yellow_rows[jj]++;
-                n++;
-                gap = 0;
-            } else if (++gap > 1) {
-                break;
-            }
+    int32_t jb = s->first_row[i], jj, gap = 0, n = 0;
+    bool yellow = false;
+    col_t col;
+    if (jb >= s->rows)
+        return;
+    col_init(&col, f, i * f->cs);
+    for (jj = jb - 1; jj >= 0 && jj >= jb - 2; jj--)
+        if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
+            yellow = true;
+            break;
         }
-        if (n >= 2)   /* a post, not a yellowish speck at the carpet edge */
-            add_foot(s, i, i * f->cs, s->border_v[i]);
+    if (!yellow)
+        return;
+    for (jj = jb - 1; jj >= 0; jj--) {
+        if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
+            s->map[jj][i >> 5] |= 3ULL << (62 - 2 * (i & 31));
+            s->yellow_cols[i]++;
+            s->yellow_rows[jj]++;
+            n++;
+            gap = 0;
+        } else if (++gap > 1) {
+            break;
+        }
+    }
+    if (n >= 2)   /* a post, not a yellowish speck at the carpet edge */
+        add_foot(s, i, i * f->cs, s->border_v[i]);
+}
+
+/* The columns with a post_top bit, left to right (the highest bit of
+ * each word first). */
+static void trace_posts(fl_scan_t *s, const frame_t *f)
+{
+    int32_t w;
+    for (w = 0; w < s->words; w++) {
+        uint64_t x = s->post_top[w];
+        while (x != 0) {
+            int32_t b = highest_bit(x);
+            x &= ~(1ULL << b);
+            trace_post(s, f, 32 * w + 31 - (b >> 1));
+        }
     }
 }
 
@@ -1025,7 +1203,8 @@ static void estimate_field(fl_scan_t *s, const frame_t *f)
             s->hue_hist[hsv.h]++;
             ss += hsv.s;
             sv += hsv.v;
-            sl += fl_luma_from_rgb(rgb[0], rgb[1], rgb[2]);
+            /* fl_luma_from_rgb, inline */
+            sl += (uint32_t)(19595 * rgb[0] + 38470 * rgb[1] + 7471 * rgb[2] + 32768) >> 16;
             n++;
         }
     }
@@ -1074,7 +1253,7 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
 {
     frame_t f;
     fl_status_t st;
-    int32_t cols, rows, w, j0, ns, nplanes, max_white;
+    int32_t cols, rows, w, j0, ns, max_white;
     if (s == NULL)
         return 0;
     if (colors == NULL || img == NULL) {
@@ -1101,6 +1280,27 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
     f.st1 = (size_t)img->stride[1];
     f.st2 = (size_t)img->stride[2];
     f.cs = s->params.col_step;
+    /* col_init's layout (see frame_t) */
+    f.py = f.p0;
+    f.scb = f.scr = f.st0;
+    if (f.fmt == FL_FMT_RGB888) {
+        f.pcb = f.pcr = f.p0;
+        f.ky = f.kc = 3;
+        f.csh = 0;
+    } else if (f.fmt == FL_FMT_YUYV422) {
+        f.pcb = f.p0 + 1;   /* the pixel pair's chroma */
+        f.pcr = f.p0 + 3;
+        f.ky = 2;
+        f.kc = 4;
+        f.csh = 1;
+    } else {
+        f.pcb = f.p1;
+        f.pcr = f.p2;
+        f.scb = f.st1;
+        f.scr = f.st2;
+        f.ky = f.kc = 1;
+        f.csh = 0;
+    }
     f.rs = s->params.row_step;
 
     empty_result(s, FL_OK);
@@ -1127,8 +1327,6 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
     /* A */
     ns = (s->params.border_run_px + f.rs - 1) / f.rs;
     max_white = (2 * s->params.border_run_px + f.rs - 1) / f.rs;
-    for (nplanes = 1; (1 << nplanes) <= ns; nplanes++)
-        ;
     /* B */
     memset(s->col_feet, 0, (size_t)cols);
     memset(s->col_checks, 0, (size_t)cols);
@@ -1140,7 +1338,7 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
         s->border_v[w] = (int16_t)s->height;
     }
     for (w = 0; w < s->words; w++)
-        scan_band(s, &f, w, band_start(s, &f, w, j0, ns), ns, nplanes);
+        scan_band(s, &f, w, j0, band_start(s, &f, w, j0, ns), ns);
     for (w = 0; w < cols; w++) {
         if (s->border_v[w] >= s->height)
             s->first_row[w] = (int16_t)rows;   /* no run found */

@@ -131,6 +131,12 @@ typedef struct {
     uint64_t ycount[FL_SCAN_WORDS][FL_SCAN_COUNT_BITS];
     uint64_t post_top[FL_SCAN_WORDS];    /* border right below yellow */
     uint16_t hue_hist[180];
+    /* phase B's border row (gend_row) and the first non-green grid row
+     * below it (gend; none when the column's bit in gend_none is set), for
+     * src/scan.c, rerun_column */
+    int16_t gend_row[FL_SCAN_MAX_COLS];
+    int16_t gend[FL_SCAN_MAX_COLS];
+    uint64_t gend_none[FL_SCAN_WORDS];
 } fl_scan_t;
 
 /* Validate params (FL_ERR_RANGE) and clear the state.  FL_ERR_NULL. */
