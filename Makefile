@@ -175,6 +175,7 @@ golden: $(RUNNER)
 	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k features
 	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k walks
 	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k adversarial
+	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k scan.outputs_golden
 
 # Regenerate the committed fixture set (deterministic: identical bytes on
 # every run and machine).

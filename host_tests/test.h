@@ -40,6 +40,20 @@ uint32_t t_hash_init(void);
 uint32_t t_hash_i32(uint32_t h, int32_t v);
 uint32_t t_hash_bytes(uint32_t h, const void *p, size_t n);
 
+/* A golden file: its lines without comments ('#') and blank lines
+ * (at most T_GOLDEN_LINES of up to T_GOLDEN_LINE_MAX - 1 characters);
+ * t_golden_find gives the line whose first word is name, or NULL.  A
+ * missing file loads as empty. */
+#define T_GOLDEN_LINES 512
+#define T_GOLDEN_LINE_MAX 160
+typedef struct {
+    char (*line)[T_GOLDEN_LINE_MAX];
+    int n;
+} t_golden_t;
+void t_golden_load(t_golden_t *g, const char *path);
+const char *t_golden_find(const t_golden_t *g, const char *name);
+void t_golden_free(t_golden_t *g);
+
 /* Deterministic PRNG (xorshift64*), identical on every target. */
 typedef struct { uint64_t s; } t_rng_t;
 void t_rng_seed(t_rng_t *r, uint64_t seed);

@@ -67,43 +67,6 @@ static adv_state_t *g_state;   /* big: allocated once */
  * 0xHASH" (integers only, so identical on every architecture).  Rewritten
  * by FIELDLOC_WRITE_GOLDEN=1 build/run_tests -k adversarial (full mode). */
 #define ADV_GOLDEN "fixtures/golden/adversarial.txt"
-#define ADV_LINE_MAX 160
-
-typedef struct {
-    char (*line)[ADV_LINE_MAX];
-    int n, cap;
-} adv_golden_t;
-
-static void adv_golden_load(adv_golden_t *g)
-{
-    FILE *f = fopen(ADV_GOLDEN, "r");
-    char buf[ADV_LINE_MAX];
-    g->n = 0;
-    g->cap = 512;
-    g->line = calloc((size_t)g->cap, sizeof *g->line);
-    if (!f || !g->line) {
-        if (f)
-            fclose(f);
-        return;
-    }
-    while (fgets(buf, sizeof buf, f) && g->n < g->cap) {
-        buf[strcspn(buf, "\n")] = 0;
-        if (buf[0] != '#' && buf[0] != 0)
-            memcpy(g->line[g->n++], buf, sizeof buf);
-    }
-    fclose(f);
-}
-
-/* the golden line whose first word is name, or NULL */
-static const char *adv_golden_find(const adv_golden_t *g, const char *name)
-{
-    size_t len = strlen(name);
-    int i;
-    for (i = 0; i < g->n; i++)
-        if (!strncmp(g->line[i], name, len) && g->line[i][len] == ' ')
-            return g->line[i];
-    return NULL;
-}
 
 static void test_hostile_frames(void)
 {
@@ -114,7 +77,7 @@ static void test_hostile_frames(void)
     const fl_field_t *field = fl_field_find("spl2013");
     const char *write = getenv("FIELDLOC_WRITE_GOLDEN");
     FILE *out = NULL;
-    adv_golden_t gold;
+    t_golden_t gold;
     fl_camera_t cam;
     fl_camera_pose_t pose;
     const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-320");
@@ -126,7 +89,7 @@ static void test_hostile_frames(void)
     pose.head_pitch = 0;
     pose.head_yaw = 0;
     CHECK_EQ(fl_camera_init(&cam, m, &pose), FL_OK);
-    adv_golden_load(&gold);
+    t_golden_load(&gold, ADV_GOLDEN);
     if (write && *write && !t_quick) {
         out = fopen(ADV_GOLDEN, "w");
         CHECK(out != NULL);
@@ -144,7 +107,7 @@ static void test_hostile_frames(void)
                 uint8_t *buf;
                 uint32_t fh;
                 int n_obs = 0;
-                char name[64], got[ADV_LINE_MAX];
+                char name[64], got[T_GOLDEN_LINE_MAX];
                 const char *want;
                 if (t_quick && sizes[si][0] * sizes[si][1] > 320 * 240)
                     continue;
@@ -171,7 +134,7 @@ static void test_hostile_frames(void)
                          (unsigned long)fh);
                 if (out)
                     fprintf(out, "%s\n", got);
-                want = adv_golden_find(&gold, name);
+                want = t_golden_find(&gold, name);
                 if (!want)
                     missing++;
                 else if (!strcmp(want, got))
@@ -193,7 +156,7 @@ static void test_hostile_frames(void)
         t_info("%d hostile frames (%d rejected views), outputs within capacity; %d of %d "
                "identical to %s", frames, rejected, same, frames, ADV_GOLDEN);
     }
-    free(gold.line);
+    t_golden_free(&gold);
     t_digest("adversarial.frames", h);
 }
 

@@ -65,6 +65,42 @@ void t_digest(const char *label, uint32_t h)
     printf("digest %s 0x%08lx\n", label, (unsigned long)h);
 }
 
+void t_golden_load(t_golden_t *g, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    char buf[T_GOLDEN_LINE_MAX];
+    g->n = 0;
+    g->line = calloc(T_GOLDEN_LINES, sizeof *g->line);
+    if (!f || !g->line) {
+        if (f)
+            fclose(f);
+        return;
+    }
+    while (fgets(buf, sizeof buf, f) && g->n < T_GOLDEN_LINES) {
+        buf[strcspn(buf, "\n")] = 0;
+        if (buf[0] != '#' && buf[0] != 0)
+            memcpy(g->line[g->n++], buf, sizeof buf);
+    }
+    fclose(f);
+}
+
+const char *t_golden_find(const t_golden_t *g, const char *name)
+{
+    size_t len = strlen(name);
+    int i;
+    for (i = 0; i < g->n; i++)
+        if (!strncmp(g->line[i], name, len) && g->line[i][len] == ' ')
+            return g->line[i];
+    return NULL;
+}
+
+void t_golden_free(t_golden_t *g)
+{
+    free(g->line);
+    g->line = NULL;
+    g->n = 0;
+}
+
 uint32_t t_hash_init(void) { return 2166136261u; }
 
 uint32_t t_hash_bytes(uint32_t h, const void *p, size_t n)

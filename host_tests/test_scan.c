@@ -735,6 +735,199 @@ static void test_realdata(void)
     CHECK_LE(0.8 * ng, ng_yellow);
 }
 
+/* ---- golden scanner outputs -------------------------------------------------------
+ * Every output of fl_scan_frame (border, the whole class map, yellow
+ * histograms, feet, field-colour estimate, counters) over every fixture
+ * frame in all three pixel formats (RGB888, YUYV, planar YCbCr, converted
+ * from the stored frame with the BT.601 integers of src/image.c), on
+ * several grids (full resolution, the default 2x2, 3x1, 1x3, 4x4), with
+ * the fixture's camera and without one, with capped and uncapped
+ * per-column work, and with the default and a re-centred colour table.
+ * One line per fixture in fixtures/golden/scan.txt: NAME 0xRGB 0xYUYV
+ * 0xPLANAR (FNV-1a of integers, identical on every architecture).  The
+ * vision goldens see the default grid only; this one pins the full
+ * resolution paths the speed work changes.  Rewritten by
+ * FIELDLOC_WRITE_GOLDEN=1 build/run_tests -k scan.outputs_golden (make
+ * golden). */
+#define SCAN_GOLDEN "fixtures/golden/scan.txt"
+
+static uint32_t hash_scan_outputs(uint32_t h, const fl_scan_t *s)
+{
+    int32_t i, j, w;
+    h = t_hash_i32(h, (int32_t)s->status);
+    h = t_hash_i32(h, s->width);
+    h = t_hash_i32(h, s->height);
+    h = t_hash_i32(h, s->cols);
+    h = t_hash_i32(h, s->rows);
+    h = t_hash_i32(h, s->words);
+    h = t_hash_i32(h, s->start_v);
+    h = t_hash_i32(h, s->below_horizon);
+    h = t_hash_i32(h, s->n_border);
+    for (i = 0; i < s->cols; i++) {
+        h = t_hash_i32(h, s->border_v[i]);
+        h = t_hash_i32(h, s->yellow_cols[i]);
+    }
+    for (j = 0; j < s->rows; j++) {
+        h = t_hash_i32(h, s->yellow_rows[j]);
+        for (w = 0; w < s->words; w++) {
+            h = t_hash_i32(h, (int32_t)(uint32_t)(s->map[j][w] >> 32));
+            h = t_hash_i32(h, (int32_t)(uint32_t)s->map[j][w]);
+        }
+    }
+    h = t_hash_i32(h, s->n_feet);
+    for (i = 0; i < s->n_feet; i++) {
+        h = t_hash_i32(h, s->feet[i].u);
+        h = t_hash_i32(h, s->feet[i].v);
+    }
+    h = t_hash_i32(h, s->field.n);
+    h = t_hash_i32(h, s->field.hue);
+    h = t_hash_i32(h, s->field.sat);
+    h = t_hash_i32(h, s->field.val);
+    h = t_hash_i32(h, s->field.luma);
+    h = t_hash_i32(h, s->feet_dropped);
+    h = t_hash_i32(h, s->checks_skipped);
+    return t_hash_i32(h, s->white_rejected);
+}
+
+/* The hash of one frame in one format over every configuration. */
+static uint32_t scan_configs(const fl_image_t *img, const fl_camera_t *cam,
+                             const fl_color_table_t *adapted)
+{
+    static const int grids[][2] = {{1, 1}, {2, 2}, {3, 1}, {1, 3}, {4, 4}};
+    uint32_t h = t_hash_init();
+    size_t g;
+    int k;
+    for (g = 0; g < sizeof grids / sizeof grids[0]; g++)
+        for (k = 0; k < 5; k++) {
+            fl_scan_params_t p;
+            const fl_color_table_t *ct = k == 4 ? adapted : &colors;
+            fl_scan_params_default(&p);
+            p.col_step = grids[g][0];
+            p.row_step = grids[g][1];
+            if (k == 2) {   /* short runs, tight caps */
+                p.border_run_px = 3;
+                p.feet_per_column = 1;
+                p.checks_per_column = 2;
+                p.estimate_step_px = 7;
+            } else if (k == 3) {   /* long runs, no field-colour samples */
+                p.border_run_px = 24;
+                p.horizon_margin_px = 0;
+                p.estimate_step_px = 0;
+            }
+            CHECK_EQ(fl_scan_init(&scan, &p), FL_OK);
+            fl_scan_frame(&scan, ct, img, k == 1 ? NULL : cam);
+            h = hash_scan_outputs(h, &scan);
+        }
+    return h;
+}
+
+static void test_outputs_golden(void)
+{
+    static const fl_pixel_format_t fmts[3] = {FL_FMT_RGB888, FL_FMT_YUYV422, FL_FMT_YCBCR_PLANAR};
+    t_golden_t gold;
+    static fl_color_table_t adapted;
+    const char *write = getenv("FIELDLOC_WRITE_GOLDEN");
+    FILE *idx = fopen("fixtures/frames/index.txt", "r"), *out = NULL;
+    char line[512], got[256];
+    uint32_t all = t_hash_init();
+    int frames = 0, same = 0, k = 0;
+    if (!idx) {
+        t_info("scan.outputs_golden: skipped, fixtures/frames/index.txt not found");
+        return;
+    }
+    colors_default();
+    t_golden_load(&gold, SCAN_GOLDEN);
+    if (write && *write && !t_quick) {
+        out = fopen(SCAN_GOLDEN, "w");
+        CHECK(out != NULL);
+        if (out)
+            fprintf(out, "# every output of fl_scan_frame over every fixture frame, 5 grids x 5 "
+                         "configurations\n# (host_tests/test_scan.c, test_outputs_golden): NAME "
+                         "0xRGB888 0xYUYV 0xPLANAR\n");
+    }
+    while (fgets(line, sizeof line, idx)) {
+        char name[64], file[64], fmt[16], field[32], path[256], err[256];
+        render_scene_t sc;
+        render_frame_t fr;
+        fl_camera_t cam;
+        uint8_t *rgb;
+        uint32_t fh[3];
+        int f, n, u, v;
+        const char *want;
+        if (line[0] == '#' || sscanf(line, "%63s %63s %15s %31s", name, file, fmt, field) != 4)
+            continue;
+        if (t_quick && k++ % 8 != 0)
+            continue;
+        snprintf(path, sizeof path, "fixtures/frames/%s.scene", name);
+        if (render_scene_load(path, &sc, err, sizeof err) != 0 ||
+            render_scene_camera(&sc, &cam) != FL_OK) {
+            t_fail_msg(__FILE__, __LINE__, "%s: %s", name, err);
+            continue;
+        }
+        snprintf(path, sizeof path, "fixtures/frames/%s", file);
+        if (render_read_frame(path, &fr, err, sizeof err) != 0) {
+            t_fail_msg(__FILE__, __LINE__, "%s", err);
+            continue;
+        }
+        n = fr.width * fr.height;
+        rgb = malloc((size_t)n * 3);
+        CHECK(rgb != NULL);
+        if (!rgb) {
+            render_frame_free(&fr);
+            continue;
+        }
+        for (v = 0; v < fr.height; v++)
+            for (u = 0; u < fr.width; u++)
+                fl_image_get_rgb(&fr.view, u, v, rgb + 3 * ((size_t)v * (size_t)fr.width + (size_t)u));
+        /* the re-centred table: the field colour the default scan estimated */
+        scan_init(2, 2);
+        fl_scan_frame(&scan, &colors, &fr.view, &cam);
+        adapted = colors;
+        fl_color_adapt(&adapted, &scan.field);
+        for (f = 0; f < 3; f++) {
+            scantool_frame_t conv;
+            fh[f] = 0;
+            if (scantool_frame_from_rgb(rgb, fr.width, fr.height, fmts[f], &conv) != 0) {
+                t_fail_msg(__FILE__, __LINE__, "%s: format %d", name, f);
+                continue;
+            }
+            fh[f] = scan_configs(&conv.view, &cam, &adapted);
+            all = t_hash_i32(all, (int32_t)fh[f]);
+            scantool_frame_free(&conv);
+        }
+        snprintf(got, sizeof got, "%s 0x%08lx 0x%08lx 0x%08lx", name, (unsigned long)fh[0],
+                 (unsigned long)fh[1], (unsigned long)fh[2]);
+        if (out)
+            fprintf(out, "%s\n", got);
+        want = t_golden_find(&gold, name);
+        if (!out) {
+            CHECK(want != NULL);
+            if (want && strcmp(want, got) != 0) {
+                t_fail_msg(__FILE__, __LINE__, "scanner outputs differ from %s (rewrite with "
+                           "FIELDLOC_WRITE_GOLDEN=1 build/run_tests -k scan.outputs_golden)",
+                           SCAN_GOLDEN);
+                t_info("want %s", want);
+                t_info("got  %s", got);
+            }
+        }
+        same += want && !strcmp(want, got);
+        frames++;
+        free(rgb);
+        render_frame_free(&fr);
+    }
+    fclose(idx);
+    if (out) {
+        fclose(out);
+        t_info("wrote the scanner outputs of %d fixture frames to %s", frames, SCAN_GOLDEN);
+    } else {
+        CHECK(frames > 0);
+        t_info("scanner outputs of %d fixture frames x 3 formats x 25 configurations: %d of %d "
+               "identical to %s", frames, same, frames, SCAN_GOLDEN);
+    }
+    t_golden_free(&gold);
+    t_digest("scan.outputs_golden", all);
+}
+
 void suite_scan(void)
 {
     t_run("scan.params", test_params);
@@ -746,4 +939,5 @@ void suite_scan(void)
     t_run("scan.fixtures_pixels", test_fixtures_pixels);
     t_run("scan.lighting", test_lighting);
     t_run("scan.realdata", test_realdata);
+    t_run("scan.outputs_golden", test_outputs_golden);
 }
