@@ -219,6 +219,22 @@ static bool cr_shared(const fl_lines_t *l, const fl_crossing_t *e, const fl_cros
     return s[0] == s[2] || s[0] == s[3] || s[1] == s[2] || s[1] == s[3];
 }
 
+/* Two crossings that share a segment and lie within CR_PIECE_MM of each
+ * other on the ground are one crossing seen through two pieces of a broken
+ * line (the distinct crossings of one segment, a goal box's side with the
+ * goal line and the front line, are 600 mm apart or more).  Only on line
+ * steps of 3 px or more (the AIBO's 2 px steps are left as they were). */
+#define CR_PIECE_MM 250
+static bool cr_pieces(const fl_lines_t *l, const fl_crossing_t *e, const cr_item_t *it)
+{
+    int64_t gx, gy;
+    if (l->step_px < 3 || !it->ground || e->range_mm <= 0)
+        return false;
+    gx = (int64_t)e->ground.x_mm - it->x.ground.x_mm;
+    gy = (int64_t)e->ground.y_mm - it->x.ground.y_mm;
+    return gx * gx + gy * gy <= (int64_t)CR_PIECE_MM * CR_PIECE_MM;
+}
+
 /* Insert with merging.  Ground arms of stored crossings are kept in
  * garm_store (parallel to c->c). */
 static void cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
@@ -237,7 +253,7 @@ static void cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
          * nearly coincide (two pieces of one line broken at the segment) */
         /* ... and so are a mark and a crossing of lines (a penalty mark
          * is far from every line crossing) */
-        if (cr_shared(l, e, &it->x) || emark != imark)
+        if ((cr_shared(l, e, &it->x) && !cr_pieces(l, e, it)) || emark != imark)
             m = merge_q4 / 2;
         if (du * du + dv * dv > m * m)
             continue;
