@@ -434,6 +434,33 @@ typedef struct {
     int32_t sin_min_q15, sin_tol_q15;
 } cr_ctx_t;
 
+/* Move (*eu, *ev) (Q4) out along the direction opposite to binary angle
+ * ain, 1 px at a time for less than limit (Q4), while the 2 px ahead are
+ * paint (fl_lines_paint_pct, or fl_lines_paint_beside_pct when beside: a
+ * second line may stand on one flank).  One luma probe per px; false when
+ * the frame's CR_LUMA_PROBES ran out (the point is then left as it was). */
+static bool cr_follow_paint(const cr_ctx_t *ctx, fl_angle_t ain, int32_t limit, bool beside,
+                            int32_t *eu, int32_t *ev)
+{
+    fl_crossings_t *c = ctx->c;
+    int32_t du = -fl_cos_q15(ain), dv = -fl_sin_q15(ain), t;
+    for (t = 0; t < limit; t += 16) {
+        int32_t au = *eu + fl_rshift_round((int64_t)du * t, 15);
+        int32_t av = *ev + fl_rshift_round((int64_t)dv * t, 15);
+        int32_t bu = *eu + fl_rshift_round((int64_t)du * (t + 32), 15);
+        int32_t bv = *ev + fl_rshift_round((int64_t)dv * (t + 32), 15);
+        if (c->luma_probes >= CR_LUMA_PROBES)
+            return false;
+        c->luma_probes++;
+        if ((beside ? fl_lines_paint_beside_pct(ctx->l, ctx->scan, au, av, bu, bv)
+                    : fl_lines_paint_pct(ctx->l, ctx->scan, au, av, bu, bv)) < 50)
+            break;
+    }
+    *eu += fl_rshift_round((int64_t)du * t, 15);
+    *ev += fl_rshift_round((int64_t)dv * t, 15);
+    return true;
+}
+
 /* One segment's side of the reach test: t (Q4) along it within reach of
  * its extent, or, for a long luma segment (a far thin line, 6 steps), up
  * to CR_BRIDGE_STEPS steps beyond an end when the gap from that end to X
@@ -1208,24 +1235,9 @@ static void cr_connect(const cr_ctx_t *ctx, int32_t is, bool end1)
         if (a * a + b * b <= (int64_t)merge * merge)
             return;
     }
-    /* the segment's extreme points stop up to a step short of the paint:
-     * follow it out 1 px at a time while the 2 px ahead are paint */
-    {
-        int32_t du = -fl_cos_q15(ain), dv = -fl_sin_q15(ain), t;
-        for (t = 0; t < step_q4 + w / 2; t += 16) {
-            int32_t au = eu + fl_rshift_round((int64_t)du * t, 15);
-            int32_t av = ev + fl_rshift_round((int64_t)dv * t, 15);
-            int32_t bu = eu + fl_rshift_round((int64_t)du * (t + 32), 15);
-            int32_t bv = ev + fl_rshift_round((int64_t)dv * (t + 32), 15);
-            if (c->luma_probes >= CR_LUMA_PROBES)
-                return;
-            c->luma_probes++;
-            if (fl_lines_paint_pct(l, ctx->scan, au, av, bu, bv) < 50)
-                break;
-        }
-        eu += fl_rshift_round((int64_t)du * t, 15);
-        ev += fl_rshift_round((int64_t)dv * t, 15);
-    }
+    /* the segment's extreme points stop up to a step short of the paint */
+    if (!cr_follow_paint(ctx, ain, step_q4 + w / 2, false, &eu, &ev))
+        return;
     r.xu = eu;
     r.xv = ev;
     r.cu = fl_cos_q15(ain);
@@ -1584,24 +1596,9 @@ static void cr_close(const cr_ctx_t *ctx, int32_t is, bool end1)
             bd = d;
         }
     }
-    /* the segment's extreme point stops up to a step short of the paint:
-     * follow it out 1 px at a time while the 2 px ahead are paint */
-    {
-        int32_t du = -fl_cos_q15(ain), dv = -fl_sin_q15(ain), t;
-        for (t = 0; t < step_q4 + w / 2; t += 16) {
-            int32_t au = eu + fl_rshift_round((int64_t)du * t, 15);
-            int32_t av = ev + fl_rshift_round((int64_t)dv * t, 15);
-            int32_t bu = eu + fl_rshift_round((int64_t)du * (t + 32), 15);
-            int32_t bv = ev + fl_rshift_round((int64_t)dv * (t + 32), 15);
-            if (c->luma_probes >= CR_LUMA_PROBES)
-                return;
-            c->luma_probes++;
-            if (fl_lines_paint_beside_pct(l, ctx->scan, au, av, bu, bv) < 50)
-                break;
-        }
-        eu += fl_rshift_round((int64_t)du * t, 15);
-        ev += fl_rshift_round((int64_t)dv * t, 15);
-    }
+    /* the segment's extreme point stops up to a step short of the paint */
+    if (!cr_follow_paint(ctx, ain, step_q4 + w / 2, true, &eu, &ev))
+        return;
     /* S's paint stops at E */
     r.xu = eu;
     r.xv = ev;
