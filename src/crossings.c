@@ -461,6 +461,26 @@ static bool cr_follow_paint(const cr_ctx_t *ctx, fl_angle_t ain, int32_t limit, 
     return true;
 }
 
+/* The probe ray back into a segment from its end: r->xu, r->xv (Q4) in,
+ * the segment's end; moved out along the paint (cr_follow_paint, limit a
+ * step plus half the paint width w, Q4); r->gx its ground point, r->dir
+ * the ground direction of binary angle ain there, r->cu, r->cv pointing
+ * back along the segment (against ain), r->r0 half the paint plus 1 px.
+ * false when the luma probes ran out or the end has no ground point. */
+static bool cr_end_ray(const cr_ctx_t *ctx, fl_angle_t ain, int32_t w, bool beside, cr_ray_t *r)
+{
+    if (!cr_follow_paint(ctx, ain, 16 * ctx->l->step_px + w / 2, beside, &r->xu, &r->xv))
+        return false;
+    r->cu = fl_cos_q15(ain);
+    r->cv = fl_sin_q15(ain);
+    if (!fl_camera_pixel_to_ground(ctx->cam, r->xu, r->xv, &r->gx) || !cr_ground_dir(ctx->cam, r))
+        return false;
+    r->cu = -r->cu;
+    r->cv = -r->cv;
+    r->r0 = w / 2 + 16;
+    return true;
+}
+
 /* One segment's side of the reach test: t (Q4) along it within reach of
  * its extent, or, for a long luma segment (a far thin line, 6 steps), up
  * to CR_BRIDGE_STEPS steps beyond an end when the gap from that end to X
@@ -1235,20 +1255,15 @@ static void cr_connect(const cr_ctx_t *ctx, int32_t is, bool end1)
         if (a * a + b * b <= (int64_t)merge * merge)
             return;
     }
-    /* the segment's extreme points stop up to a step short of the paint */
-    if (!cr_follow_paint(ctx, ain, step_q4 + w / 2, false, &eu, &ev))
-        return;
+    /* the segment's extreme points stop up to a step short of the paint;
+     * S's paint stops at E */
     r.xu = eu;
     r.xv = ev;
-    r.cu = fl_cos_q15(ain);
-    r.cv = fl_sin_q15(ain);
-    if (!fl_camera_pixel_to_ground(cam, eu, ev, &r.gx) || !cr_ground_dir(cam, &r))
+    if (!cr_end_ray(ctx, ain, w, false, &r))
         return;
+    eu = r.xu;
+    ev = r.xv;
     gin = r.dir;
-    /* S's paint stops at E */
-    r.cu = -r.cu;
-    r.cv = -r.cv;
-    r.r0 = w / 2 + 16;
     r.len = 2 * step_q4 > 2 * w ? 2 * step_q4 : 2 * w;
     cr_probe(c, l, ctx->scan, &r);
     if (r.white < 0 || r.white >= c->params.probe_green_pct)
@@ -1596,20 +1611,15 @@ static void cr_close(const cr_ctx_t *ctx, int32_t is, bool end1)
             bd = d;
         }
     }
-    /* the segment's extreme point stops up to a step short of the paint */
-    if (!cr_follow_paint(ctx, ain, step_q4 + w / 2, true, &eu, &ev))
-        return;
-    /* S's paint stops at E */
+    /* the segment's extreme point stops up to a step short of the paint;
+     * S's paint stops at E */
     r.xu = eu;
     r.xv = ev;
-    r.cu = fl_cos_q15(ain);
-    r.cv = fl_sin_q15(ain);
-    if (!fl_camera_pixel_to_ground(cam, eu, ev, &r.gx) || !cr_ground_dir(cam, &r))
+    if (!cr_end_ray(ctx, ain, w, true, &r))
         return;
+    eu = r.xu;
+    ev = r.xv;
     gin = r.dir;
-    r.cu = -r.cu;
-    r.cv = -r.cv;
-    r.r0 = w / 2 + 16;
     r.len = 2 * step_q4;
     /* ... because it ends there: carpet beyond E, not a robot or a post,
      * and no ridge there either (a far line beside: near flanks) */
