@@ -467,11 +467,11 @@ static bool white_is_step(const fl_hsv_box_t *w)
 }
 
 /* Build the YCbCr tables with D bucket size q (1 = exact).  Returns false
- * when the patterns do not fit.  base[hs][bucket] receives the pattern
+ * when the patterns do not fit.  base[hs - 1][bucket] receives the pattern
  * offsets (-1: all other). */
 static bool build_patterns(fl_color_table_t *t, int32_t q,
                            const int32_t max_m[8], const bool used[8],
-                           uint16_t base[8][256], int16_t step_t[256])
+                           uint16_t base[7][256], int16_t step_t[256])
 {
     int32_t hs, d, pos = ZERO_LEN, n = 0;
     bool step = white_is_step(&t->white) && used[HS_W];
@@ -488,9 +488,11 @@ static bool build_patterns(fl_color_table_t *t, int32_t q,
         bool have_prev = false;
         for (i = 0; i < 3; i++)
             sweep_start(&sw[i]);
+        if (hs == 0)   /* no class's hue: other, base_of() says so */
+            continue;
         for (d = 0; d < 256; d++)
-            base[hs][d] = NO_PATTERN;
-        if (!used[hs] || hs == 0)
+            base[hs - 1][d] = NO_PATTERN;
+        if (!used[hs])
             continue;
         for (d = 0; d < 256; d += q) {
             int32_t rep = d + q / 2, k, any;
@@ -525,7 +527,7 @@ static bool build_patterns(fl_color_table_t *t, int32_t q,
                 n++;
             }
             for (k = d; k < d + q && k < 256; k++)
-                base[hs][k] = (uint16_t)prev_base;
+                base[hs - 1][k] = (uint16_t)prev_base;
         }
     }
     t->n_patterns = (uint16_t)n;
@@ -607,13 +609,13 @@ static void build(fl_color_table_t *t)
     for (i = 0; i < FL_COLOR_RGB_SIDE; i++) {
         int32_t lo, hi;
         rgb_cell_range(i - RGB_HALF, &lo, &hi);
-        t->rgb_dr[i] = (uint16_t)(lo + 255);
-        t->rgb_db[i] = (uint16_t)(hi + 255);
+        t->rgb_dr[i] = (uint32_t)(lo + 255);
+        t->rgb_db[i] = (uint32_t)(hi + 255);
     }
     for (cb = 0; cb < FL_COLOR_RGB_SIDE; cb++) {
         for (cr = 0; cr < FL_COLOR_RGB_SIDE; cr++) {
-            int32_t dr = (t->rgb_dr[cb] + t->rgb_db[cb] - 510) / 2;
-            int32_t db = (t->rgb_dr[cr] + t->rgb_db[cr] - 510) / 2;
+            int32_t dr = ((int32_t)t->rgb_dr[cb] + (int32_t)t->rgb_db[cb] - 510) / 2;
+            int32_t db = ((int32_t)t->rgb_dr[cr] + (int32_t)t->rgb_db[cr] - 510) / 2;
             int32_t mx = offsets_max(dr, 0, db), d = mx - offsets_min(dr, 0, db), hs;
             if (d > 255) {   /* no colour: R - G and B - G too far apart */
                 t->rgb_chroma[cb * FL_COLOR_RGB_SIDE + cr] = 0xffff;
@@ -655,10 +657,10 @@ static void build(fl_color_table_t *t)
             if (hs == HS_W && step) {
                 off = step_t[d] > 255 ? 0
                                       : ZERO_LEN + STEP_ZERO - step_t[d] + mx;
-            } else if (base[hs][d] == NO_PATTERN) {
+            } else if (hs == 0 || base[hs - 1][d] == NO_PATTERN) {
                 off = 0;
             } else {
-                off = base[hs][d] + mx;
+                off = base[hs - 1][d] + mx;
             }
             t->chroma[(cb << 8) | cr] = (uint16_t)off;
         }
@@ -670,23 +672,23 @@ static void build(fl_color_table_t *t)
         for (cr = 0; cr < FL_COLOR_RGB_SIDE; cr++) {
             uint16_t e = t->rgb_chroma[cb * FL_COLOR_RGB_SIDE + cr];
             int32_t hs = e >> 8, d = e & 0xff, off;
-            int32_t mx = offsets_max(t->rgb_dr[cb] - 255, 0, t->rgb_dr[cr] - 255);
+            int32_t mx = offsets_max((int32_t)t->rgb_dr[cb] - 255, 0, (int32_t)t->rgb_dr[cr] - 255);
             if (e == 0xffff)
                 off = 0;
             else if (hs == HS_W && step)
                 off = step_t[d] > 255 ? 0 : ZERO_LEN + STEP_ZERO - step_t[d] + mx;
-            else if (base[hs][d] == NO_PATTERN)
+            else if (hs == 0 || base[hs - 1][d] == NO_PATTERN)
                 off = 0;
             else
-                off = base[hs][d] + mx;
+                off = base[hs - 1][d] + mx;
             t->rgb_chroma[cb * FL_COLOR_RGB_SIDE + cr] = (uint16_t)off;
         }
     }
     for (i = -255; i <= 255; i++) {
         int32_t c = rgb_bucket(i < 0 ? -i : i);
         c = RGB_HALF + (i < 0 ? -c : c);
-        t->rgb_dr[i + 255] = (uint16_t)(c * FL_COLOR_RGB_SIDE);
-        t->rgb_db[i + 255] = (uint16_t)c;
+        t->rgb_dr[i + 255] = (uint32_t)(c * FL_COLOR_RGB_SIDE);
+        t->rgb_db[i + 255] = (uint32_t)c;
     }
 }
 

@@ -233,7 +233,7 @@ static uint64_t word_yuyv_pairs(const uint8_t *q, const uint16_t *chroma,
 #define FL_RGB_WORD(name)                                                     \
     static uint64_t name(const uint8_t *q, size_t d, const fl_color_table_t *ct) \
     {                                                                         \
-        const uint16_t *tr = ct->rgb_dr + 255, *tb = ct->rgb_db + 255;       \
+        const uint32_t *tr = ct->rgb_dr + 255, *tb = ct->rgb_db + 255;       \
         const uint16_t *rc = ct->rgb_chroma;                                  \
         const uint8_t *pat = ct->pattern;                                     \
         ptrdiff_t g_;                                                         \

@@ -176,11 +176,11 @@ typedef struct {
     uint8_t pattern[FL_COLOR_PATTERN_BYTES];
     /* RGB: (R - G, B - G) -> cell (rgb_dr[R - G + 255] + rgb_db[B - G +
      * 255]) -> pattern index + M, class = pattern[rgb_chroma[cell] + G] */
-    uint16_t rgb_dr[511], rgb_db[511];
+    uint32_t rgb_dr[511], rgb_db[511];
     uint16_t rgb_chroma[FL_COLOR_RGB_SIDE * FL_COLOR_RGB_SIDE];
     /* scratch of a table build (dead between calls): kept here, not on
      * the stack, so init/adapt/reset stay within the 4 KiB stack budget */
-    uint16_t build_base[8][256];
+    uint16_t build_base[7][256];   /* hue sets 1..7 (0: no hue, all other) */
     int16_t build_step[256];
 } fl_color_table_t;
 
