@@ -5,6 +5,7 @@
 # so start-up, image loading and table building cancel out.
 # Usage: sh tools/callgrind.sh [BUILD_DIR]   (default build; needs valgrind)
 # Prints: callgrind NAME instructions_per_frame instructions_per_pixel
+# (classify_only_*: instructions inside the word functions only)
 B=${1:-build}
 CLI=$B/fieldloc
 RD=../shared/realdata
@@ -12,9 +13,10 @@ command -v valgrind >/dev/null 2>&1 || { echo "callgrind: valgrind not installed
 [ -x "$CLI" ] || { echo "callgrind: $CLI not built"; exit 1; }
 TMP=${TMPDIR:-/tmp}/fl_callgrind.$$
 mkdir -p "$TMP"
-refs() {  # refs N ARGS...: instructions collected inside fl_scan_frame
+COLLECT=fl_scan_frame
+refs() {  # refs N ARGS...: instructions collected inside $COLLECT
     n=$1; shift
-    valgrind --tool=callgrind --toggle-collect=fl_scan_frame --callgrind-out-file="$TMP/out" \
+    valgrind --tool=callgrind --toggle-collect="$COLLECT" --callgrind-out-file="$TMP/out" \
         "$CLI" scan "$@" --repeat "$n" --quiet 2>&1 | sed -n 's/.*refs: *//p' | tr -d ,
 }
 run() {  # run NAME W H ARGS...
@@ -36,4 +38,15 @@ for f in yuyv rgb; do
         run "default_${f}_rend320" 320 240 "$REND" --format $f
     fi
 done
+# Uniform noise has no border, so every pixel is classified: the whole
+# scanner, then the classification alone (the word functions: table lookups
+# and packing, nothing else), the floor of any change outside them.
+if "$CLI" bench --noise-frames "$TMP" >/dev/null 2>&1; then
+    for f in yuyv rgb; do
+        run "full_${f}_noise320" 320 240 "$TMP/vision_noise_320.ppm" --format $f --full
+        COLLECT='word_*'
+        run "classify_only_${f}_noise320" 320 240 "$TMP/vision_noise_320.ppm" --format $f --full
+        COLLECT=fl_scan_frame
+    done
+fi
 rm -rf "$TMP"
