@@ -93,6 +93,19 @@ static void test_params(void)
     CHECK_EQ(scan.status, FL_OK);
     CHECK_EQ(scan.border_v[10], 48);
     CHECK_EQ(fl_scan_count(&scan, FL_CLASS_OTHER), 64 * 48);
+    /* a scanner never set up (zeroed: steps 0) or with a step changed out
+     * of range: FL_ERR_RANGE, an empty result, no division by zero */
+    memset(&scan, 0, sizeof scan);
+    CHECK_EQ(fl_scan_frame(&scan, &colors, &img, NULL), 0);
+    CHECK_EQ(scan.status, FL_ERR_RANGE);
+    CHECK_EQ(scan.width, 0);
+    scan_init(2, 2);
+    scan.params.row_step = 17;
+    CHECK_EQ(fl_scan_frame(&scan, &colors, &img, NULL), 0);
+    CHECK_EQ(scan.status, FL_ERR_RANGE);
+    scan_init(2, 2);
+    CHECK_EQ(fl_scan_frame(&scan, &colors, &img, NULL), 0);
+    CHECK_EQ(scan.status, FL_OK);
 }
 
 /* ---- painted frames ----------------------------------------------------------- */
@@ -927,6 +940,7 @@ static void test_outputs_golden(void)
     t_golden_free(&gold);
     t_digest("scan.outputs_golden", all);
 }
+
 
 void suite_scan(void)
 {

@@ -97,18 +97,23 @@ void fl_scan_params_default(fl_scan_params_t *p)
     p->estimate_step_px = 24;
 }
 
+static bool params_ok(const fl_scan_params_t *p)
+{
+    return p->col_step >= 1 && p->col_step <= 16 && p->row_step >= 1 &&
+           p->row_step <= 16 && p->border_run_px >= 1 && p->border_run_px <= 255 &&
+           p->horizon_margin_px >= 0 && p->horizon_margin_px <= 255 &&
+           p->feet_per_column >= 0 && p->feet_per_column <= 255 &&
+           p->checks_per_column >= 0 && p->checks_per_column <= 255 &&
+           p->estimate_step_px >= 0 && p->estimate_step_px <= 255;
+}
+
 fl_status_t fl_scan_init(fl_scan_t *s, const fl_scan_params_t *p)
 {
     if (s == NULL || p == NULL)
         return FL_ERR_NULL;
     memset(s, 0, sizeof *s);
     s->status = FL_ERR_SIZE;   /* no frame yet */
-    if (p->col_step < 1 || p->col_step > 16 || p->row_step < 1 ||
-        p->row_step > 16 || p->border_run_px < 1 || p->border_run_px > 255 ||
-        p->horizon_margin_px < 0 || p->horizon_margin_px > 255 ||
-        p->feet_per_column < 0 || p->feet_per_column > 255 ||
-        p->checks_per_column < 0 || p->checks_per_column > 255 ||
-        p->estimate_step_px < 0 || p->estimate_step_px > 255) {
+    if (!params_ok(p)) {
         fl_scan_params_default(&s->params);
         return FL_ERR_RANGE;
     }
@@ -1258,6 +1263,12 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
         return 0;
     if (colors == NULL || img == NULL) {
         empty_result(s, FL_ERR_NULL);
+        return 0;
+    }
+    if (!params_ok(&s->params)) {
+        /* never set up by fl_scan_init (a zeroed struct), or params
+         * changed out of range since: no division by a zero step */
+        empty_result(s, FL_ERR_RANGE);
         return 0;
     }
     st = fl_image_validate(img);

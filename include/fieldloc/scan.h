@@ -145,7 +145,8 @@ fl_status_t fl_scan_init(fl_scan_t *s, const fl_scan_params_t *p);
 /* Scan one frame.  colors: tables from fl_color_init.  camera may be NULL
  * (border search from row 0).  Returns n_border; 0 with an empty result
  * (width = 0, status set) on a NULL, invalid image or a grid larger than
- * FL_SCAN_MAX_COLS x FL_SCAN_MAX_ROWS. */
+ * FL_SCAN_MAX_COLS x FL_SCAN_MAX_ROWS, and FL_ERR_RANGE when s->params
+ * is out of fl_scan_init's ranges (s never initialised, e.g. zeroed). */
 int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
                       const fl_image_t *img, const fl_camera_t *camera);
 
