@@ -176,6 +176,7 @@ golden: $(RUNNER)
 	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k walks
 	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k adversarial
 	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k scan.outputs_golden
+	@FIELDLOC_WRITE_GOLDEN=1 $(RUNNER) -k scan.sparse_golden
 
 # Regenerate the committed fixture set (deterministic: identical bytes on
 # every run and machine).

@@ -941,6 +941,127 @@ static void test_outputs_golden(void)
     t_digest("scan.outputs_golden", all);
 }
 
+/* Frames with sparse green, where the first green sample of a column is
+ * seldom the start of a run: phase A must not skip a run (and its test
+ * classifies rows around the sampled one only while some column is still
+ * green).  Pixel classes at random with carpet at p %, the rest line, post,
+ * grey or a uniform random colour; then 60 vertical carpet stretches of
+ * 1..24 rows; p = 0 is the bench's worst case (uniform noise).  Their
+ * outputs over 3 formats x 25 configurations are pinned in SPARSE_GOLDEN
+ * (written by the scanner before the run test in phase A). */
+#define SPARSE_GOLDEN "fixtures/golden/scan_sparse.txt"
+
+static void sparse_frame(uint8_t *rgb, int w, int h, int pct, uint32_t seed)
+{
+    static const uint8_t *pal[3] = {LINE, POST, GREY};
+    t_rng_t r;
+    int k, i;
+    t_rng_seed(&r, seed);
+    for (k = 0; k < w * h; k++) {
+        uint8_t *q = rgb + 3 * k;
+        if (pct == 0 || t_rng_range(&r, 0, 99) >= pct) {
+            if (pct == 0 || t_rng_range(&r, 0, 3) == 3) {
+                uint32_t x = t_rng_u32(&r);
+                q[0] = (uint8_t)x;
+                q[1] = (uint8_t)(x >> 8);
+                q[2] = (uint8_t)(x >> 16);
+            } else {
+                memcpy(q, pal[t_rng_range(&r, 0, 2)], 3);
+            }
+        } else {
+            memcpy(q, CARPET, 3);
+        }
+    }
+    for (i = 0; i < (pct == 0 ? 0 : 60); i++) {
+        int u = t_rng_range(&r, 0, w - 1), v = t_rng_range(&r, 0, h - 1);
+        int len = t_rng_range(&r, 1, 24);
+        fill(rgb, w, u, v, u + 1, v + len < h ? v + len : h, CARPET);
+    }
+}
+
+static void test_sparse_golden(void)
+{
+    static const fl_pixel_format_t fmts[3] = {FL_FMT_RGB888, FL_FMT_YUYV422, FL_FMT_YCBCR_PLANAR};
+    static const int pcts[] = {0, 5, 15, 30, 50, 70};
+    static uint8_t rgb[320 * 240 * 3];
+    static fl_color_table_t adapted;
+    const char *write = getenv("FIELDLOC_WRITE_GOLDEN");
+    t_golden_t gold;
+    FILE *out = NULL;
+    uint32_t all = t_hash_init();
+    int frames = 0, same = 0, pi, seed, f;
+    fl_camera_t cam;
+    render_scene_t sc;
+    char err[256];
+    colors_default();
+    /* a level top camera: the horizon inside the image (j0 > 0; the
+     * configuration without a camera starts at row 0) */
+    if (render_scene_load("fixtures/frames/spl2013_goal_both.scene", &sc, err, sizeof err) != 0 ||
+        render_scene_camera(&sc, &cam) != FL_OK) {
+        t_info("scan.sparse_golden: skipped, %s", err);
+        return;
+    }
+    t_golden_load(&gold, SPARSE_GOLDEN);
+    if (write && *write && !t_quick) {
+        out = fopen(SPARSE_GOLDEN, "w");
+        CHECK(out != NULL);
+        if (out)
+            fprintf(out, "# every output of fl_scan_frame on frames with sparse green, 5 grids x 5 "
+                         "configurations\n# (host_tests/test_scan.c, test_sparse_golden): NAME "
+                         "0xRGB888 0xYUYV 0xPLANAR\n");
+    }
+    for (pi = 0; pi < (int)(sizeof pcts / sizeof pcts[0]); pi++)
+        for (seed = 1; seed <= 2; seed++) {
+            char name[64], got[256];
+            uint32_t fh[3];
+            const char *want;
+            if (t_quick && seed == 2)
+                continue;
+            sparse_frame(rgb, 320, 240, pcts[pi], (uint32_t)(100 * pcts[pi] + seed));
+            for (f = 0; f < 3; f++) {
+                scantool_frame_t conv;
+                fh[f] = 0;
+                if (scantool_frame_from_rgb(rgb, 320, 240, fmts[f], &conv) != 0) {
+                    t_fail_msg(__FILE__, __LINE__, "sparse %d: format %d", pcts[pi], f);
+                    continue;
+                }
+                if (f == 0) {   /* the re-centred table, as test_outputs_golden */
+                    scan_init(2, 2);
+                    fl_scan_frame(&scan, &colors, &conv.view, NULL);
+                    adapted = colors;
+                    fl_color_adapt(&adapted, &scan.field);
+                }
+                fh[f] = scan_configs(&conv.view, &cam, &adapted);
+                all = t_hash_i32(all, (int32_t)fh[f]);
+                scantool_frame_free(&conv);
+            }
+            snprintf(name, sizeof name, "sparse_p%02d_s%d", pcts[pi], seed);
+            snprintf(got, sizeof got, "%s 0x%08lx 0x%08lx 0x%08lx", name, (unsigned long)fh[0],
+                     (unsigned long)fh[1], (unsigned long)fh[2]);
+            if (out)
+                fprintf(out, "%s\n", got);
+            want = t_golden_find(&gold, name);
+            if (!out) {
+                CHECK(want != NULL);
+                if (want && strcmp(want, got) != 0) {
+                    t_fail_msg(__FILE__, __LINE__, "scanner outputs differ from %s", SPARSE_GOLDEN);
+                    t_info("want %s", want);
+                    t_info("got  %s", got);
+                }
+            }
+            same += want && !strcmp(want, got);
+            frames++;
+        }
+    if (out) {
+        fclose(out);
+        t_info("wrote the scanner outputs of %d sparse-green frames to %s", frames, SPARSE_GOLDEN);
+    } else {
+        t_info("scanner outputs of %d sparse-green frames x 3 formats x 25 configurations: %d of "
+               "%d identical to %s", frames, same, frames, SPARSE_GOLDEN);
+    }
+    t_golden_free(&gold);
+    t_digest("scan.sparse_golden", all);
+}
 
 void suite_scan(void)
 {
@@ -954,4 +1075,5 @@ void suite_scan(void)
     t_run("scan.lighting", test_lighting);
     t_run("scan.realdata", test_realdata);
     t_run("scan.outputs_golden", test_outputs_golden);
+    t_run("scan.sparse_golden", test_sparse_golden);
 }
