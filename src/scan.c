@@ -592,25 +592,84 @@ static int32_t band_kind(const frame_t *f, int32_t n)
     return 0;
 }
 
+/* Green cells of a classified word (class 1: low bit set, high bit clear),
+ * on the EVEN bits. */
+#define GREEN_OF(c) ((c) & ~((c) >> 1) & EVEN)
+
+/* Longest run looked for around a phase A row: up to this many rows above
+ * it are kept on the stack (8 bytes each); a longer run (N above 16 grid
+ * rows) skips the test (every row with a green cell is taken, as before). */
+#define RUN_PROBE_MAX 16
+
 /* Phase A for band w: the first of the rows j0 + ns - 1, j0 + 2 ns - 1,
- * ... with a green cell (rows: none; its word, as classified, is left in
- * the map for band_rows).  Every run of ns green samples below j0
- * contains one of these rows, so no run in the band starts before that
- * row - (ns - 1): the band's first row is max(j0, that). */
+ * ... through which some column of the band is green on ns consecutive
+ * rows (rows: none).  Every run of ns green samples below j0 contains one
+ * of these rows, and only such a row has a run through it, so no run in
+ * the band starts before that row - (ns - 1): the band's first row is
+ * max(j0, that).  The test classifies the rows next to the sampled row
+ * only while some column is still green (up[k]: the columns green on rows
+ * j - k .. j; down: on j .. j + k), so on carpet it stops after ns - 1 rows
+ * above and on a frame without carpet (noise, the sky, a robot held up)
+ * after one or two, and the rest of the band is never classified.  The
+ * rows it classified, cls[0] .. cls[1] around the returned row, are
+ * left in the map as classified (band_rows skips them). */
 static FL_NOINLINE int32_t band_start(fl_scan_t *s, const frame_t *f,
-                                      int32_t w, int32_t j0, int32_t ns)
+                                      int32_t w, int32_t j0, int32_t ns,
+                                      int32_t cls[2])
 {
     int32_t n = s->cols - 32 * w > 32 ? 32 : s->cols - 32 * w;
-    int32_t kind = band_kind(f, n), j;
+    int32_t kind = band_kind(f, n), j, rows = s->rows;
     size_t step = (size_t)f->rs * f->st0;
-    for (j = j0 + ns - 1; j < s->rows; j += ns) {
+    uint64_t up[RUN_PROBE_MAX];
+    for (j = j0 + ns - 1; j < rows; j += ns) {
         uint64_t c = band_word(f, kind, f->p0 + (size_t)j * step, j, w, n);
-        if ((c & ~(c >> 1) & EVEN) != 0) {
-            s->map[j][w] = c;
+        int32_t ku, k, hi = j;
+        bool run = false;
+        up[0] = GREEN_OF(c);
+        if (up[0] == 0)
+            continue;
+        s->map[j][w] = c;
+        if (ns > RUN_PROBE_MAX || ns == 1) {
+            cls[0] = cls[1] = j;
+            return j;
+        }
+        /* up: rows j - 1 .. j - (ns - 1), not above j0 */
+        for (ku = 1; ku < ns && j - ku >= j0; ku++) {
+            c = band_word(f, kind, f->p0 + (size_t)(j - ku) * step, j - ku, w, n);
+            s->map[j - ku][w] = c;
+            up[ku] = up[ku - 1] & GREEN_OF(c);
+            if (up[ku] == 0) {
+                ku++;
+                break;
+            }
+        }
+        /* up[0 .. ku - 1] classified (later entries are 0) */
+        if (ku == ns && up[ns - 1] != 0) {
+            run = true;
+        } else {
+            uint64_t d = up[0];
+            for (k = 1; k < ns && j + k < rows; k++) {
+                c = band_word(f, kind, f->p0 + (size_t)(j + k) * step, j + k, w, n);
+                s->map[j + k][w] = c;
+                hi = j + k;
+                d &= GREEN_OF(c);
+                if (d == 0)
+                    break;
+                /* a run j - (ns - 1 - k) .. j + k */
+                if (ns - 1 - k < ku && (up[ns - 1 - k] & d) != 0) {
+                    run = true;
+                    break;
+                }
+            }
+        }
+        if (run) {
+            cls[0] = j - ku + 1;
+            cls[1] = hi;
             return j;
         }
     }
-    return s->rows;
+    cls[0] = cls[1] = rows;
+    return rows;
 }
 
 /* Rows j .. jend - 1 of band w classified into the map, unmasked (phase
@@ -730,10 +789,12 @@ static void gend_record(fl_scan_t *s, int32_t w, int32_t j, uint64_t leave)
  * last column are 0 from word_generic; carpet rows, the common case, only
  * move the state down: their map word is final as classified). */
 static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
-                                  int32_t j0, int32_t jm, int32_t ns)
+                                  int32_t j0, int32_t ns)
 {
-    /* jm: phase A's row (band_start; its word is in the map already) */
-    int32_t j_lo = jm - ns + 1 > j0 ? jm - ns + 1 : j0, nplanes;
+    /* jm: phase A's row (rows cls[0] .. cls[1] are in the map already);
+     * rows when no run: nothing to scan (six arguments: all in registers) */
+    int32_t cls[2], jm = band_start(s, f, w, j0, ns, cls);
+    int32_t j_lo = jm >= s->rows ? s->rows : (jm - ns + 1 > j0 ? jm - ns + 1 : j0), nplanes;
     int32_t n = s->cols - 32 * w, rows = s->rows, j, p;
     uint64_t found = 0, g1 = 0, g2 = 0, y1 = 0, y2 = 0, y3 = 0, wprev = 0, wrej = 0;
     uint64_t ing = 0;   /* found, still in the border's green run */
@@ -756,8 +817,8 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
     j = j_lo;
     for (nplanes = 1; (1 << nplanes) <= ns; nplanes++)
         ;
-    band_rows(s, f, j_lo, jm, w);
-    band_rows(s, f, jm + 1, rows, w);
+    band_rows(s, f, j_lo, cls[0], w);
+    band_rows(s, f, cls[1] + 1, rows, w);
     /* B1: until every column of the band has its border */
     for (; j < rows && found != all; j++, mp += FL_SCAN_WORDS) {
         uint64_t c = *mp, lo, hi, g, wh, y, starts, rej, cand;
@@ -1349,7 +1410,7 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
         s->border_v[w] = (int16_t)s->height;
     }
     for (w = 0; w < s->words; w++)
-        scan_band(s, &f, w, j0, band_start(s, &f, w, j0, ns), ns);
+        scan_band(s, &f, w, j0, ns);
     for (w = 0; w < cols; w++) {
         if (s->border_v[w] >= s->height)
             s->first_row[w] = (int16_t)rows;   /* no run found */
