@@ -15,8 +15,12 @@
  *   top (640x480, NAO v6, white goals, sunlight); rendered = the fixture
  *   scenes spl2013_goal_both (320) and spl2013_640_goal (640); noise =
  *   uniform random RGB (every pixel its own class: the worst case for
- *   runs, checks and feet) and "classnoise" (random carpet / line / post
- *   colours per pixel).
+ *   runs, checks and feet; no column has a run of N green pixels, so the
+ *   border search ends early and little is classified) and "classnoise"
+ *   (random carpet / line / post colours per pixel), and "topnoise":
+ *   12 rows of carpet at the top, uniform noise below (every column has
+ *   its border in row 0, so every pixel below is classified and checked:
+ *   the worst case of the scanner).
  * Times: ns per frame, best of 7 interleaved rounds (1 with --quick; see
  * bench_frame).
  */
@@ -91,7 +95,9 @@ static int make_noise(bench_frame_t *f, const char *name, int w, int h, int clas
         s ^= s << 13;
         s ^= s >> 7;
         s ^= s << 17;
-        if (classes)
+        if (classes == 2 && i < (size_t)w * 12)
+            memcpy(f->rgb + 3 * i, pal[0], 3);   /* the carpet strip */
+        else if (classes == 1)
             memcpy(f->rgb + 3 * i, pal[s & 3], 3);
         else {
             f->rgb[3 * i] = (uint8_t)s;
@@ -241,7 +247,7 @@ static void bench_frame(bench_ctx_t *ctx, const bench_frame_t *f, int noise)
 
 void bench_scan(bench_ctx_t *ctx)
 {
-    bench_frame_t fr[6];
+    bench_frame_t fr[7];
     int nf = 0, k, reps = ctx->quick ? 1 : 5;
     fl_color_params_t cp;
     double t;
@@ -265,11 +271,28 @@ void bench_scan(bench_ctx_t *ctx)
         nf++;
     if (make_noise(&fr[nf], "classnoise320", 320, 240, 1) == 0)
         nf++;
+    if (make_noise(&fr[nf], "topnoise320", 320, 240, 2) == 0)
+        nf++;
     for (k = 0; k < nf; k++)
-        bench_frame(ctx, &fr[k], !strncmp(fr[k].name, "noise", 5) || !strncmp(fr[k].name, "class", 5));
+        bench_frame(ctx, &fr[k], strstr(fr[k].name, "noise") != NULL);
     /* table build (what fl_color_adapt costs when the light moved) */
     BENCH_TIME(t, reps, ctx->quick ? 2 : 20, fl_color_init(&bench_colors, &cp));
     bench_row(ctx, "color_tables_build", t, 0, "fl_color_init: YCbCr + RGB tables (no peer)");
     for (k = 0; k < nf; k++)
         free(fr[k].rgb);
+}
+
+/* `fieldloc bench --noise-frames DIR` also writes the scanner's worst
+ * case, scan_topnoise_320.ppm (see the file top). */
+int bench_scan_write_noise(const char *dir)
+{
+    bench_frame_t f;
+    char path[1024];
+    int rc;
+    if (make_noise(&f, "topnoise320", 320, 240, 2) != 0)
+        return 1;
+    snprintf(path, sizeof path, "%s/scan_topnoise_320.ppm", dir);
+    rc = ppm_write(path, f.rgb, f.w, f.h) != 0;
+    free(f.rgb);
+    return rc;
 }

@@ -45,7 +45,10 @@ int cmd_bench(int argc, char **argv)
         else if (!strcmp(argv[k], "--quick"))
             ctx.quick = 1;
         else if (!strcmp(argv[k], "--noise-frames") && k + 1 < argc)
-            return bench_vision_write_noise && bench_vision_write_noise(argv[k + 1]) == 0 ? 0 : 1;
+            return bench_vision_write_noise && bench_vision_write_noise(argv[k + 1]) == 0 &&
+                           (!bench_scan_write_noise || bench_scan_write_noise(argv[k + 1]) == 0)
+                       ? 0
+                       : 1;
         else {
             fprintf(stderr, "usage: fieldloc bench [--out FILE.tsv] [--quick] [--only SECTION] [--noise-frames DIR]\n"
                     "  sections: fixed scan vision adversarial fuzzy\n");

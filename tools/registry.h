@@ -44,6 +44,7 @@ double bench_now_ns(void);
 
 /* Write the vision section's noise frames to DIR (0 = ok). */
 int bench_vision_write_noise(const char *dir) FL_WEAK;
+int bench_scan_write_noise(const char *dir) FL_WEAK;
 
 #define FL_BENCHES(X) X(fixed) X(scan) X(vision) X(adversarial) X(fuzzy)
 #define FL_DECL_BENCH(name) void bench_##name(bench_ctx_t *ctx) FL_WEAK;
