@@ -1113,13 +1113,53 @@ static int32_t highest_bit(uint64_t x)
     return x >> 1 ? n + 1 : n;
 }
 
+/* The yellow of column i from grid row jb - 1 up (a gap of one sample
+ * bridged) into the map and yellow_rows; returns the cells kept.  kind
+ * (a constant where inlined): 0 RGB, 1 one stride for the three bytes
+ * (YUYV), 2 a stride per plane. */
+static inline int32_t trace_walk(fl_scan_t *s, const fl_color_table_t *ct,
+                                 const col_t *col, int32_t i, int32_t jb, int32_t kind)
+{
+    uint64_t *mp = &s->map[jb - 1][i >> 5], cell = 3ULL << (62 - 2 * (i & 31));
+    size_t rs = (size_t)s->params.row_step, vv = (size_t)(jb - 1) * rs;
+    size_t oy = vv * col->sy, ocb = vv * col->scb, ocr = vv * col->scr;
+    size_t dy = rs * col->sy, dcb = rs * col->scb, dcr = rs * col->scr;
+    int32_t jj, n = 0, gap = 0;
+    for (jj = jb - 1; jj >= 0; jj--, mp -= FL_SCAN_WORDS, oy -= dy) {
+        int32_t c;
+        if (kind == 0) {
+            const uint8_t *q = col->y + oy;
+            unsigned g = q[1];
+            c = ct->pattern[(unsigned)ct->rgb_chroma[(unsigned)ct->rgb_dr[q[0] + 255u - g] +
+                                                    ct->rgb_db[q[2] + 255u - g]] + g];
+        } else if (kind == 1) {
+            c = ct->pattern[(size_t)ct->chroma[((unsigned)col->cb[oy] << 8) | col->cr[oy]] +
+                            col->y[oy]];
+        } else {
+            c = ct->pattern[(size_t)ct->chroma[((unsigned)col->cb[ocb] << 8) | col->cr[ocr]] +
+                            col->y[oy]];
+            ocb -= dcb;
+            ocr -= dcr;
+        }
+        if (c == FL_CLASS_YELLOW) {
+            *mp |= cell;
+            s->yellow_rows[jj]++;
+            n++;
+            gap = 0;
+        } else if (++gap > 1) {
+            break;
+        }
+    }
+    return n;
+}
+
 /* Column i with its post_top bit set (phase B or the repair saw yellow
  * right above the border): follow the yellow up, keep it, and a foot at
  * the border when it is a post. */
 static void trace_post(fl_scan_t *s, const frame_t *f, int32_t i)
 {
     const fl_color_table_t *ct = f->ct;
-    int32_t jb = s->first_row[i], jj, gap = 0, n = 0;
+    int32_t jb = s->first_row[i], jj, n;
     bool yellow = false;
     col_t col;
     if (jb >= s->rows)
@@ -1132,17 +1172,15 @@ static void trace_post(fl_scan_t *s, const frame_t *f, int32_t i)
         }
     if (!yellow)
         return;
-    for (jj = jb - 1; jj >= 0; jj--) {
-        if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
-            s->map[jj][i >> 5] |= 3ULL << (62 - 2 * (i & 31));
-            s->yellow_cols[i]++;
-            s->yellow_rows[jj]++;
-            n++;
-            gap = 0;
-        } else if (++gap > 1) {
-            break;
-        }
-    }
+    /* a post is tall: one walk per pixel layout (the branch on it out of
+     * the loop; YUYV and RGB step one offset for all three bytes) */
+    if (col.rgb)
+        n = trace_walk(s, ct, &col, i, jb, 0);
+    else if (col.scb == col.sy && col.scr == col.sy)
+        n = trace_walk(s, ct, &col, i, jb, 1);
+    else
+        n = trace_walk(s, ct, &col, i, jb, 2);
+    s->yellow_cols[i] = (uint16_t)(s->yellow_cols[i] + n);
     if (n >= 2)   /* a post, not a yellowish speck at the carpet edge */
         add_foot(s, i, i * f->cs, s->border_v[i]);
 }
