@@ -84,6 +84,14 @@
 #define FL_NOINLINE
 #endif
 
+/* Inlined where a constant argument (a pixel layout) lets a whole walk be
+ * specialised; no effect on results. */
+#if defined(__GNUC__)
+#define FL_INLINE inline __attribute__((always_inline))
+#else
+#define FL_INLINE inline
+#endif
+
 void fl_scan_params_default(fl_scan_params_t *p)
 {
     if (p == NULL)
@@ -164,6 +172,31 @@ static inline int32_t col_class(const col_t *c, const fl_color_table_t *ct, int3
     return ct->pattern[(size_t)ct->chroma[((unsigned)c->cb[vv * c->scb] << 8) |
                                           c->cr[vv * c->scr]] +
                        c->y[vv * c->sy]];
+}
+
+/* Pixel layout of a frame for col_class_k: 0 RGB, 1 YUYV (one stride for
+ * the three bytes), 2 planar (a stride per plane). */
+static int32_t col_kind(const frame_t *f)
+{
+    return f->fmt == FL_FMT_RGB888 ? 0 : (f->fmt == FL_FMT_YUYV422 ? 1 : 2);
+}
+
+/* col_class for a walk specialised on kind (a constant where inlined):
+ * no test of the layout per sample, one offset for the packed ones. */
+static FL_INLINE int32_t col_class_k(const col_t *c, const fl_color_table_t *ct,
+                                     int32_t v, int32_t kind)
+{
+    size_t o = (size_t)v * c->sy;
+    if (kind == 0) {
+        const uint8_t *q = c->y + o;
+        unsigned g = q[1];
+        return ct->pattern[(unsigned)ct->rgb_chroma[(unsigned)ct->rgb_dr[q[0] + 255u - g] +
+                                                    ct->rgb_db[q[2] + 255u - g]] + g];
+    }
+    if (kind == 1)
+        return ct->pattern[(size_t)ct->chroma[((unsigned)c->cb[o] << 8) | c->cr[o]] + c->y[o]];
+    return ct->pattern[(size_t)ct->chroma[((unsigned)c->cb[(size_t)v * c->scb] << 8) |
+                                          c->cr[(size_t)v * c->scr]] + c->y[o]];
 }
 
 /* BT.601 luma (RGB888) or Y of the column's pixel in row v. */
@@ -494,8 +527,9 @@ static int32_t column_candidate(const fl_scan_t *s, const frame_t *f, int32_t i,
  * The cells passed are classified into the map (they were masked).  lo:
  * the first searched grid row; max_white: 2 N px in grid rows (both
  * computed once per frame). */
-static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
-                          int32_t lo, int32_t max_white)
+static FL_INLINE void extend_border(fl_scan_t *s, const frame_t *f, int32_t i,
+                                    int32_t ns, int32_t lo, int32_t max_white,
+                                    int32_t kind)
 {
     const fl_color_table_t *ct = f->ct;
     int32_t rs = f->rs, jb = s->first_row[i], k, j;
@@ -507,7 +541,7 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
         /* c keeps the class of the sample that ended the walk (-1: the
          * walk ended on a bound), so it is not classified twice */
         while (jw >= lo && jb - jw <= max_white) {
-            c = col_class(&col, ct, jw * rs);
+            c = col_class_k(&col, ct, jw * rs, kind);
             if (c != FL_CLASS_WHITE)
                 break;
             c = -1;
@@ -526,10 +560,10 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
         if (jw < 0 || jb - jw > max_white)
             return;
         if (c < 0)
-            c = col_class(&col, ct, jw * rs);
+            c = col_class_k(&col, ct, jw * rs, kind);
         /* one other sample (the blurred edge) may sit under a post */
         if (c == FL_CLASS_OTHER && jw > 0 &&
-            col_class(&col, ct, (jw - 1) * rs) == FL_CLASS_YELLOW)
+            col_class_k(&col, ct, (jw - 1) * rs, kind) == FL_CLASS_YELLOW)
             c = FL_CLASS_YELLOW;
         if (c == FL_CLASS_YELLOW) {
             if (jw == jb - 1) {
@@ -557,7 +591,7 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
             jg = jw + 1;
         } else if (c == FL_CLASS_GREEN && jw < jb - 1 && jw >= lo) {
             jg = jw;
-            while (jg - 1 >= lo && col_class(&col, ct, (jg - 1) * rs) == FL_CLASS_GREEN)
+            while (jg - 1 >= lo && col_class_k(&col, ct, (jg - 1) * rs, kind) == FL_CLASS_GREEN)
                 jg--;
         } else {
             return;
@@ -573,6 +607,32 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
         if (c == FL_CLASS_YELLOW)
             return;
     }
+}
+
+/* extend_border for every column with a border (the others get first_row
+ * = rows), one loop per pixel layout. */
+static FL_INLINE void extend_all(fl_scan_t *s, const frame_t *f, int32_t ns, int32_t lo,
+                                 int32_t max_white, int32_t kind)
+{
+    int32_t i;
+    for (i = 0; i < s->cols; i++) {
+        if (s->border_v[i] >= s->height)
+            s->first_row[i] = (int16_t)s->rows;   /* no run found */
+        else
+            extend_border(s, f, i, ns, lo, max_white, kind);
+    }
+}
+
+static FL_NOINLINE void extend_borders(fl_scan_t *s, const frame_t *f, int32_t ns,
+                                       int32_t lo, int32_t max_white)
+{
+    int32_t kind = col_kind(f);
+    if (kind == 1)
+        extend_all(s, f, ns, lo, max_white, 1);
+    else if (kind == 0)
+        extend_all(s, f, ns, lo, max_white, 0);
+    else
+        extend_all(s, f, ns, lo, max_white, 2);
 }
 
 /* Word function of band w: 0 generic, 1 YUYV pairs, 2 YUYV even pixels,
@@ -1377,12 +1437,7 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
     }
     for (w = 0; w < s->words; w++)
         scan_band(s, &f, w, j0, band_start(s, &f, w, j0, ns), ns);
-    for (w = 0; w < cols; w++) {
-        if (s->border_v[w] >= s->height)
-            s->first_row[w] = (int16_t)rows;   /* no run found */
-        else
-            extend_border(s, &f, w, ns, j0, max_white);
-    }
+    extend_borders(s, &f, ns, j0, max_white);
     reject_bumps(s, &f, ns, 1);
     reject_bumps(s, &f, ns, -1);
     repair_borders(s, &f);
