@@ -199,6 +199,38 @@ static FL_INLINE int32_t col_class_k(const col_t *c, const fl_color_table_t *ct,
                                           c->cr[(size_t)v * c->scr]] + c->y[o]];
 }
 
+/* col_init for col_class_k of the same kind (the packed layouts need only
+ * y, cb, cr and one stride). */
+static FL_INLINE void col_init_k(col_t *c, const frame_t *f, int32_t u, int32_t kind)
+{
+    size_t uu = (size_t)u;
+    if (kind == 0) {
+        c->y = c->cb = c->cr = f->p0 + 3 * uu;
+        c->sy = c->scb = c->scr = f->st0;
+        c->rgb = true;
+    } else if (kind == 1) {
+        c->y = f->p0 + 2 * uu;
+        c->cb = f->p0 + 1 + 4 * (uu >> 1);
+        c->cr = c->cb + 2;
+        c->sy = c->scb = c->scr = f->st0;
+        c->rgb = false;
+    } else {
+        col_init(c, f, u);
+    }
+}
+
+/* Pixel row v upward from the border's first pixel row while the column
+ * is green, not above lo (border_found's refinement between grid rows). */
+static FL_INLINE int32_t refine_up(const frame_t *f, int32_t u, int32_t v, int32_t lo,
+                                   int32_t kind)
+{
+    col_t col;
+    col_init_k(&col, f, u, kind);
+    while (v - 1 >= lo && col_class_k(&col, f->ct, v - 1, kind) == FL_CLASS_GREEN)
+        v--;
+    return v;
+}
+
 /* BT.601 luma (RGB888) or Y of the column's pixel in row v. */
 static inline int32_t col_luma(const col_t *c, int32_t v)
 {
@@ -463,14 +495,16 @@ static void border_found(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
                          int32_t ns)
 {
     int32_t st = j - ns + 1, v = st * f->rs, lo;
-    col_t col;
     lo = (st - 1) * f->rs + 1;
     if (lo < s->start_v)
         lo = s->start_v;
     if (f->rs > 1) {   /* refine between grid rows */
-        col_init(&col, f, i * f->cs);
-        while (v - 1 >= lo && col_class(&col, f->ct, v - 1) == FL_CLASS_GREEN)
-            v--;
+        if (f->fmt == FL_FMT_YUYV422)
+            v = refine_up(f, i * f->cs, v, lo, 1);
+        else if (f->fmt == FL_FMT_RGB888)
+            v = refine_up(f, i * f->cs, v, lo, 0);
+        else
+            v = refine_up(f, i * f->cs, v, lo, 2);
     }
     s->border_v[i] = (int16_t)v;
     s->first_row[i] = (int16_t)st;
@@ -535,7 +569,7 @@ static FL_INLINE void extend_border(fl_scan_t *s, const frame_t *f, int32_t i,
     int32_t rs = f->rs, jb = s->first_row[i], k, j;
     uint64_t shift = (uint64_t)(62 - 2 * (i & 31));
     col_t col;
-    col_init(&col, f, i * f->cs);
+    col_init_k(&col, f, i * f->cs, kind);
     for (k = 0; k < 2; k++) {
         int32_t jw = jb - 1, jg, c = -1;
         /* c keeps the class of the sample that ended the walk (-1: the
