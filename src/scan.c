@@ -243,6 +243,17 @@ static inline int32_t col_luma(const col_t *c, int32_t v)
     return c->y[vv * c->sy];
 }
 
+/* col_luma for kind (see col_class_k). */
+static FL_INLINE int32_t col_luma_k(const col_t *c, int32_t v, int32_t kind)
+{
+    size_t o = (size_t)v * c->sy;
+    if (kind == 0) {
+        const uint8_t *q = c->y + o;
+        return (19595 * q[0] + 38470 * q[1] + 7471 * q[2] + 32768) >> 16;
+    }
+    return c->y[o];
+}
+
 /* R, G, B of the column's pixel in row v. */
 static void col_rgb(const col_t *c, int32_t v, uint8_t rgb[3])
 {
@@ -257,11 +268,11 @@ static void col_rgb(const col_t *c, int32_t v, uint8_t rgb[3])
     fl_rgb_from_ycbcr(c->y[vv * c->sy], c->cb[vv * c->scb], c->cr[vv * c->scr], rgb);
 }
 
-static int32_t px_luma(const frame_t *f, int32_t u, int32_t v)
+static FL_INLINE int32_t px_luma_k(const frame_t *f, int32_t u, int32_t v, int32_t kind)
 {
     col_t c;
-    col_init(&c, f, u);
-    return col_luma(&c, v);
+    col_init_k(&c, f, u, kind);
+    return col_luma_k(&c, v, kind);
 }
 
 /* ---- word classification (phase B) ----------------------------------------------
@@ -426,8 +437,8 @@ static void add_foot(fl_scan_t *s, int32_t i, int32_t u, int32_t v)
 /* Contrast check of a white run starting at cell (i, j), k = i % 32 in its
  * word; g1, g2: green of the two rows above in this word (words left of it
  * and this word are final in the map for row j).  True: keep. */
-static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
-                       uint64_t g1, uint64_t g2)
+static FL_INLINE bool white_keep_k(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
+                                   uint64_t g1, uint64_t g2, int32_t kind)
 {
     int32_t k = i & 31;
     int32_t v = j * f->rs, lw, lg = -1, d;
@@ -437,12 +448,12 @@ static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
         return true;
     }
     s->col_checks[i]++;
-    col_init(&col, f, i * f->cs);
+    col_init_k(&col, f, i * f->cs, kind);
     /* brightest pixel from this sample to the next: a thin line sampled
      * on its blurred edge still shows its core */
-    lw = col_luma(&col, v);
+    lw = col_luma_k(&col, v, kind);
     for (d = 1; d <= f->rs && v + d < s->height && lw < WHITE_CLIP; d++) {
-        int32_t l2 = col_luma(&col, v + d);
+        int32_t l2 = col_luma_k(&col, v + d, kind);
         if (l2 > lw)
             lw = l2;
     }
@@ -452,22 +463,22 @@ static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
     /* the darkest green of the three samples above: the one right above a
      * line is often its blurred edge, brighter than the carpet */
     if (g1 & cell_bit(k))
-        lg = col_luma(&col, v - f->rs);
+        lg = col_luma_k(&col, v - f->rs, kind);
     if (g2 & cell_bit(k)) {
-        int32_t l2 = col_luma(&col, v - 2 * f->rs);
+        int32_t l2 = col_luma_k(&col, v - 2 * f->rs, kind);
         lg = lg < 0 || l2 < lg ? l2 : lg;
     }
     if (lg >= 0 && v - 3 * f->rs >= 0 &&
-        col_class(&col, f->ct, v - 3 * f->rs) == FL_CLASS_GREEN) {
-        int32_t l3 = col_luma(&col, v - 3 * f->rs);
+        col_class_k(&col, f->ct, v - 3 * f->rs, kind) == FL_CLASS_GREEN) {
+        int32_t l3 = col_luma_k(&col, v - 3 * f->rs, kind);
         lg = l3 < lg ? l3 : lg;
     }
     for (d = 1; d <= 2 && lg < 0; d++) {
         if (i - d >= 0 && map_class(s, i - d, j) == FL_CLASS_GREEN)
-            lg = px_luma(f, (i - d) * f->cs, v);
+            lg = px_luma_k(f, (i - d) * f->cs, v, kind);
         else if (i + d < s->cols && ((i + d) >> 5) == (i >> 5) &&
                  map_class(s, i + d, j) == FL_CLASS_GREEN)
-            lg = px_luma(f, (i + d) * f->cs, v);
+            lg = px_luma_k(f, (i + d) * f->cs, v, kind);
     }
     if (lg < 0) {
         if (s->field.n <= 0)
@@ -478,6 +489,17 @@ static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
      * (luma >= WHITE_CLIP) passes: over carpet brighter than ~200 the
      * contrast asked for lies beyond what the sensor can show. */
     return lw * 100 >= lg * (100 + (int32_t)f->ct->params.white_contrast_pct);
+}
+
+/* white_keep_k per pixel layout. */
+static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
+                       uint64_t g1, uint64_t g2)
+{
+    if (f->fmt == FL_FMT_YUYV422)
+        return white_keep_k(s, f, i, j, g1, g2, 1);
+    if (f->fmt == FL_FMT_RGB888)
+        return white_keep_k(s, f, i, j, g1, g2, 0);
+    return white_keep_k(s, f, i, j, g1, g2, 2);
 }
 
 static void count_yellow(uint64_t *planes, uint64_t x)
