@@ -1367,12 +1367,28 @@ static void estimate_field(fl_scan_t *s, const frame_t *f)
     /* mode of the histogram smoothed over 5 bins (sliding sum) */
     sum = s->hue_hist[178] + s->hue_hist[179] + s->hue_hist[0] + s->hue_hist[1] +
           s->hue_hist[2];
-    for (h = 0; h < 180; h++) {
+    /* three stretches so that only the ends wrap (h - 2 below 0, h + 3
+     * past 179) */
+    for (h = 0; h < 2; h++) {
         if (sum > best) {
             best = sum;
             mode = h;
         }
-        sum += s->hue_hist[hue_wrap(h + 3)] - s->hue_hist[hue_wrap(h - 2)];
+        sum += s->hue_hist[h + 3] - s->hue_hist[h + 178];
+    }
+    for (; h < 177; h++) {
+        if (sum > best) {
+            best = sum;
+            mode = h;
+        }
+        sum += s->hue_hist[h + 3] - s->hue_hist[h - 2];
+    }
+    for (; h < 180; h++) {
+        if (sum > best) {
+            best = sum;
+            mode = h;
+        }
+        sum += s->hue_hist[h - 177] - s->hue_hist[h - 2];
     }
     acc = 0;
     wsum = 0;
@@ -1496,7 +1512,8 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
     extend_borders(s, &f, ns, j0, max_white);
     reject_bumps(s, &f, ns, 1);
     reject_bumps(s, &f, ns, -1);
-    repair_borders(s, &f);
+    if (s->n_border < cols)   /* else no column to repair */
+        repair_borders(s, &f);
     /* C */
     trace_posts(s, &f);
     /* D */
