@@ -593,10 +593,11 @@ static FL_INLINE void extend_border(fl_scan_t *s, const frame_t *f, int32_t i,
     col_t col;
     col_init_k(&col, f, i * f->cs, kind);
     for (k = 0; k < 2; k++) {
-        int32_t jw = jb - 1, jg, c = -1;
+        int32_t jw = jb - 1, jg, c = -1, jstop = jb - max_white > lo ? jb - max_white : lo;
+        uint64_t *mp;
         /* c keeps the class of the sample that ended the walk (-1: the
          * walk ended on a bound), so it is not classified twice */
-        while (jw >= lo && jb - jw <= max_white) {
+        while (jw >= jstop) {
             c = col_class_k(&col, ct, jw * rs, kind);
             if (c != FL_CLASS_WHITE)
                 break;
@@ -654,9 +655,11 @@ static FL_INLINE void extend_border(fl_scan_t *s, const frame_t *f, int32_t i,
         }
         /* the walks classified these samples: green up to jw, white
          * below it */
-        for (j = jg; j < jb; j++)
-            s->map[j][i >> 5] |= (uint64_t)(j <= jw ? FL_CLASS_GREEN : FL_CLASS_WHITE)
-                                 << shift;
+        mp = &s->map[jg][i >> 5];
+        for (j = jg; j <= jw; j++, mp += FL_SCAN_WORDS)
+            *mp |= (uint64_t)FL_CLASS_GREEN << shift;
+        for (; j < jb; j++, mp += FL_SCAN_WORDS)
+            *mp |= (uint64_t)FL_CLASS_WHITE << shift;
         jb = jg;
         s->first_row[i] = (int16_t)jb;
         s->border_v[i] = (int16_t)(jb * rs);
