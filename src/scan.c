@@ -1113,9 +1113,12 @@ static void reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns, int32_t dir
             int32_t x0 = wx[wh], x1 = wx[(wh + BUMP_WIN - 1) % BUMP_WIN];
             int32_t y0 = b[x0], y1 = b[x1];
             if (b[i] < level_at(x0, y0, x1, y1, i) - t && window_flat(b, wx, wh, t)) {
-                /* a bump: up to where the border comes back to the level */
+                /* a bump: up to where the border comes back to the level
+                 * (at most cols / 2 columns on, inside the image: r_end) */
+                int32_t r_end = dir > 0 ? (i + cols / 2 < cols ? i + cols / 2 : cols)
+                                        : (i - cols / 2 > -1 ? i - cols / 2 : -1);
                 last = i;
-                for (r = i; r >= 0 && r < cols && (r - i) * dir < cols / 2; r += dir) {
+                for (r = i; r != r_end; r += dir) {
                     int32_t lv;
                     if (b[r] >= rows)
                         continue;
