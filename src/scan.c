@@ -604,20 +604,21 @@ static FL_INLINE void extend_border(fl_scan_t *s, const frame_t *f, int32_t i,
             c = -1;
             jw--;
         }
-        if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1 &&
-            green_near_top(s, f, i)) {
-            /* a line cut by the top of an image that is all ground (the
-             * walk found every sample above the border white) */
-            for (j = 0; j < jb; j++)
-                s->map[j][i >> 5] |= (uint64_t)FL_CLASS_WHITE << shift;
-            s->first_row[i] = 0;
-            s->border_v[i] = 0;
-            return;
-        }
-        if (jw < 0 || jb - jw > max_white)
-            return;
-        if (c < 0)
+        if (c < 0) {   /* (else jw >= jstop: inside both bounds) */
+            if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1 &&
+                green_near_top(s, f, i)) {
+                /* a line cut by the top of an image that is all ground
+                 * (the walk found every sample above the border white) */
+                for (j = 0; j < jb; j++)
+                    s->map[j][i >> 5] |= (uint64_t)FL_CLASS_WHITE << shift;
+                s->first_row[i] = 0;
+                s->border_v[i] = 0;
+                return;
+            }
+            if (jw < 0 || jb - jw > max_white)
+                return;
             c = col_class_k(&col, ct, jw * rs, kind);
+        }
         /* one other sample (the blurred edge) may sit under a post */
         if (c == FL_CLASS_OTHER && jw > 0 &&
             col_class_k(&col, ct, (jw - 1) * rs, kind) == FL_CLASS_YELLOW)
@@ -1010,10 +1011,9 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
 static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
                          int32_t t, int32_t level)
 {
-    int32_t j = s->first_row[i], run = 0, st = -1, jj, k, v, lo, n_gap = 0;
+    int32_t j = s->first_row[i], run = 0, st = -1, jj, k, v, lo, n_gap = 0, lim;
     int32_t wi = i >> 5, sh = 62 - 2 * (i & 31);
-    int32_t lim = level - ns < s->rows - 1 ? level - ns : s->rows - 1;
-    uint64_t cell = 3ULL << sh, green = (uint64_t)FL_CLASS_GREEN << sh;
+    uint64_t cell, green;
     if (s->first_row[i] == s->gend_row[i]) {
         /* phase B saw where this border's green run ends (the cells from
          * its border down are as phase B left them): the walk below would
@@ -1024,6 +1024,7 @@ static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
         if (j > level - ns)
             return false;
     } else {
+        lim = level - ns < s->rows - 1 ? level - ns : s->rows - 1;
         while (j <= lim && ((s->map[j][wi] >> sh) & 3) == FL_CLASS_GREEN)
             j++;
         if (j > level - ns)
@@ -1032,6 +1033,8 @@ static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
     /* a run completing below row level + 2 ns - 1 would start below
      * level + ns and be refused: the walk stops there */
     lim = level + 2 * ns - 1 < s->rows - 1 ? level + 2 * ns - 1 : s->rows - 1;
+    cell = 3ULL << sh;
+    green = (uint64_t)FL_CLASS_GREEN << sh;
     if (j <= lim) {
         const uint64_t *q = &s->map[j][wi];
         for (; j <= lim; j++, q += FL_SCAN_WORDS) {
