@@ -943,12 +943,15 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
             /* carpet rows (only green and other, no yellow in the two rows
              * above): the map holds them already; the state moves down */
             uint64_t *mq = mp, acc = c;
+            const uint64_t *mlast = &s->map[rows - 1][w];
             int32_t j1 = j;
+            /* the row count from the pointer afterwards: one instruction
+             * less per carpet row */
             do {
                 acc &= c;
                 mq += FL_SCAN_WORDS;
-                j++;
-            } while (j < rows && ((c = *mq) & ODD) == 0);
+            } while (mq <= mlast && ((c = *mq) & ODD) == 0);
+            j += (int32_t)((mq - mp) / FL_SCAN_WORDS);
             /* green of the last two rows (g1 when only one) */
             g2 = j - j1 >= 2 ? mq[-2 * FL_SCAN_WORDS] & EVEN : g1;
             g1 = mq[-FL_SCAN_WORDS] & EVEN;
