@@ -43,31 +43,34 @@
  * Memory: fl_scan_t only (88 544 bytes at the default capacities);
  *  the stack holds a few words and one 8-entry window.
  * Cost (x86-64 host, gcc 12 -O2, callgrind, tools/callgrind.sh, UvA 2013
- *  320x240 frame): full resolution YUYV 687k instructions per frame (8.9
- *  per pixel), RGB 1.08M (14.1); default 2 x 2 grid YUYV 280k (3.6 per
- *  image pixel, 14.6 per grid cell), RGB 361k (4.7).  Where the default
- *  YUYV frame's instructions go: the lookups of phase B ~145k (9 per
+ *  320x240 frame): full resolution YUYV 638k instructions per frame (8.3
+ *  per pixel), RGB 1.04M (13.5); default 2 x 2 grid YUYV 257k (3.35 per
+ *  image pixel, 13.4 per grid cell), RGB 337k (4.4).  Where the default
+ *  YUYV frame's instructions go: the lookups of phase B ~150k (9 per
  *  classified cell: at col_step 2 every sample is the even pixel of its
  *  own YUYV pair, so the chroma lookup is not shared as at full
  *  resolution, where a pair costs 12 = 6 per pixel; the band starts at the
  *  earliest possible run start of its 32 columns, ~15.2k cells classified
  *  for ~13k below the border; an RGB cell costs 12: three byte loads, R -
  *  G and B - G, two bucket loads, the cell, the pattern, the accumulate),
- *  the candidate rows of A ~11k, the row logic of B ~43k (white checks and
- *  border refinement included), and the per-column scalar phases ~81k,
- *  which do not shrink with the grid: bumps ~17k (the outer loops; the
- *  re-runs' walks are short here), A' extend ~15k, D ~12k (exact HSV of
- *  ~84 samples), C, repair and the col_init/col_class of the scalar walks
- *  the rest.  Full resolution YUYV: lookups ~355k, A ~22k, B's row logic
- *  ~82k, bumps ~85k (~300 re-runs per frame that change nothing: the walk
- *  down the green is O(1) from gend, the walk through the gap below it is
- *  not), the other per-column phases ~143k.  The 5 instructions per pixel
+ *  the candidate rows of A ~11k, the row logic of B ~41k (the band_rows
+ *  loop, white checks and border refinement included), and the
+ *  per-column scalar phases ~65k, which do not shrink with the grid: A'
+ *  extend ~23k, bumps ~16k (the outer loops; the re-runs' walks are short
+ *  here), C, D (~10k: exact HSV of ~84 samples) and the set-up the rest.
+ *  Full resolution YUYV: lookups ~355k, A ~22k, B's row logic ~92k, bumps
+ *  ~81k (~390 re-runs per frame that change nothing: the walk down the
+ *  green is O(1) from gend, the walk through the gap below it is not),
+ *  extend ~56k, C, D and the set-up ~40k.  The scalar walks (extend,
+ *  border refinement, white checks, post trace) are specialised per pixel
+ *  layout (col_class_k: no layout test per sample, one offset for the
+ *  three bytes of RGB and YUYV).  The 5 instructions per pixel
  *  of issue 4 are out of reach for this design: the lookups alone are 6
  *  per pixel (YUYV) and 12 (RGB), and a cheaper classification would need
  *  a bigger table than the 256 KiB budget (an RGB table indexed by raw
  *  R - G and B - G is 522 KB).  Worst case bounded by cells + per-column
- *  caps (noise frames in bench_scan: full RGB 1.15M, YUYV 692k; default
- *  RGB 363k, YUYV 291k).
+ *  caps (a uniform noise 320x240 frame through `fieldloc scan`: full RGB
+ *  1.14M, YUYV 683k; default RGB 348k, YUYV 284k).
  */
 #include "fieldloc/scan.h"
 
@@ -82,6 +85,14 @@
 #define FL_NOINLINE __attribute__((noinline))
 #else
 #define FL_NOINLINE
+#endif
+
+/* Inlined where a constant argument (a pixel layout) lets a whole walk be
+ * specialised; no effect on results. */
+#if defined(__GNUC__)
+#define FL_INLINE inline __attribute__((always_inline))
+#else
+#define FL_INLINE inline
 #endif
 
 void fl_scan_params_default(fl_scan_params_t *p)
@@ -171,6 +182,63 @@ static inline int32_t col_class(const col_t *c, const fl_color_table_t *ct, int3
                        c->y[vv * c->sy]];
 }
 
+/* Pixel layout of a frame for col_class_k: 0 RGB, 1 YUYV (one stride for
+ * the three bytes), 2 planar (a stride per plane). */
+static int32_t col_kind(const frame_t *f)
+{
+    return f->fmt == FL_FMT_RGB888 ? 0 : (f->fmt == FL_FMT_YUYV422 ? 1 : 2);
+}
+
+/* col_class for a walk specialised on kind (a constant where inlined):
+ * no test of the layout per sample, one offset for the packed ones. */
+static FL_INLINE int32_t col_class_k(const col_t *c, const fl_color_table_t *ct,
+                                     int32_t v, int32_t kind)
+{
+    size_t o = (size_t)v * c->sy;
+    if (kind == 0) {
+        const uint8_t *q = c->y + o;
+        unsigned g = q[1];
+        return ct->pattern[(unsigned)ct->rgb_chroma[(unsigned)ct->rgb_dr[q[0] + 255u - g] +
+                                                    ct->rgb_db[q[2] + 255u - g]] + g];
+    }
+    if (kind == 1)
+        return ct->pattern[(size_t)ct->chroma[((unsigned)c->cb[o] << 8) | c->cr[o]] + c->y[o]];
+    return ct->pattern[(size_t)ct->chroma[((unsigned)c->cb[(size_t)v * c->scb] << 8) |
+                                          c->cr[(size_t)v * c->scr]] + c->y[o]];
+}
+
+/* col_init for col_class_k of the same kind (the packed layouts need only
+ * y, cb, cr and one stride). */
+static FL_INLINE void col_init_k(col_t *c, const frame_t *f, int32_t u, int32_t kind)
+{
+    size_t uu = (size_t)u;
+    if (kind == 0) {
+        c->y = c->cb = c->cr = f->p0 + 3 * uu;
+        c->sy = c->scb = c->scr = f->st0;
+        c->rgb = true;
+    } else if (kind == 1) {
+        c->y = f->p0 + 2 * uu;
+        c->cb = f->p0 + 1 + 4 * (uu >> 1);
+        c->cr = c->cb + 2;
+        c->sy = c->scb = c->scr = f->st0;
+        c->rgb = false;
+    } else {
+        col_init(c, f, u);
+    }
+}
+
+/* Pixel row v upward from the border's first pixel row while the column
+ * is green, not above lo (border_found's refinement between grid rows). */
+static FL_INLINE int32_t refine_up(const frame_t *f, int32_t u, int32_t v, int32_t lo,
+                                   int32_t kind)
+{
+    col_t col;
+    col_init_k(&col, f, u, kind);
+    while (v - 1 >= lo && col_class_k(&col, f->ct, v - 1, kind) == FL_CLASS_GREEN)
+        v--;
+    return v;
+}
+
 /* BT.601 luma (RGB888) or Y of the column's pixel in row v. */
 static inline int32_t col_luma(const col_t *c, int32_t v)
 {
@@ -181,6 +249,17 @@ static inline int32_t col_luma(const col_t *c, int32_t v)
         return (19595 * q[0] + 38470 * q[1] + 7471 * q[2] + 32768) >> 16;
     }
     return c->y[vv * c->sy];
+}
+
+/* col_luma for kind (see col_class_k). */
+static FL_INLINE int32_t col_luma_k(const col_t *c, int32_t v, int32_t kind)
+{
+    size_t o = (size_t)v * c->sy;
+    if (kind == 0) {
+        const uint8_t *q = c->y + o;
+        return (19595 * q[0] + 38470 * q[1] + 7471 * q[2] + 32768) >> 16;
+    }
+    return c->y[o];
 }
 
 /* R, G, B of the column's pixel in row v. */
@@ -197,11 +276,11 @@ static void col_rgb(const col_t *c, int32_t v, uint8_t rgb[3])
     fl_rgb_from_ycbcr(c->y[vv * c->sy], c->cb[vv * c->scb], c->cr[vv * c->scr], rgb);
 }
 
-static int32_t px_luma(const frame_t *f, int32_t u, int32_t v)
+static FL_INLINE int32_t px_luma_k(const frame_t *f, int32_t u, int32_t v, int32_t kind)
 {
     col_t c;
-    col_init(&c, f, u);
-    return col_luma(&c, v);
+    col_init_k(&c, f, u, kind);
+    return col_luma_k(&c, v, kind);
 }
 
 /* ---- word classification (phase B) ----------------------------------------------
@@ -366,8 +445,8 @@ static void add_foot(fl_scan_t *s, int32_t i, int32_t u, int32_t v)
 /* Contrast check of a white run starting at cell (i, j), k = i % 32 in its
  * word; g1, g2: green of the two rows above in this word (words left of it
  * and this word are final in the map for row j).  True: keep. */
-static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
-                       uint64_t g1, uint64_t g2)
+static FL_INLINE bool white_keep_k(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
+                                   uint64_t g1, uint64_t g2, int32_t kind)
 {
     int32_t k = i & 31;
     int32_t v = j * f->rs, lw, lg = -1, d;
@@ -377,12 +456,12 @@ static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
         return true;
     }
     s->col_checks[i]++;
-    col_init(&col, f, i * f->cs);
+    col_init_k(&col, f, i * f->cs, kind);
     /* brightest pixel from this sample to the next: a thin line sampled
      * on its blurred edge still shows its core */
-    lw = col_luma(&col, v);
+    lw = col_luma_k(&col, v, kind);
     for (d = 1; d <= f->rs && v + d < s->height && lw < WHITE_CLIP; d++) {
-        int32_t l2 = col_luma(&col, v + d);
+        int32_t l2 = col_luma_k(&col, v + d, kind);
         if (l2 > lw)
             lw = l2;
     }
@@ -392,22 +471,22 @@ static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
     /* the darkest green of the three samples above: the one right above a
      * line is often its blurred edge, brighter than the carpet */
     if (g1 & cell_bit(k))
-        lg = col_luma(&col, v - f->rs);
+        lg = col_luma_k(&col, v - f->rs, kind);
     if (g2 & cell_bit(k)) {
-        int32_t l2 = col_luma(&col, v - 2 * f->rs);
+        int32_t l2 = col_luma_k(&col, v - 2 * f->rs, kind);
         lg = lg < 0 || l2 < lg ? l2 : lg;
     }
     if (lg >= 0 && v - 3 * f->rs >= 0 &&
-        col_class(&col, f->ct, v - 3 * f->rs) == FL_CLASS_GREEN) {
-        int32_t l3 = col_luma(&col, v - 3 * f->rs);
+        col_class_k(&col, f->ct, v - 3 * f->rs, kind) == FL_CLASS_GREEN) {
+        int32_t l3 = col_luma_k(&col, v - 3 * f->rs, kind);
         lg = l3 < lg ? l3 : lg;
     }
     for (d = 1; d <= 2 && lg < 0; d++) {
         if (i - d >= 0 && map_class(s, i - d, j) == FL_CLASS_GREEN)
-            lg = px_luma(f, (i - d) * f->cs, v);
+            lg = px_luma_k(f, (i - d) * f->cs, v, kind);
         else if (i + d < s->cols && ((i + d) >> 5) == (i >> 5) &&
                  map_class(s, i + d, j) == FL_CLASS_GREEN)
-            lg = px_luma(f, (i + d) * f->cs, v);
+            lg = px_luma_k(f, (i + d) * f->cs, v, kind);
     }
     if (lg < 0) {
         if (s->field.n <= 0)
@@ -418,6 +497,17 @@ static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
      * (luma >= WHITE_CLIP) passes: over carpet brighter than ~200 the
      * contrast asked for lies beyond what the sensor can show. */
     return lw * 100 >= lg * (100 + (int32_t)f->ct->params.white_contrast_pct);
+}
+
+/* white_keep_k per pixel layout. */
+static bool white_keep(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
+                       uint64_t g1, uint64_t g2)
+{
+    if (f->fmt == FL_FMT_YUYV422)
+        return white_keep_k(s, f, i, j, g1, g2, 1);
+    if (f->fmt == FL_FMT_RGB888)
+        return white_keep_k(s, f, i, j, g1, g2, 0);
+    return white_keep_k(s, f, i, j, g1, g2, 2);
 }
 
 static void count_yellow(uint64_t *planes, uint64_t x)
@@ -435,14 +525,16 @@ static void border_found(fl_scan_t *s, const frame_t *f, int32_t i, int32_t j,
                          int32_t ns)
 {
     int32_t st = j - ns + 1, v = st * f->rs, lo;
-    col_t col;
     lo = (st - 1) * f->rs + 1;
     if (lo < s->start_v)
         lo = s->start_v;
     if (f->rs > 1) {   /* refine between grid rows */
-        col_init(&col, f, i * f->cs);
-        while (v - 1 >= lo && col_class(&col, f->ct, v - 1) == FL_CLASS_GREEN)
-            v--;
+        if (f->fmt == FL_FMT_YUYV422)
+            v = refine_up(f, i * f->cs, v, lo, 1);
+        else if (f->fmt == FL_FMT_RGB888)
+            v = refine_up(f, i * f->cs, v, lo, 0);
+        else
+            v = refine_up(f, i * f->cs, v, lo, 2);
     }
     s->border_v[i] = (int16_t)v;
     s->first_row[i] = (int16_t)st;
@@ -499,42 +591,45 @@ static int32_t column_candidate(const fl_scan_t *s, const frame_t *f, int32_t i,
  * The cells passed are classified into the map (they were masked).  lo:
  * the first searched grid row; max_white: 2 N px in grid rows (both
  * computed once per frame). */
-static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
-                          int32_t lo, int32_t max_white)
+static FL_INLINE void extend_border(fl_scan_t *s, const frame_t *f, int32_t i,
+                                    int32_t ns, int32_t lo, int32_t max_white,
+                                    int32_t kind)
 {
     const fl_color_table_t *ct = f->ct;
     int32_t rs = f->rs, jb = s->first_row[i], k, j;
     uint64_t shift = (uint64_t)(62 - 2 * (i & 31));
     col_t col;
-    col_init(&col, f, i * f->cs);
+    col_init_k(&col, f, i * f->cs, kind);
     for (k = 0; k < 2; k++) {
-        int32_t jw = jb - 1, jg, c = -1;
+        int32_t jw = jb - 1, jg, c = -1, jstop = jb - max_white > lo ? jb - max_white : lo;
+        uint64_t *mp;
         /* c keeps the class of the sample that ended the walk (-1: the
          * walk ended on a bound), so it is not classified twice */
-        while (jw >= lo && jb - jw <= max_white) {
-            c = col_class(&col, ct, jw * rs);
+        while (jw >= jstop) {
+            c = col_class_k(&col, ct, jw * rs, kind);
             if (c != FL_CLASS_WHITE)
                 break;
             c = -1;
             jw--;
         }
-        if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1 &&
-            green_near_top(s, f, i)) {
-            /* a line cut by the top of an image that is all ground (the
-             * walk found every sample above the border white) */
-            for (j = 0; j < jb; j++)
-                s->map[j][i >> 5] |= (uint64_t)FL_CLASS_WHITE << shift;
-            s->first_row[i] = 0;
-            s->border_v[i] = 0;
-            return;
+        if (c < 0) {   /* (else jw >= jstop: inside both bounds) */
+            if (jw < lo && lo == 0 && s->below_horizon && jw < jb - 1 &&
+                green_near_top(s, f, i)) {
+                /* a line cut by the top of an image that is all ground
+                 * (the walk found every sample above the border white) */
+                for (j = 0; j < jb; j++)
+                    s->map[j][i >> 5] |= (uint64_t)FL_CLASS_WHITE << shift;
+                s->first_row[i] = 0;
+                s->border_v[i] = 0;
+                return;
+            }
+            if (jw < 0 || jb - jw > max_white)
+                return;
+            c = col_class_k(&col, ct, jw * rs, kind);
         }
-        if (jw < 0 || jb - jw > max_white)
-            return;
-        if (c < 0)
-            c = col_class(&col, ct, jw * rs);
         /* one other sample (the blurred edge) may sit under a post */
         if (c == FL_CLASS_OTHER && jw > 0 &&
-            col_class(&col, ct, (jw - 1) * rs) == FL_CLASS_YELLOW)
+            col_class_k(&col, ct, (jw - 1) * rs, kind) == FL_CLASS_YELLOW)
             c = FL_CLASS_YELLOW;
         if (c == FL_CLASS_YELLOW) {
             if (jw == jb - 1) {
@@ -562,22 +657,50 @@ static void extend_border(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
             jg = jw + 1;
         } else if (c == FL_CLASS_GREEN && jw < jb - 1 && jw >= lo) {
             jg = jw;
-            while (jg - 1 >= lo && col_class(&col, ct, (jg - 1) * rs) == FL_CLASS_GREEN)
+            while (jg - 1 >= lo && col_class_k(&col, ct, (jg - 1) * rs, kind) == FL_CLASS_GREEN)
                 jg--;
         } else {
             return;
         }
         /* the walks classified these samples: green up to jw, white
          * below it */
-        for (j = jg; j < jb; j++)
-            s->map[j][i >> 5] |= (uint64_t)(j <= jw ? FL_CLASS_GREEN : FL_CLASS_WHITE)
-                                 << shift;
+        mp = &s->map[jg][i >> 5];
+        for (j = jg; j <= jw; j++, mp += FL_SCAN_WORDS)
+            *mp |= (uint64_t)FL_CLASS_GREEN << shift;
+        for (; j < jb; j++, mp += FL_SCAN_WORDS)
+            *mp |= (uint64_t)FL_CLASS_WHITE << shift;
         jb = jg;
         s->first_row[i] = (int16_t)jb;
         s->border_v[i] = (int16_t)(jb * rs);
         if (c == FL_CLASS_YELLOW)
             return;
     }
+}
+
+/* extend_border for every column with a border (the others get first_row
+ * = rows), one loop per pixel layout. */
+static FL_INLINE void extend_all(fl_scan_t *s, const frame_t *f, int32_t ns, int32_t lo,
+                                 int32_t max_white, int32_t kind)
+{
+    int32_t i;
+    for (i = 0; i < s->cols; i++) {
+        if (s->border_v[i] >= s->height)
+            s->first_row[i] = (int16_t)s->rows;   /* no run found */
+        else
+            extend_border(s, f, i, ns, lo, max_white, kind);
+    }
+}
+
+static FL_NOINLINE void extend_borders(fl_scan_t *s, const frame_t *f, int32_t ns,
+                                       int32_t lo, int32_t max_white)
+{
+    int32_t kind = col_kind(f);
+    if (kind == 1)
+        extend_all(s, f, ns, lo, max_white, 1);
+    else if (kind == 0)
+        extend_all(s, f, ns, lo, max_white, 0);
+    else
+        extend_all(s, f, ns, lo, max_white, 2);
 }
 
 /* Word function of band w: 0 generic, 1 YUYV pairs, 2 YUYV even pixels,
@@ -889,12 +1012,15 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
             /* carpet rows (only green and other, no yellow in the two rows
              * above): the map holds them already; the state moves down */
             uint64_t *mq = mp, acc = c;
+            const uint64_t *mlast = &s->map[rows - 1][w];
             int32_t j1 = j;
+            /* the row count from the pointer afterwards: one instruction
+             * less per carpet row */
             do {
                 acc &= c;
                 mq += FL_SCAN_WORDS;
-                j++;
-            } while (j < rows && ((c = *mq) & ODD) == 0);
+            } while (mq <= mlast && ((c = *mq) & ODD) == 0);
+            j += (int32_t)((mq - mp) / FL_SCAN_WORDS);
             /* green of the last two rows (g1 when only one) */
             g2 = j - j1 >= 2 ? mq[-2 * FL_SCAN_WORDS] & EVEN : g1;
             g1 = mq[-FL_SCAN_WORDS] & EVEN;
@@ -957,10 +1083,9 @@ static FL_NOINLINE void scan_band(fl_scan_t *s, const frame_t *f, int32_t w,
 static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
                          int32_t t, int32_t level)
 {
-    int32_t j = s->first_row[i], run = 0, st = -1, jj, k, v, lo, n_gap = 0;
+    int32_t j = s->first_row[i], run = 0, st = -1, jj, k, v, lo, n_gap = 0, lim;
     int32_t wi = i >> 5, sh = 62 - 2 * (i & 31);
-    int32_t lim = level - ns < s->rows - 1 ? level - ns : s->rows - 1;
-    uint64_t cell = 3ULL << sh, green = (uint64_t)FL_CLASS_GREEN << sh;
+    uint64_t cell, green;
     if (s->first_row[i] == s->gend_row[i]) {
         /* phase B saw where this border's green run ends (the cells from
          * its border down are as phase B left them): the walk below would
@@ -971,6 +1096,7 @@ static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
         if (j > level - ns)
             return false;
     } else {
+        lim = level - ns < s->rows - 1 ? level - ns : s->rows - 1;
         while (j <= lim && ((s->map[j][wi] >> sh) & 3) == FL_CLASS_GREEN)
             j++;
         if (j > level - ns)
@@ -979,6 +1105,8 @@ static bool rerun_column(fl_scan_t *s, const frame_t *f, int32_t i, int32_t ns,
     /* a run completing below row level + 2 ns - 1 would start below
      * level + ns and be refused: the walk stops there */
     lim = level + 2 * ns - 1 < s->rows - 1 ? level + 2 * ns - 1 : s->rows - 1;
+    cell = 3ULL << sh;
+    green = (uint64_t)FL_CLASS_GREEN << sh;
     if (j <= lim) {
         const uint64_t *q = &s->map[j][wi];
         for (; j <= lim; j++, q += FL_SCAN_WORDS) {
@@ -1060,9 +1188,12 @@ static void reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns, int32_t dir
             int32_t x0 = wx[wh], x1 = wx[(wh + BUMP_WIN - 1) % BUMP_WIN];
             int32_t y0 = b[x0], y1 = b[x1];
             if (b[i] < level_at(x0, y0, x1, y1, i) - t && window_flat(b, wx, wh, t)) {
-                /* a bump: up to where the border comes back to the level */
+                /* a bump: up to where the border comes back to the level
+                 * (at most cols / 2 columns on, inside the image: r_end) */
+                int32_t r_end = dir > 0 ? (i + cols / 2 < cols ? i + cols / 2 : cols)
+                                        : (i - cols / 2 > -1 ? i - cols / 2 : -1);
                 last = i;
-                for (r = i; r >= 0 && r < cols && (r - i) * dir < cols / 2; r += dir) {
+                for (r = i; r != r_end; r += dir) {
                     int32_t lv;
                     if (b[r] >= rows)
                         continue;
@@ -1179,13 +1310,53 @@ static int32_t highest_bit(uint64_t x)
     return x >> 1 ? n + 1 : n;
 }
 
+/* The yellow of column i from grid row jb - 1 up (a gap of one sample
+ * bridged) into the map and yellow_rows; returns the cells kept.  kind
+ * (a constant where inlined): 0 RGB, 1 one stride for the three bytes
+ * (YUYV), 2 a stride per plane. */
+static inline int32_t trace_walk(fl_scan_t *s, const fl_color_table_t *ct,
+                                 const col_t *col, int32_t i, int32_t jb, int32_t kind)
+{
+    uint64_t *mp = &s->map[jb - 1][i >> 5], cell = 3ULL << (62 - 2 * (i & 31));
+    size_t rs = (size_t)s->params.row_step, vv = (size_t)(jb - 1) * rs;
+    size_t oy = vv * col->sy, ocb = vv * col->scb, ocr = vv * col->scr;
+    size_t dy = rs * col->sy, dcb = rs * col->scb, dcr = rs * col->scr;
+    int32_t jj, n = 0, gap = 0;
+    for (jj = jb - 1; jj >= 0; jj--, mp -= FL_SCAN_WORDS, oy -= dy) {
+        int32_t c;
+        if (kind == 0) {
+            const uint8_t *q = col->y + oy;
+            unsigned g = q[1];
+            c = ct->pattern[(unsigned)ct->rgb_chroma[(unsigned)ct->rgb_dr[q[0] + 255u - g] +
+                                                    ct->rgb_db[q[2] + 255u - g]] + g];
+        } else if (kind == 1) {
+            c = ct->pattern[(size_t)ct->chroma[((unsigned)col->cb[oy] << 8) | col->cr[oy]] +
+                            col->y[oy]];
+        } else {
+            c = ct->pattern[(size_t)ct->chroma[((unsigned)col->cb[ocb] << 8) | col->cr[ocr]] +
+                            col->y[oy]];
+            ocb -= dcb;
+            ocr -= dcr;
+        }
+        if (c == FL_CLASS_YELLOW) {
+            *mp |= cell;
+            s->yellow_rows[jj]++;
+            n++;
+            gap = 0;
+        } else if (++gap > 1) {
+            break;
+        }
+    }
+    return n;
+}
+
 /* Column i with its post_top bit set (phase B or the repair saw yellow
  * right above the border): follow the yellow up, keep it, and a foot at
  * the border when it is a post. */
 static void trace_post(fl_scan_t *s, const frame_t *f, int32_t i)
 {
     const fl_color_table_t *ct = f->ct;
-    int32_t jb = s->first_row[i], jj, gap = 0, n = 0;
+    int32_t jb = s->first_row[i], jj, n;
     bool yellow = false;
     col_t col;
     if (jb >= s->rows)
@@ -1198,17 +1369,15 @@ static void trace_post(fl_scan_t *s, const frame_t *f, int32_t i)
         }
     if (!yellow)
         return;
-    for (jj = jb - 1; jj >= 0; jj--) {
-        if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
-            s->map[jj][i >> 5] |= 3ULL << (62 - 2 * (i & 31));
-            s->yellow_cols[i]++;
-            s->yellow_rows[jj]++;
-            n++;
-            gap = 0;
-        } else if (++gap > 1) {
-            break;
-        }
-    }
+    /* a post is tall: one walk per pixel layout (the branch on it out of
+     * the loop; YUYV and RGB step one offset for all three bytes) */
+    if (col.rgb)
+        n = trace_walk(s, ct, &col, i, jb, 0);
+    else if (col.scb == col.sy && col.scr == col.sy)
+        n = trace_walk(s, ct, &col, i, jb, 1);
+    else
+        n = trace_walk(s, ct, &col, i, jb, 2);
+    s->yellow_cols[i] = (uint16_t)(s->yellow_cols[i] + n);
     if (n >= 2)   /* a post, not a yellowish speck at the carpet edge */
         add_foot(s, i, i * f->cs, s->border_v[i]);
 }
@@ -1279,12 +1448,28 @@ static void estimate_field(fl_scan_t *s, const frame_t *f)
     /* mode of the histogram smoothed over 5 bins (sliding sum) */
     sum = s->hue_hist[178] + s->hue_hist[179] + s->hue_hist[0] + s->hue_hist[1] +
           s->hue_hist[2];
-    for (h = 0; h < 180; h++) {
+    /* three stretches so that only the ends wrap (h - 2 below 0, h + 3
+     * past 179) */
+    for (h = 0; h < 2; h++) {
         if (sum > best) {
             best = sum;
             mode = h;
         }
-        sum += s->hue_hist[hue_wrap(h + 3)] - s->hue_hist[hue_wrap(h - 2)];
+        sum += s->hue_hist[h + 3] - s->hue_hist[h + 178];
+    }
+    for (; h < 177; h++) {
+        if (sum > best) {
+            best = sum;
+            mode = h;
+        }
+        sum += s->hue_hist[h + 3] - s->hue_hist[h - 2];
+    }
+    for (; h < 180; h++) {
+        if (sum > best) {
+            best = sum;
+            mode = h;
+        }
+        sum += s->hue_hist[h - 177] - s->hue_hist[h - 2];
     }
     acc = 0;
     wsum = 0;
@@ -1411,15 +1596,11 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
     }
     for (w = 0; w < s->words; w++)
         scan_band(s, &f, w, j0, ns);
-    for (w = 0; w < cols; w++) {
-        if (s->border_v[w] >= s->height)
-            s->first_row[w] = (int16_t)rows;   /* no run found */
-        else
-            extend_border(s, &f, w, ns, j0, max_white);
-    }
+    extend_borders(s, &f, ns, j0, max_white);
     reject_bumps(s, &f, ns, 1);
     reject_bumps(s, &f, ns, -1);
-    repair_borders(s, &f);
+    if (s->n_border < cols)   /* else no column to repair */
+        repair_borders(s, &f);
     /* C */
     trace_posts(s, &f);
     /* D */
