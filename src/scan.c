@@ -43,34 +43,30 @@
  * Memory: fl_scan_t only (88 544 bytes at the default capacities);
  *  the stack holds a few words and one 8-entry window.
  * Cost (x86-64 host, gcc 12 -O2, callgrind, tools/callgrind.sh, UvA 2013
- *  320x240 frame): full resolution YUYV 638k instructions per frame (8.3
- *  per pixel), RGB 1.04M (13.5); default 2 x 2 grid YUYV 257k (3.35 per
- *  image pixel, 13.4 per grid cell), RGB 337k (4.4).  Where the default
- *  YUYV frame's instructions go: the lookups of phase B ~150k (9 per
- *  classified cell: at col_step 2 every sample is the even pixel of its
- *  own YUYV pair, so the chroma lookup is not shared as at full
- *  resolution, where a pair costs 12 = 6 per pixel; the band starts at the
- *  earliest possible run start of its 32 columns, ~15.2k cells classified
- *  for ~13k below the border; an RGB cell costs 12: three byte loads, R -
- *  G and B - G, two bucket loads, the cell, the pattern, the accumulate),
- *  the candidate rows of A ~11k, the row logic of B ~41k (the band_rows
- *  loop, white checks and border refinement included), and the
- *  per-column scalar phases ~65k, which do not shrink with the grid: A'
- *  extend ~23k, bumps ~16k (the outer loops; the re-runs' walks are short
- *  here), C, D (~10k: exact HSV of ~84 samples) and the set-up the rest.
- *  Full resolution YUYV: lookups ~355k, A ~22k, B's row logic ~92k, bumps
- *  ~81k (~390 re-runs per frame that change nothing: the walk down the
- *  green is O(1) from gend, the walk through the gap below it is not),
- *  extend ~56k, C, D and the set-up ~40k.  The scalar walks (extend,
- *  border refinement, white checks, post trace) are specialised per pixel
- *  layout (col_class_k: no layout test per sample, one offset for the
- *  three bytes of RGB and YUYV).  The 5 instructions per pixel
- *  of issue 4 are out of reach for this design: the lookups alone are 6
- *  per pixel (YUYV) and 12 (RGB), and a cheaper classification would need
- *  a bigger table than the 256 KiB budget (an RGB table indexed by raw
- *  R - G and B - G is 522 KB).  Worst case bounded by cells + per-column
- *  caps (a uniform noise 320x240 frame through `fieldloc scan`: full RGB
- *  1.14M, YUYV 683k; default RGB 348k, YUYV 284k).
+ *  320x240 frame): full resolution YUYV 629k instructions per frame (8.2
+ *  per pixel), RGB 924k (12.0); default 2 x 2 grid YUYV 243k (3.2 per
+ *  image pixel), RGB 298k (3.9).  Where the default YUYV frame's
+ *  instructions go: the lookups of phase B ~150k (9 per classified cell:
+ *  at col_step 2 every sample is the even pixel of its own YUYV pair, so
+ *  the chroma lookup is not shared as at full resolution, where a pair
+ *  costs 12 = 6 per pixel; an RGB cell costs 11: three byte loads, R - G
+ *  and B - G, two bucket loads (the second added from memory), the cell,
+ *  the pattern base, the pattern, the accumulate), the row logic of B
+ *  (white checks and border refinement included), and the per-column
+ *  scalar phases, which do not shrink with the grid (A' extend, bumps, C,
+ *  D: exact HSV of ~84 samples).  The scalar walks (extend, border
+ *  refinement, white checks, post trace) are specialised per pixel layout
+ *  (col_class_k: no layout test per sample, one offset for the three
+ *  bytes of RGB and YUYV).  The 5 instructions per pixel of issue 4 are
+ *  out of reach for this design: the classification alone is 6.06 per
+ *  pixel (YUYV) and 11.12 (RGB) (callgrind on the topnoise frame, every
+ *  row classified), and a cheaper one would need a bigger table than the
+ *  256 KiB budget (an RGB table indexed by raw R - G and B - G is 522 KB).
+ *  Worst case bounded by cells + per-column caps: "topnoise" (12 carpet
+ *  rows on top, uniform noise below: every column bordered in row 0, every
+ *  cell below classified and checked) full RGB 1.78M, YUYV 1.48M; default
+ *  RGB 487k, YUYV 522k.  Uniform noise alone is cheaper (full RGB 607k):
+ *  phase A finds no run of N green and leaves the bands unclassified.
  */
 #include "fieldloc/scan.h"
 

@@ -64,11 +64,14 @@
  * Lifecycle: fl_scan_init(&s, &params) once; fl_scan_frame(&s, &colors,
  * &image, camera or NULL) per frame.  Callers read everything before the
  * "private" mark.  Worst case per frame: every grid cell classified once
- * in B (noise: no border, every row below the search start), plus the
- * candidate rows of each band of 32 columns (every ns-th), per column a
- * few samples around the border, the post trace and the repair (each at
- * most one column height), plus capped per-column checks and feet;
- * measured on noise frames by bench_scan.
+ * in B (a border in row 0 of every column: carpet on top, noise below),
+ * plus the candidate rows of each band of 32 columns (every ns-th) and up
+ * to 2 (ns - 1) rows around each for the run test, per column a few
+ * samples around the border, the post trace and the repair (each at most
+ * one column height), plus capped per-column checks and feet; measured on
+ * the noise frames of bench_scan ("topnoise" is the worst).  A band in
+ * which no column has a run of ns green samples is never classified below
+ * its candidate rows (uniform noise: little work, empty result).
  */
 #ifndef FIELDLOC_SCAN_H
 #define FIELDLOC_SCAN_H
