@@ -235,19 +235,8 @@ static FL_INLINE int32_t refine_up(const frame_t *f, int32_t u, int32_t v, int32
     return v;
 }
 
-/* BT.601 luma (RGB888) or Y of the column's pixel in row v. */
-static inline int32_t col_luma(const col_t *c, int32_t v)
-{
-    size_t vv = (size_t)v;
-    if (c->rgb) {
-        const uint8_t *q = c->y + vv * c->sy;
-        /* fl_luma_from_rgb, inline (hot in white_keep) */
-        return (19595 * q[0] + 38470 * q[1] + 7471 * q[2] + 32768) >> 16;
-    }
-    return c->y[vv * c->sy];
-}
-
-/* col_luma for kind (see col_class_k). */
+/* BT.601 luma (RGB888, fl_luma_from_rgb inline: hot in white_keep) or Y
+ * of the column's pixel in row v, for kind (see col_class_k). */
 static FL_INLINE int32_t col_luma_k(const col_t *c, int32_t v, int32_t kind)
 {
     size_t o = (size_t)v * c->sy;
