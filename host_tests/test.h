@@ -54,6 +54,24 @@ void t_golden_load(t_golden_t *g, const char *path);
 const char *t_golden_find(const t_golden_t *g, const char *name);
 void t_golden_free(t_golden_t *g);
 
+/* A golden file of one line per case ("NAME ..."), checked or rewritten:
+ * t_golden_lines_begin loads path and, when FIELDLOC_WRITE_GOLDEN is set
+ * (full mode only), opens it for writing with header (comment lines);
+ * t_golden_lines_check writes got then, else compares it with the line of
+ * name (a difference fails and names `build/run_tests -k rewrite_k`);
+ * t_golden_lines_end closes and fails on cases without a line.  Counts:
+ * n cases, same identical, missing without a line. */
+typedef struct {
+    t_golden_t gold;
+    FILE *out;              /* non-NULL: rewriting */
+    const char *path, *rewrite_k;
+    int n, same, missing;
+} t_golden_lines_t;
+void t_golden_lines_begin(t_golden_lines_t *g, const char *path, const char *header,
+                          const char *rewrite_k);
+void t_golden_lines_check(t_golden_lines_t *g, const char *name, const char *got);
+void t_golden_lines_end(t_golden_lines_t *g);
+
 /* Deterministic PRNG (xorshift64*), identical on every target. */
 typedef struct { uint64_t s; } t_rng_t;
 void t_rng_seed(t_rng_t *r, uint64_t seed);

@@ -75,29 +75,23 @@ static void test_hostile_frames(void)
     static const fl_pixel_format_t fmts[3] = {FL_FMT_RGB888, FL_FMT_YUYV422, FL_FMT_YCBCR_PLANAR};
     static const char *fmt_names[3] = {"rgb", "yuyv", "planar"};
     const fl_field_t *field = fl_field_find("spl2013");
-    const char *write = getenv("FIELDLOC_WRITE_GOLDEN");
-    FILE *out = NULL;
-    t_golden_t gold;
+    t_golden_lines_t gold;
     fl_camera_t cam;
     fl_camera_pose_t pose;
     const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-320");
     uint32_t h = t_hash_init();
-    int k, si, fi, frames = 0, rejected = 0, same = 0, missing = 0;
+    int k, si, fi, rejected = 0;
     int nsizes = t_quick ? 4 : (int)(sizeof sizes / sizeof sizes[0]);
     pose.neck_height_mm = m->default_neck_height_mm;
     pose.pitch_offset = m->default_pitch_offset;
     pose.head_pitch = 0;
     pose.head_yaw = 0;
     CHECK_EQ(fl_camera_init(&cam, m, &pose), FL_OK);
-    t_golden_load(&gold, ADV_GOLDEN);
-    if (write && *write && !t_quick) {
-        out = fopen(ADV_GOLDEN, "w");
-        CHECK(out != NULL);
-        if (out)
-            fprintf(out, "# golden outputs of the hostile frames of tools/adversarial.c through "
+    t_golden_lines_begin(&gold, ADV_GOLDEN,
+                         "# golden outputs of the hostile frames of tools/adversarial.c through "
                          "fl_vision_frame\n# (host_tests/test_adversarial.c): NAME STATUS N_OBS "
-                         "POINTS SEGMENTS CROSSINGS POSTS 0xHASH\n# NAME = KIND_WxH_FORMAT_padPAD\n");
-    }
+                         "POINTS SEGMENTS CROSSINGS POSTS 0xHASH\n# NAME = KIND_WxH_FORMAT_padPAD\n",
+                         "adversarial");
     for (k = 0; k < ADV_COUNT; k++)
         for (si = 0; si < nsizes; si++)
             for (fi = 0; fi < 3; fi++) {
@@ -108,7 +102,6 @@ static void test_hostile_frames(void)
                 uint32_t fh;
                 int n_obs = 0;
                 char name[64], got[T_GOLDEN_LINE_MAX];
-                const char *want;
                 if (t_quick && sizes[si][0] * sizes[si][1] > 320 * 240)
                     continue;
                 buf = adv_frame((adv_kind_t)k, sizes[si][0], sizes[si][1], fmts[fi], pad, &img, &st);
@@ -132,31 +125,13 @@ static void test_hostile_frames(void)
                          (int)g_state->vis.lines.n_points, (int)g_state->vis.lines.n_segments,
                          (int)g_state->vis.crossings.n, (int)g_state->vis.posts.n,
                          (unsigned long)fh);
-                if (out)
-                    fprintf(out, "%s\n", got);
-                want = t_golden_find(&gold, name);
-                if (!want)
-                    missing++;
-                else if (!strcmp(want, got))
-                    same++;
-                else if (!out) {
-                    t_fail_msg(__FILE__, __LINE__, "hostile frame golden differs (rewrite with "
-                               "FIELDLOC_WRITE_GOLDEN=1 build/run_tests -k adversarial)");
-                    t_info("want %s", want);
-                    t_info("got  %s", got);
-                }
-                frames++;
+                t_golden_lines_check(&gold, name, got);
                 free(buf);
             }
-    if (out) {
-        fclose(out);
-        t_info("wrote %d hostile-frame goldens to %s", frames, ADV_GOLDEN);
-    } else {
-        CHECK_EQ(missing, 0);   /* every hostile frame has its golden line */
+    if (!gold.out)
         t_info("%d hostile frames (%d rejected views), outputs within capacity; %d of %d "
-               "identical to %s", frames, rejected, same, frames, ADV_GOLDEN);
-    }
-    t_golden_free(&gold);
+               "identical to %s", gold.n, rejected, gold.same, gold.n, ADV_GOLDEN);
+    t_golden_lines_end(&gold);   /* (fails when a frame has no golden line) */
     t_digest("adversarial.frames", h);
 }
 

@@ -101,6 +101,54 @@ void t_golden_free(t_golden_t *g)
     g->n = 0;
 }
 
+void t_golden_lines_begin(t_golden_lines_t *g, const char *path, const char *header,
+                          const char *rewrite_k)
+{
+    const char *write = getenv("FIELDLOC_WRITE_GOLDEN");
+    g->path = path;
+    g->rewrite_k = rewrite_k;
+    g->out = NULL;
+    g->n = g->same = g->missing = 0;
+    t_golden_load(&g->gold, path);
+    if (write && *write && !t_quick) {
+        g->out = fopen(path, "w");
+        CHECK(g->out != NULL);
+        if (g->out)
+            fputs(header, g->out);
+    }
+}
+
+void t_golden_lines_check(t_golden_lines_t *g, const char *name, const char *got)
+{
+    const char *want = t_golden_find(&g->gold, name);
+    g->n++;
+    if (g->out)
+        fprintf(g->out, "%s\n", got);
+    if (!want)
+        g->missing++;
+    else if (!strcmp(want, got))
+        g->same++;
+    else if (!g->out) {
+        t_fail_msg(__FILE__, __LINE__, "%s: %s differs (rewrite with FIELDLOC_WRITE_GOLDEN=1 "
+                   "build/run_tests -k %s)", g->path, name, g->rewrite_k);
+        t_info("want %s", want);
+        t_info("got  %s", got);
+    }
+}
+
+void t_golden_lines_end(t_golden_lines_t *g)
+{
+    if (g->out) {
+        fclose(g->out);
+        g->out = NULL;
+        t_info("wrote %d golden lines to %s", g->n, g->path);
+    } else if (g->missing > 0) {
+        t_fail_msg(__FILE__, __LINE__, "%s: %d of %d cases have no golden line", g->path,
+                   g->missing, g->n);
+    }
+    t_golden_free(&g->gold);
+}
+
 uint32_t t_hash_init(void) { return 2166136261u; }
 
 uint32_t t_hash_bytes(uint32_t h, const void *p, size_t n)

@@ -834,39 +834,55 @@ static uint32_t scan_configs(const fl_image_t *img, const fl_camera_t *cam,
     return h;
 }
 
-static void test_outputs_golden(void)
+/* The golden line of one frame: its scanner outputs over every
+ * configuration (scan_configs) in each of the three formats. */
+static void golden_line(const uint8_t *rgb, int w, int h, const fl_camera_t *cam,
+                        const fl_color_table_t *adapted, const char *name, char *got,
+                        size_t size, uint32_t *all)
 {
     static const fl_pixel_format_t fmts[3] = {FL_FMT_RGB888, FL_FMT_YUYV422, FL_FMT_YCBCR_PLANAR};
-    t_golden_t gold;
+    uint32_t fh[3];
+    int f;
+    for (f = 0; f < 3; f++) {
+        scantool_frame_t conv;
+        fh[f] = 0;
+        if (scantool_frame_from_rgb(rgb, w, h, fmts[f], &conv) != 0) {
+            t_fail_msg(__FILE__, __LINE__, "%s: format %d", name, f);
+            continue;
+        }
+        fh[f] = scan_configs(&conv.view, cam, adapted);
+        *all = t_hash_i32(*all, (int32_t)fh[f]);
+        scantool_frame_free(&conv);
+    }
+    snprintf(got, size, "%s 0x%08lx 0x%08lx 0x%08lx", name, (unsigned long)fh[0],
+             (unsigned long)fh[1], (unsigned long)fh[2]);
+}
+
+static void test_outputs_golden(void)
+{
     static fl_color_table_t adapted;
-    const char *write = getenv("FIELDLOC_WRITE_GOLDEN");
-    FILE *idx = fopen("fixtures/frames/index.txt", "r"), *out = NULL;
+    t_golden_lines_t gold;
+    FILE *idx = fopen("fixtures/frames/index.txt", "r");
     char line[512], got[256];
     uint32_t all = t_hash_init();
-    int frames = 0, same = 0, k = 0;
+    int k = 0;
     if (!idx) {
         t_info("scan.outputs_golden: skipped, fixtures/frames/index.txt not found");
         return;
     }
     colors_default();
-    t_golden_load(&gold, SCAN_GOLDEN);
-    if (write && *write && !t_quick) {
-        out = fopen(SCAN_GOLDEN, "w");
-        CHECK(out != NULL);
-        if (out)
-            fprintf(out, "# every output of fl_scan_frame over every fixture frame, 5 grids x 5 "
+    t_golden_lines_begin(&gold, SCAN_GOLDEN,
+                         "# every output of fl_scan_frame over every fixture frame, 5 grids x 5 "
                          "configurations\n# (host_tests/test_scan.c, test_outputs_golden): NAME "
-                         "0xRGB888 0xYUYV 0xPLANAR\n");
-    }
+                         "0xRGB888 0xYUYV 0xPLANAR\n",
+                         "scan.outputs_golden");
     while (fgets(line, sizeof line, idx)) {
         char name[64], file[64], fmt[16], field[32], path[256], err[256];
         render_scene_t sc;
         render_frame_t fr;
         fl_camera_t cam;
         uint8_t *rgb;
-        uint32_t fh[3];
-        int f, n, u, v;
-        const char *want;
+        int n, u, v;
         if (line[0] == '#' || sscanf(line, "%63s %63s %15s %31s", name, file, fmt, field) != 4)
             continue;
         if (t_quick && k++ % 8 != 0)
@@ -897,47 +913,17 @@ static void test_outputs_golden(void)
         fl_scan_frame(&scan, &colors, &fr.view, &cam);
         adapted = colors;
         fl_color_adapt(&adapted, &scan.field);
-        for (f = 0; f < 3; f++) {
-            scantool_frame_t conv;
-            fh[f] = 0;
-            if (scantool_frame_from_rgb(rgb, fr.width, fr.height, fmts[f], &conv) != 0) {
-                t_fail_msg(__FILE__, __LINE__, "%s: format %d", name, f);
-                continue;
-            }
-            fh[f] = scan_configs(&conv.view, &cam, &adapted);
-            all = t_hash_i32(all, (int32_t)fh[f]);
-            scantool_frame_free(&conv);
-        }
-        snprintf(got, sizeof got, "%s 0x%08lx 0x%08lx 0x%08lx", name, (unsigned long)fh[0],
-                 (unsigned long)fh[1], (unsigned long)fh[2]);
-        if (out)
-            fprintf(out, "%s\n", got);
-        want = t_golden_find(&gold, name);
-        if (!out) {
-            CHECK(want != NULL);
-            if (want && strcmp(want, got) != 0) {
-                t_fail_msg(__FILE__, __LINE__, "scanner outputs differ from %s (rewrite with "
-                           "FIELDLOC_WRITE_GOLDEN=1 build/run_tests -k scan.outputs_golden)",
-                           SCAN_GOLDEN);
-                t_info("want %s", want);
-                t_info("got  %s", got);
-            }
-        }
-        same += want && !strcmp(want, got);
-        frames++;
+        golden_line(rgb, fr.width, fr.height, &cam, &adapted, name, got, sizeof got, &all);
+        t_golden_lines_check(&gold, name, got);
         free(rgb);
         render_frame_free(&fr);
     }
     fclose(idx);
-    if (out) {
-        fclose(out);
-        t_info("wrote the scanner outputs of %d fixture frames to %s", frames, SCAN_GOLDEN);
-    } else {
-        CHECK(frames > 0);
+    CHECK(gold.n > 0);
+    if (!gold.out)
         t_info("scanner outputs of %d fixture frames x 3 formats x 25 configurations: %d of %d "
-               "identical to %s", frames, same, frames, SCAN_GOLDEN);
-    }
-    t_golden_free(&gold);
+               "identical to %s", gold.n, gold.same, gold.n, SCAN_GOLDEN);
+    t_golden_lines_end(&gold);
     t_digest("scan.outputs_golden", all);
 }
 
@@ -981,15 +967,12 @@ static void sparse_frame(uint8_t *rgb, int w, int h, int pct, uint32_t seed)
 
 static void test_sparse_golden(void)
 {
-    static const fl_pixel_format_t fmts[3] = {FL_FMT_RGB888, FL_FMT_YUYV422, FL_FMT_YCBCR_PLANAR};
     static const int pcts[] = {0, 5, 15, 30, 50, 70};
     static uint8_t rgb[320 * 240 * 3];
     static fl_color_table_t adapted;
-    const char *write = getenv("FIELDLOC_WRITE_GOLDEN");
-    t_golden_t gold;
-    FILE *out = NULL;
+    t_golden_lines_t gold;
     uint32_t all = t_hash_init();
-    int frames = 0, same = 0, pi, seed, f;
+    int pi, seed;
     fl_camera_t cam;
     render_scene_t sc;
     char err[256];
@@ -1001,65 +984,32 @@ static void test_sparse_golden(void)
         t_info("scan.sparse_golden: skipped, %s", err);
         return;
     }
-    t_golden_load(&gold, SPARSE_GOLDEN);
-    if (write && *write && !t_quick) {
-        out = fopen(SPARSE_GOLDEN, "w");
-        CHECK(out != NULL);
-        if (out)
-            fprintf(out, "# every output of fl_scan_frame on frames with sparse green, 5 grids x 5 "
+    t_golden_lines_begin(&gold, SPARSE_GOLDEN,
+                         "# every output of fl_scan_frame on frames with sparse green, 5 grids x 5 "
                          "configurations\n# (host_tests/test_scan.c, test_sparse_golden): NAME "
-                         "0xRGB888 0xYUYV 0xPLANAR\n");
-    }
+                         "0xRGB888 0xYUYV 0xPLANAR\n",
+                         "scan.sparse_golden");
     for (pi = 0; pi < (int)(sizeof pcts / sizeof pcts[0]); pi++)
         for (seed = 1; seed <= 2; seed++) {
             char name[64], got[256];
-            uint32_t fh[3];
-            const char *want;
+            fl_image_t img;
             if (t_quick && seed == 2)
                 continue;
             sparse_frame(rgb, 320, 240, pcts[pi], (uint32_t)(100 * pcts[pi] + seed));
-            for (f = 0; f < 3; f++) {
-                scantool_frame_t conv;
-                fh[f] = 0;
-                if (scantool_frame_from_rgb(rgb, 320, 240, fmts[f], &conv) != 0) {
-                    t_fail_msg(__FILE__, __LINE__, "sparse %d: format %d", pcts[pi], f);
-                    continue;
-                }
-                if (f == 0) {   /* the re-centred table, as test_outputs_golden */
-                    scan_init(2, 2);
-                    fl_scan_frame(&scan, &colors, &conv.view, NULL);
-                    adapted = colors;
-                    fl_color_adapt(&adapted, &scan.field);
-                }
-                fh[f] = scan_configs(&conv.view, &cam, &adapted);
-                all = t_hash_i32(all, (int32_t)fh[f]);
-                scantool_frame_free(&conv);
-            }
+            /* the re-centred table, as test_outputs_golden (no camera) */
+            fl_image_init_packed(&img, FL_FMT_RGB888, rgb, 320, 240, 320 * 3);
+            scan_init(2, 2);
+            fl_scan_frame(&scan, &colors, &img, NULL);
+            adapted = colors;
+            fl_color_adapt(&adapted, &scan.field);
             snprintf(name, sizeof name, "sparse_p%02d_s%d", pcts[pi], seed);
-            snprintf(got, sizeof got, "%s 0x%08lx 0x%08lx 0x%08lx", name, (unsigned long)fh[0],
-                     (unsigned long)fh[1], (unsigned long)fh[2]);
-            if (out)
-                fprintf(out, "%s\n", got);
-            want = t_golden_find(&gold, name);
-            if (!out) {
-                CHECK(want != NULL);
-                if (want && strcmp(want, got) != 0) {
-                    t_fail_msg(__FILE__, __LINE__, "scanner outputs differ from %s", SPARSE_GOLDEN);
-                    t_info("want %s", want);
-                    t_info("got  %s", got);
-                }
-            }
-            same += want && !strcmp(want, got);
-            frames++;
+            golden_line(rgb, 320, 240, &cam, &adapted, name, got, sizeof got, &all);
+            t_golden_lines_check(&gold, name, got);
         }
-    if (out) {
-        fclose(out);
-        t_info("wrote the scanner outputs of %d sparse-green frames to %s", frames, SPARSE_GOLDEN);
-    } else {
+    if (!gold.out)
         t_info("scanner outputs of %d sparse-green frames x 3 formats x 25 configurations: %d of "
-               "%d identical to %s", frames, same, frames, SPARSE_GOLDEN);
-    }
-    t_golden_free(&gold);
+               "%d identical to %s", gold.n, gold.same, gold.n, SPARSE_GOLDEN);
+    t_golden_lines_end(&gold);
     t_digest("scan.sparse_golden", all);
 }
 
