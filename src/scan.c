@@ -163,19 +163,19 @@ static inline void col_init(col_t *c, const frame_t *f, int32_t u)
     c->cr = f->pcr + f->kc * ch;
 }
 
-/* Class of the column's pixel in row v. */
-static inline int32_t col_class(const col_t *c, const fl_color_table_t *ct, int32_t v)
+/* Class of one pixel by the tables of color.h: RGB888 at q (R, G, B), or
+ * Y, Cb, Cr. */
+static FL_INLINE int32_t px_class_rgb(const fl_color_table_t *ct, const uint8_t *q)
 {
-    size_t vv = (size_t)v;
-    if (c->rgb) {
-        const uint8_t *q = c->y + vv * c->sy;
-        unsigned g = q[1];
-        return ct->pattern[(unsigned)ct->rgb_chroma[(unsigned)ct->rgb_dr[q[0] + 255u - g] +
-                                                    ct->rgb_db[q[2] + 255u - g]] + g];
-    }
-    return ct->pattern[(size_t)ct->chroma[((unsigned)c->cb[vv * c->scb] << 8) |
-                                          c->cr[vv * c->scr]] +
-                       c->y[vv * c->sy]];
+    unsigned g = q[1];
+    return ct->pattern[(unsigned)ct->rgb_chroma[(unsigned)ct->rgb_dr[q[0] + 255u - g] +
+                                                ct->rgb_db[q[2] + 255u - g]] + g];
+}
+
+static FL_INLINE int32_t px_class_ycc(const fl_color_table_t *ct, unsigned y, unsigned cb,
+                                      unsigned cr)
+{
+    return ct->pattern[(size_t)ct->chroma[(cb << 8) | cr] + y];
 }
 
 /* Pixel layout of a frame for col_class_k: 0 RGB, 1 YUYV (one stride for
@@ -191,16 +191,20 @@ static FL_INLINE int32_t col_class_k(const col_t *c, const fl_color_table_t *ct,
                                      int32_t v, int32_t kind)
 {
     size_t o = (size_t)v * c->sy;
-    if (kind == 0) {
-        const uint8_t *q = c->y + o;
-        unsigned g = q[1];
-        return ct->pattern[(unsigned)ct->rgb_chroma[(unsigned)ct->rgb_dr[q[0] + 255u - g] +
-                                                    ct->rgb_db[q[2] + 255u - g]] + g];
-    }
+    if (kind == 0)
+        return px_class_rgb(ct, c->y + o);
     if (kind == 1)
-        return ct->pattern[(size_t)ct->chroma[((unsigned)c->cb[o] << 8) | c->cr[o]] + c->y[o]];
-    return ct->pattern[(size_t)ct->chroma[((unsigned)c->cb[(size_t)v * c->scb] << 8) |
-                                          c->cr[(size_t)v * c->scr]] + c->y[o]];
+        return px_class_ycc(ct, c->y[o], c->cb[o], c->cr[o]);
+    return px_class_ycc(ct, c->y[o], c->cb[(size_t)v * c->scb], c->cr[(size_t)v * c->scr]);
+}
+
+/* Class of the column's pixel in row v (any layout). */
+static inline int32_t col_class(const col_t *c, const fl_color_table_t *ct, int32_t v)
+{
+    size_t vv = (size_t)v;
+    if (c->rgb)
+        return px_class_rgb(ct, c->y + vv * c->sy);
+    return px_class_ycc(ct, c->y[vv * c->sy], c->cb[vv * c->scb], c->cr[vv * c->scr]);
 }
 
 /* col_init for col_class_k of the same kind (the packed layouts need only
@@ -1310,16 +1314,11 @@ static inline int32_t trace_walk(fl_scan_t *s, const fl_color_table_t *ct,
     for (jj = jb - 1; jj >= 0; jj--, mp -= FL_SCAN_WORDS, oy -= dy) {
         int32_t c;
         if (kind == 0) {
-            const uint8_t *q = col->y + oy;
-            unsigned g = q[1];
-            c = ct->pattern[(unsigned)ct->rgb_chroma[(unsigned)ct->rgb_dr[q[0] + 255u - g] +
-                                                    ct->rgb_db[q[2] + 255u - g]] + g];
+            c = px_class_rgb(ct, col->y + oy);
         } else if (kind == 1) {
-            c = ct->pattern[(size_t)ct->chroma[((unsigned)col->cb[oy] << 8) | col->cr[oy]] +
-                            col->y[oy]];
+            c = px_class_ycc(ct, col->y[oy], col->cb[oy], col->cr[oy]);
         } else {
-            c = ct->pattern[(size_t)ct->chroma[((unsigned)col->cb[ocb] << 8) | col->cr[ocr]] +
-                            col->y[oy]];
+            c = px_class_ycc(ct, col->y[oy], col->cb[ocb], col->cr[ocr]);
             ocb -= dcb;
             ocr -= dcr;
         }
