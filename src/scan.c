@@ -65,7 +65,7 @@
  *  Worst case bounded by cells + per-column caps: "topnoise" (12 carpet
  *  rows on top, uniform noise below: every column bordered in row 0, every
  *  cell below classified and checked) full RGB 1.78M, YUYV 1.48M; default
- *  RGB 487k, YUYV 522k.  Uniform noise alone is cheaper (full RGB 607k):
+ *  RGB 487k, YUYV 523k.  Uniform noise alone is cheaper (full RGB 607k):
  *  phase A finds no run of N green and leaves the bands unclassified.
  */
 #include "fieldloc/scan.h"
