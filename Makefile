@@ -44,7 +44,7 @@ FW_CFLAGS   = $(WARN) -Werror $(OPT) -g -fno-common -Iinclude $(FW_NOFP) $(ARCHF
 HOST_CFLAGS = $(WARN) -Wno-address $(OPT) -g -Iinclude -Ihost_tests -Itools $(HOST_FP) $(ARCHFLAGS) -D_DEFAULT_SOURCE $(CV_DEFS)
 HOST_LIBS   = -lm
 
-# OpenCV is optional and host-only: the tools' C++ files (tools/*.cpp: the
+# OpenCV is optional and host-only: the tools' C++ files (tools/*/*.cpp: the
 # OpenCV peers of the benchmarks, PNG output) are built only when
 # pkg-config finds opencv4 and the build is native (not cross, not
 # sanitize).  WITH_OPENCV=0 turns it off.
@@ -57,19 +57,25 @@ CXX      ?= g++
 CV_DEFS   = -DFL_HAVE_OPENCV
 CV_CFLAGS := $(shell pkg-config --cflags opencv4)
 CV_LIBS   := $(filter-out -lopencv_%,$(shell pkg-config --libs opencv4)) -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
-TOOL_CXX_SRC := $(sort $(wildcard tools/*.cpp))
+TOOL_CXX_SRC := $(sort $(wildcard tools/*/*.cpp))
 endif
 TOOL_CXX_OBJ := $(TOOL_CXX_SRC:%.cpp=$(BUILD)/%.o)
 
 LINK      = $(if $(TOOL_CXX_OBJ),$(CXX),$(CC))
 
-FW_SRC   := $(sort $(wildcard src/*.c))
+FW_SRC   := $(sort $(wildcard src/*/*.c))
 FW_OBJ   := $(FW_SRC:%.c=$(BUILD)/%.o)
 LIB      := $(BUILD)/libfieldloc.a
 
 TEST_SRC := $(sort $(wildcard host_tests/*.c))
 TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
-TOOL_LIB_SRC := $(filter-out tools/fieldloc.c,$(sort $(wildcard tools/*.c)))
+# Host tools by concern (tools/<folder>/, include order io <- world <- eval <-
+# loc <- bench <- cli, no circles).  The test runner links every folder but
+# cli/: no CLI command.
+TOOL_DIRS    := io world eval loc bench
+TOOL_LIB_SRC := $(sort $(foreach d,$(TOOL_DIRS),$(wildcard tools/$(d)/*.c)))
+CLI_SRC      := $(sort $(wildcard tools/cli/*.c))
+CLI_OBJ      := $(CLI_SRC:%.c=$(BUILD)/%.o)
 TOOL_LIB_OBJ := $(TOOL_LIB_SRC:%.c=$(BUILD)/%.o) $(TOOL_CXX_OBJ)
 CLI      := $(BUILD)/fieldloc
 RUNNER   := $(BUILD)/run_tests
@@ -111,7 +117,7 @@ $(LIB): $(FW_OBJ)
 $(RUNNER): $(TEST_OBJ) $(TOOL_LIB_OBJ) $(LIB)
 	$(LINK) $(HOST_CFLAGS) -o $@ $(TEST_OBJ) $(TOOL_LIB_OBJ) $(LIB) $(HOST_LIBS) $(CV_LIBS)
 
-$(CLI): $(BUILD)/tools/fieldloc.o $(TOOL_LIB_OBJ) $(LIB)
+$(CLI): $(CLI_OBJ) $(TOOL_LIB_OBJ) $(LIB)
 	$(LINK) $(HOST_CFLAGS) -o $@ $^ $(HOST_LIBS) $(CV_LIBS)
 
 test: $(RUNNER) $(CLI) check
@@ -124,7 +130,7 @@ test-exhaustive: $(RUNNER)
 	@$(RUNNER) --exhaustive
 
 check: $(LIB)
-	@CC="$(CC)" BUILD="$(BUILD)" sh tools/check_firmware.sh
+	@CC="$(CC)" BUILD="$(BUILD)" sh tools/build/check_firmware.sh
 
 # Cross targets: the same sources with each cross compiler, statically
 # linked, run under qemu-user with --quick, compared with the host's --quick
@@ -154,7 +160,7 @@ sanitize:
 
 bench: $(CLI)
 	@$(CLI) bench --out $(BUILD)/bench.tsv
-	@sh tools/callgrind.sh $(BUILD)
+	@sh tools/bench/callgrind.sh $(BUILD)
 
 # The main job: a bundled simulated walk (spl2013, 130 s, head scanning, a
 # kidnap and a penalty) rendered frame by frame, run through the vision path
@@ -167,7 +173,7 @@ demo: all
 
 # Hot functions of the column scanner under perf record.
 perf: $(CLI)
-	@sh tools/perf.sh $(BUILD)
+	@sh tools/bench/perf.sh $(BUILD)
 
 # Rewrite the expected detections of every fixture (fixtures/golden/) from
 # the current vision path.  Only when asked: review the diff before committing.
@@ -191,7 +197,7 @@ stack:
 	  $(CC) $(FW_CFLAGS) -fcallgraph-info=su -c $$f -o $(BUILD)/stack/$$(basename $$f .c).o \
 	    -dumpbase $$(basename $$f .c) -dumpdir $(BUILD)/stack/ || exit 1; \
 	done
-	@python3 tools/stack_report.py --limit 4096 $(BUILD)/stack/*.ci
+	@python3 tools/build/stack_report.py --limit 4096 $(BUILD)/stack/*.ci
 
 # The test suite under valgrind memcheck (quick mode: the sweeps are long).
 valgrind: $(RUNNER)
@@ -234,7 +240,7 @@ install: $(LIB)
 	install -d $(DESTDIR)$(PREFIX)/include/fieldloc $(DESTDIR)$(PREFIX)/lib/pkgconfig
 	install -m 644 include/fieldloc/*.h $(DESTDIR)$(PREFIX)/include/fieldloc/
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/
-	sed -e 's|@PREFIX@|$(PREFIX)|' tools/fieldloc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/fieldloc.pc
+	sed -e 's|@PREFIX@|$(PREFIX)|' tools/build/fieldloc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/fieldloc.pc
 
 uninstall:
 	rm -rf $(DESTDIR)$(PREFIX)/include/fieldloc
@@ -248,4 +254,4 @@ echo:
 	@echo "FW_CFLAGS   = $(FW_CFLAGS)"
 	@echo "HOST_CFLAGS = $(HOST_CFLAGS)"
 
--include $(FW_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(TOOL_LIB_OBJ:.o=.d) $(BUILD)/tools/fieldloc.d
+-include $(FW_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(TOOL_LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)

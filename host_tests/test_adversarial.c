@@ -12,8 +12,8 @@
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
-#include "render.h"
-#include "adversarial.h"
+#include "world/render.h"
+#include "world/adversarial.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -88,7 +88,7 @@ static void test_hostile_frames(void)
     pose.head_yaw = 0;
     CHECK_EQ(fl_camera_init(&cam, m, &pose), FL_OK);
     t_golden_lines_begin(&gold, ADV_GOLDEN,
-                         "# golden outputs of the hostile frames of tools/adversarial.c through "
+                         "# golden outputs of the hostile frames of tools/world/adversarial.c through "
                          "fl_vision_frame\n# (host_tests/test_adversarial.c): NAME STATUS N_OBS "
                          "POINTS SEGMENTS CROSSINGS POSTS 0xHASH\n# NAME = KIND_WxH_FORMAT_padPAD\n",
                          "adversarial");

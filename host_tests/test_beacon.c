@@ -1,24 +1,24 @@
 /*
- * host_tests/test_beacon.c - coloured landmarks (beacon.h): sky-blue goal
+ * host_tests/test_beacon.c - colored landmarks (beacon.h): sky-blue goal
  * posts and corner beacons of the aibo2004 field.
  *   - params and bad input (NULL, size mismatch, tiny frames);
  *   - the aibo2004 fixtures (fixtures/frames/index.txt with the .truth
  *     files): every beacon and sky-blue post foot of the truth that is
- *     fully inside the image is found, with its colours / side, within
+ *     fully inside the image is found, with its colors / side, within
  *     BC_MAX_PX pixels of the true foot; every result is one of them (no
  *     false result); the range errors are printed (t_info) and bounded;
  *   - nothing on the spl2013 fixtures (run directly: fl_vision_frame does
  *     not call the stage there) nor on the hostile frames of
- *     tools/adversarial.h (aibo camera and field);
- *   - fl_vision_frame on aibo2004 appends the observations (colour2 set
+ *     tools/world/adversarial.h (aibo camera and field);
+ *   - fl_vision_frame on aibo2004 appends the observations (color2 set
  *     for beacons) and leaves spl2013 observations without them.
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
-#include "adversarial.h"
-#include "detect.h"
-#include "render.h"
-#include "truth.h"
+#include "world/adversarial.h"
+#include "eval/detect.h"
+#include "world/render.h"
+#include "world/truth.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -82,14 +82,14 @@ static void test_params(void)
         uint8_t px[3 * 4] = {80, 175, 230, 245, 90, 170, 191, 185, 47, 82, 141, 85};
         fl_image_t img;
         CHECK_EQ(fl_image_init_packed(&img, FL_FMT_RGB888, px, 4, 1, 12), FL_OK);
-        CHECK_EQ(fl_beacon_pixel_colour(&p, &img, 0, 0), FL_COLOUR_SKYBLUE);
-        CHECK_EQ(fl_beacon_pixel_colour(&p, &img, 1, 0), FL_COLOUR_PINK);
-        CHECK_EQ(fl_beacon_pixel_colour(&p, &img, 2, 0), FL_COLOUR_YELLOW);
-        CHECK_EQ(fl_beacon_pixel_colour(&p, &img, 3, 0), FL_COLOUR_NONE);
-        CHECK_EQ(fl_beacon_pixel_colour(&p, &img, 4, 0), FL_COLOUR_NONE);
-        CHECK_EQ(fl_beacon_pixel_colour(&p, &img, -1, 0), FL_COLOUR_NONE);
-        CHECK_EQ(fl_beacon_pixel_colour(NULL, &img, 0, 0), FL_COLOUR_NONE);
-        CHECK_EQ(fl_beacon_pixel_colour(&p, NULL, 0, 0), FL_COLOUR_NONE);
+        CHECK_EQ(fl_beacon_pixel_color(&p, &img, 0, 0), FL_COLOR_SKYBLUE);
+        CHECK_EQ(fl_beacon_pixel_color(&p, &img, 1, 0), FL_COLOR_PINK);
+        CHECK_EQ(fl_beacon_pixel_color(&p, &img, 2, 0), FL_COLOR_YELLOW);
+        CHECK_EQ(fl_beacon_pixel_color(&p, &img, 3, 0), FL_COLOR_NONE);
+        CHECK_EQ(fl_beacon_pixel_color(&p, &img, 4, 0), FL_COLOR_NONE);
+        CHECK_EQ(fl_beacon_pixel_color(&p, &img, -1, 0), FL_COLOR_NONE);
+        CHECK_EQ(fl_beacon_pixel_color(NULL, &img, 0, 0), FL_COLOR_NONE);
+        CHECK_EQ(fl_beacon_pixel_color(&p, NULL, 0, 0), FL_COLOR_NONE);
     }
     CHECK(!fl_vision_wants_beacons(NULL));
     CHECK(!fl_vision_wants_beacons(fl_field_find("spl2013")));
@@ -98,9 +98,9 @@ static void test_params(void)
     CHECK(fl_vision_wants_beacons(fl_field_find("aibo2004")));
 }
 
-/* fl_beacon_pixel_colour (the stage's classification, with its grey
+/* fl_beacon_pixel_color (the stage's classification, with its grey
  * pre-rejection) against the plain definition: HSV, then the boxes in the
- * order yellow, sky-blue, pink; a grid of colours (every 3rd level, every
+ * order yellow, sky-blue, pink; a grid of colors (every 3rd level, every
  * 7th in quick mode), in RGB and through YCbCr planes. */
 static int bt_in(const fl_hsv_box_t *b, fl_hsv_t x)
 {
@@ -120,12 +120,12 @@ static void test_classes(void)
                 uint8_t px[3] = {(uint8_t)r, (uint8_t)g, (uint8_t)b}, y, cb, cr;
                 fl_image_t img;
                 fl_hsv_t x = fl_hsv_from_rgb(px[0], px[1], px[2]);
-                fl_colour_t want = bt_in(&p.yellow, x)    ? FL_COLOUR_YELLOW
-                                   : bt_in(&p.skyblue, x) ? FL_COLOUR_SKYBLUE
-                                   : bt_in(&p.pink, x)    ? FL_COLOUR_PINK
-                                                          : FL_COLOUR_NONE, got;
+                fl_color_t want = bt_in(&p.yellow, x)    ? FL_COLOR_YELLOW
+                                   : bt_in(&p.skyblue, x) ? FL_COLOR_SKYBLUE
+                                   : bt_in(&p.pink, x)    ? FL_COLOR_PINK
+                                                          : FL_COLOR_NONE, got;
                 fl_image_init_packed(&img, FL_FMT_RGB888, px, 1, 1, 3);
-                got = fl_beacon_pixel_colour(&p, &img, 0, 0);
+                got = fl_beacon_pixel_color(&p, &img, 0, 0);
                 bad += got != want;
                 counts[got]++;
                 n++;
@@ -139,20 +139,20 @@ static void test_classes(void)
                     fl_image_init_planar(&img, &y, 1, &cb, 1, &cr, 1, 1, 1);
                     fl_rgb_from_ycbcr(y, cb, cr, rgb2);
                     x = fl_hsv_from_rgb(rgb2[0], rgb2[1], rgb2[2]);
-                    want = bt_in(&p.yellow, x)    ? FL_COLOUR_YELLOW
-                           : bt_in(&p.skyblue, x) ? FL_COLOUR_SKYBLUE
-                           : bt_in(&p.pink, x)    ? FL_COLOUR_PINK
-                                                  : FL_COLOUR_NONE;
-                    got = fl_beacon_pixel_colour(&p, &img, 0, 0);
+                    want = bt_in(&p.yellow, x)    ? FL_COLOR_YELLOW
+                           : bt_in(&p.skyblue, x) ? FL_COLOR_SKYBLUE
+                           : bt_in(&p.pink, x)    ? FL_COLOR_PINK
+                                                  : FL_COLOR_NONE;
+                    got = fl_beacon_pixel_color(&p, &img, 0, 0);
                     bad += got != want;
                     h = t_hash_i32(h, (int32_t)got);
                 }
             }
     CHECK_EQ(bad, 0);
-    CHECK(counts[FL_COLOUR_YELLOW] > 0 && counts[FL_COLOUR_SKYBLUE] > 0 &&
-          counts[FL_COLOUR_PINK] > 0);
+    CHECK(counts[FL_COLOR_YELLOW] > 0 && counts[FL_COLOR_SKYBLUE] > 0 &&
+          counts[FL_COLOR_PINK] > 0);
     t_info("%d colours x 2 formats: classification = HSV boxes; yellow %d sky-blue %d pink %d",
-           n, counts[FL_COLOUR_YELLOW], counts[FL_COLOUR_SKYBLUE], counts[FL_COLOUR_PINK]);
+           n, counts[FL_COLOR_YELLOW], counts[FL_COLOR_SKYBLUE], counts[FL_COLOR_PINK]);
     t_digest("beacon.classes", h);
 }
 
@@ -189,7 +189,7 @@ static void test_bad_input(void)
     for (i = 0; i < S->b.n; i++)
         CHECK_EQ(S->b.found[i].range_mm, 0);
     CHECK(S->b.n_runs <= FL_BEACON_MAX_RUNS && S->b.n_blobs <= FL_BEACON_MAX_BLOBS);
-    /* whole-frame colour: a wall of sky-blue over pink is neither a goal
+    /* whole-frame color: a wall of sky-blue over pink is neither a goal
      * (its bottom is on pink, not on the carpet) nor a beacon (no base) */
     fl_beacon_find(&S->b, &S->vis.scan, &img, &S->colors, &cam, f);
     CHECK_EQ(S->b.n, 0);
@@ -259,17 +259,17 @@ static void bt_check_frame(const char *name, const truth_t *tr, const fl_camera_
             matched[bi] = 1;
             if (t->kind == TRUTH_BEACON) {
                 st->beacons_found++;
-                CHECK_EQ(f->colour2, lm->colour2);
-                if (f->colour != FL_COLOUR_NONE)
-                    CHECK_EQ(f->colour, lm->colour);
+                CHECK_EQ(f->color2, lm->color2);
+                if (f->color != FL_COLOR_NONE)
+                    CHECK_EQ(f->color, lm->color);
             } else {
                 st->posts_found++;
                 CHECK_EQ(f->side, lm->side);
-                CHECK_EQ(f->colour, lm->colour);
+                CHECK_EQ(f->color, lm->color);
             }
             t_info("%s: %s%s lm %d foot err %.2f px, range %d mm vs %.0f (%.1f %%)%s", name,
                    t->kind == TRUTH_BEACON ? "beacon" : "post",
-                   lm->colour == FL_COLOUR_SKYBLUE ? " sky-blue" : "", t->landmark, best,
+                   lm->color == FL_COLOR_SKYBLUE ? " sky-blue" : "", t->landmark, best,
                    (int)f->range_mm, t->range_mm, 100 * rel,
                    f->foot_visible ? "" : " (from size)");
             CHECK_LE(rel, BC_MAX_RANGE_REL);
@@ -282,8 +282,8 @@ static void bt_check_frame(const char *name, const truth_t *tr, const fl_camera_
     for (i = 0; i < b->n; i++) {
         const fl_beacon_found_t *f = &b->found[i];
         st->h = t_hash_i32(st->h, (int32_t)f->kind);
-        st->h = t_hash_i32(st->h, (int32_t)f->colour);
-        st->h = t_hash_i32(st->h, (int32_t)f->colour2);
+        st->h = t_hash_i32(st->h, (int32_t)f->color);
+        st->h = t_hash_i32(st->h, (int32_t)f->color2);
         st->h = t_hash_i32(st->h, (int32_t)f->side);
         st->h = t_hash_i32(st->h, f->u_q4);
         st->h = t_hash_i32(st->h, f->v_q4);
@@ -350,7 +350,7 @@ static int bt_fixtures(const char *prefix, bt_stats_t *st, int direct)
              * the AIBO box goals and is not meant for SPL goals): nothing */
             CHECK_EQ(S->vis.beacons.n, 0);
             for (i = 0; i < obs.n; i++)
-                CHECK(obs.obs[i].kind != FL_LM_BEACON && obs.obs[i].colour2 == FL_COLOUR_NONE);
+                CHECK(obs.obs[i].kind != FL_LM_BEACON && obs.obs[i].color2 == FL_COLOR_NONE);
             fl_beacon_find(&S->b, &S->vis.scan, &fr.view, &S->colors, &c, field);
             if (S->b.n != 0)
                 t_fail_msg(__FILE__, __LINE__, "%s: %d coloured landmarks on %s", name,
@@ -369,7 +369,7 @@ static int bt_fixtures(const char *prefix, bt_stats_t *st, int direct)
                 for (k = 0; k < obs.n; k++)
                     if (obs.obs[k].kind == f->kind && obs.obs[k].u_q4 == f->u_q4 &&
                         obs.obs[k].v_q4 == f->v_q4 && obs.obs[k].range_mm == f->range_mm &&
-                        obs.obs[k].colour == f->colour && obs.obs[k].colour2 == f->colour2)
+                        obs.obs[k].color == f->color && obs.obs[k].color2 == f->color2)
                         seen = 1;
                 for (k = 0; k < S->vis.posts.n && f->kind == FL_LM_POST; k++)
                     if (abs(S->vis.posts.post[k].foot_u_q4 - f->u_q4) <= 16 * 16)

@@ -1,5 +1,5 @@
 /*
- * host_tests/test_camera.c - the fixed-point camera model (src/camera.c)
+ * host_tests/test_camera.c - the fixed-point camera model (src/model/camera.c)
  * against an independent double-precision pinhole model written here from
  * the geometry of camera.h (camera axes and centre built from the head
  * angles, not from the firmware's matrix products).

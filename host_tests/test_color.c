@@ -3,15 +3,15 @@
  * reference), BT.601 helpers, the class tables against their definition,
  * adaptation, and the defaults against the real UvA 2013 images.
  *
- * Sweeps over all 2^24 colours run in the normal suite (about 1 s in all);
- * quick mode (qemu) takes every 251st colour.
+ * Sweeps over all 2^24 colors run in the normal suite (about 1 s in all);
+ * quick mode (qemu) takes every 251st color.
  */
 #include "test.h"
 #include "fieldloc/color.h"
 #include "fieldloc/image.h"
-#include "realdata.h"
+#include "io/realdata.h"
 #ifdef FL_HAVE_OPENCV
-#include "cv_peer.h"
+#include "bench/cv_peer.h"
 #endif
 
 #include <math.h>
@@ -20,7 +20,7 @@
 
 static fl_color_table_t tab;   /* 230 KiB: not on the stack */
 
-/* colour index c = r << 16 | g << 8 | b; quick mode strides */
+/* color index c = r << 16 | g << 8 | b; quick mode strides */
 static uint32_t sweep_step(void)
 {
     return t_quick ? 251u : 1u;
@@ -60,7 +60,7 @@ static void ref_hsv_int(int r, int g, int b, int out[3])
 }
 
 /* OpenCV's integer algorithm (re-derived here from its source, tables in
- * double): equal to fl_hsv_from_rgb for every colour. */
+ * double): equal to fl_hsv_from_rgb for every color. */
 static void test_hsv_integer_reference(void)
 {
     uint32_t c, bad = 0, h = t_hash_init();
@@ -119,7 +119,7 @@ static void test_hsv_double(void)
     t_info("hsv vs double: max |dh| %.4f, max |ds| %.4f (tolerance 0.66, 0.54)", max_dh, max_ds);
 }
 
-/* fl_hsv_from_rgb == cv::cvtColor(COLOR_RGB2HSV) for all 2^24 colours. */
+/* fl_hsv_from_rgb == cv::cvtColor(COLOR_RGB2HSV) for all 2^24 colors. */
 static void test_hsv_opencv(void)
 {
 #ifdef FL_HAVE_OPENCV
@@ -151,7 +151,7 @@ static void test_hsv_opencv(void)
 #endif
 }
 
-/* fl_rgb_from_ycbcr and fl_luma_from_rgb are src/image.c's arithmetic. */
+/* fl_rgb_from_ycbcr and fl_luma_from_rgb are src/base/image.c's arithmetic. */
 static void test_bt601(void)
 {
     uint8_t planes[3][16], rgb[3], ref[3];
@@ -192,7 +192,7 @@ static bool unclipped(int y, int cb, int cr)
     return y + a >= 0 && y + a <= 255 && y + b >= 0 && y + b <= 255 && y + c >= 0 && y + c <= 255;
 }
 
-/* The YCbCr tables equal the definition for every unclipped colour. */
+/* The YCbCr tables equal the definition for every unclipped color. */
 static void test_ycbcr_table(void)
 {
     uint32_t c, h = t_hash_init();
@@ -232,7 +232,7 @@ static void test_rgb_table(void)
     long n = 0, agree = 0, n_core = 0, bad_core = 0;
     init_default();
     CHECK_EQ(tab.exact, 1);
-    /* every 3rd colour (every 251st under --quick); colours whose channels
+    /* every 3rd color (every 251st under --quick); colors whose channels
      * lie within FL_COLOR_RGB_EXACT of G (all with S <= 48: white and the
      * white/green boundary) must equal the definition */
     for (c = 0; c < (1u << 24); c += t_quick ? 251u : 3u) {
@@ -291,7 +291,7 @@ static void test_params(void)
     CHECK_EQ(fl_color_class_hsv(NULL, fl_hsv_from_rgb(1, 2, 3)), FL_CLASS_OTHER);
     CHECK_EQ(fl_color_adapt(NULL, NULL), FL_ERR_NULL);
     CHECK_EQ(fl_color_reset(NULL), FL_ERR_NULL);
-    /* typical colours */
+    /* typical colors */
     init_default();
     CHECK_EQ(fl_color_class_rgb(&tab, 82, 141, 85), FL_CLASS_GREEN);   /* carpet */
     CHECK_EQ(fl_color_class_rgb(&tab, 254, 253, 250), FL_CLASS_WHITE); /* line */
@@ -311,7 +311,7 @@ static void test_params(void)
  * hysteresis, and classes move with it. */
 static void test_adapt(void)
 {
-    fl_field_colour_t f;
+    fl_field_color_t f;
     fl_color_params_t p;
     int32_t i;
     fl_color_params_default(&p);
@@ -355,7 +355,7 @@ static void test_adapt(void)
  * line edge of that light becomes carpet. */
 static void test_white_cap(void)
 {
-    fl_field_colour_t f;
+    fl_field_color_t f;
     fl_color_params_t p;
     int32_t val, sat, worst = 0;
     fl_color_params_default(&p);

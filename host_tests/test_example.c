@@ -5,7 +5,7 @@
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
-#include "render.h"
+#include "world/render.h"
 
 #include <stdlib.h>
 

@@ -15,15 +15,15 @@
  *     counted), memory sizes;
  *   - goldens: every fixture's integer outputs against fixtures/golden/
  *     (rewrite with FIELDLOC_WRITE_GOLDEN=1 build/run_tests -k features);
- *   - the fixture and UvA 2013 evaluation (tools/cmd_eval_detect.c) with
+ *   - the fixture and UvA 2013 evaluation (tools/cli/cmd_eval_detect.c) with
  *     the measured levels as regression floors and the issue's targets
  *     printed as gaps.
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
-#include "detect.h"
-#include "render.h"
-#include "truth.h"
+#include "eval/detect.h"
+#include "world/render.h"
+#include "world/truth.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -120,7 +120,7 @@ static void test_types(void)
     lines_default(320, 240);
     add_line(100, 150, 250, 150, 4);
     add_line(100, 150, 100, 30, 4);
-    fl_lines_build(&L, NULL);
+    fl_lines_find_segments(&L, NULL);
     crossings_default();
     fl_crossings_find(&X, &L, NULL, NULL, NULL);
     CHECK_EQ(X.n, 1);
@@ -131,7 +131,7 @@ static void test_types(void)
     lines_default(320, 240);
     add_line(40, 60, 280, 60, 4);
     add_line(160, 62, 160, 220, 4);
-    fl_lines_build(&L, NULL);
+    fl_lines_find_segments(&L, NULL);
     fl_crossings_find(&X, &L, NULL, NULL, NULL);
     CHECK_EQ(X.n, 1);
     c = near(160, 60);
@@ -141,7 +141,7 @@ static void test_types(void)
     lines_default(320, 240);
     add_line(40, 40, 280, 200, 4);
     add_line(40, 200, 280, 40, 4);
-    fl_lines_build(&L, NULL);
+    fl_lines_find_segments(&L, NULL);
     fl_crossings_find(&X, &L, NULL, NULL, NULL);
     CHECK_EQ(X.n, 1);
     c = near(160, 120);
@@ -159,7 +159,7 @@ static void test_types(void)
     add_line(40, 120, 280, 120, 4);
     add_line(160, 20, 160, 110, 4);
     add_line(160, 130, 160, 230, 4);
-    CHECK_EQ(fl_lines_build(&L, NULL), 3);
+    CHECK_EQ(fl_lines_find_segments(&L, NULL), 3);
     fl_crossings_find(&X, &L, NULL, NULL, NULL);
     CHECK_EQ(X.n, 1);
     CHECK(X.merged >= 1);
@@ -170,13 +170,13 @@ static void test_types(void)
     lines_default(320, 240);
     add_line(20, 100, 150, 100, 4);
     add_line(150, 100, 300, 121, 4);
-    fl_lines_build(&L, NULL);
+    fl_lines_find_segments(&L, NULL);
     fl_crossings_find(&X, &L, NULL, NULL, NULL);
     CHECK_EQ(X.n, 0);
     lines_default(320, 240);
     add_line(20, 20, 20, 200, 4);
     add_line(60, 20, 300, 26, 4);
-    fl_lines_build(&L, NULL);
+    fl_lines_find_segments(&L, NULL);
     fl_crossings_find(&X, &L, NULL, NULL, NULL);
     CHECK_EQ(X.n, 0); /* they would meet left of (20, ...) but end 40 px away */
     t_digest("features.types", h);
@@ -229,7 +229,7 @@ static void test_ground_check(void)
     lines_default(320, 240);
     add_ground_line(1500, 200, 900, 200);
     add_ground_line(1500, 200, 1500, 900);
-    fl_lines_build(&L, NULL);
+    fl_lines_find_segments(&L, NULL);
     crossings_default();
     fl_crossings_find(&X, &L, NULL, &cam, NULL);
     CHECK_EQ(X.n, 1);
@@ -249,7 +249,7 @@ static void test_ground_check(void)
     lines_default(320, 240);
     add_ground_line(1500, 200, 900, 200);
     add_ground_line(1500, 200, 1850, 806);
-    fl_lines_build(&L, NULL);
+    fl_lines_find_segments(&L, NULL);
     fl_crossings_find(&X, &L, NULL, &cam, NULL);
     CHECK_EQ(X.n, 0);
     CHECK(X.rejected_ground >= 1);
@@ -278,7 +278,7 @@ static void test_circle(void)
             fl_lines_add_point(&L, (u + 4) / 8, (v + 4) / 8, 3, (uint8_t)(k & 1));
     }
     add_ground_line(cx - 40, cy - 1400, cx + 40, cy + 1400);
-    fl_lines_build(&L, NULL);
+    fl_lines_find_segments(&L, NULL);
     CHECK_EQ(fl_circle_find(&C, &L, &cam, f), 1);
     CHECK(C.found);
     if (!C.found)
@@ -763,7 +763,7 @@ static void test_goldens(void)
 static double ratio(int a, int b) { return b > 0 ? (double)a / b : 0.0; }
 
 /* Floor: fail below the measured level (measured with the scanner and
- * colour defaults of this commit, minus about 0.02: those stages are still
+ * color defaults of this commit, minus about 0.02: those stages are still
  * being tuned); print the gap to the issue's target (targets below the
  * measured level are not asserted: a failing test would block everyone). */
 static void floor_target(const char *what, double got, double floor, double target)

@@ -1,5 +1,5 @@
 /*
- * host_tests/test_field.c - field geometries (src/field.c).
+ * host_tests/test_field.c - field geometries (src/model/field.c).
  *
  * The crossings are recomputed here from the line list alone (segment
  * endpoints, segment x segment and segment x circle intersections, and the
@@ -9,7 +9,7 @@
  * on paint, and 100 mm along any direction at least 20 degrees from every
  * arm does not.  Then: landmark counts against each field's rules, the
  * parameters against DESIGN.md, 180-degree and mirror symmetry, posts
- * (2 per goal, sides, colours, inside the carpet), marks, beacons, and the
+ * (2 per goal, sides, colors, inside the carpet), marks, beacons, and the
  * lookup helpers with bad input.  The digest covers every number in every
  * table.  Geometry here uses double (host only); nothing double is printed
  * outside "# " lines.
@@ -213,22 +213,22 @@ typedef struct {
     const char *name;
     int32_t length, width, line, border, radius, pa_d, pa_w, ga_d, ga_w;
     int32_t pm_x, mark, goal_w, post_d, post_h;
-    fl_colour_t c_neg, c_pos;
+    fl_color_t c_neg, c_pos;
     int symmetric;
     int count[FL_LM_KIND_COUNT];  /* L T X PM CM POST CC BEACON */
 } spec_t;
 
 static const spec_t specs[] = {
     {"spl2013", 9000, 6000, 50, 700, 750, 600, 2200, 0, 0, 2700, 100, 1600, 100, 800,
-     FL_COLOUR_YELLOW, FL_COLOUR_YELLOW, 1, {8, 6, 2, 2, 1, 4, 1, 0}},
+     FL_COLOR_YELLOW, FL_COLOR_YELLOW, 1, {8, 6, 2, 2, 1, 4, 1, 0}},
     {"uva2013", 6000, 4000, 50, 700, 600, 600, 2200, 0, 0, 1200, 100, 1400, 100, 800,
-     FL_COLOUR_YELLOW, FL_COLOUR_YELLOW, 1, {8, 6, 2, 2, 1, 4, 1, 0}},
+     FL_COLOR_YELLOW, FL_COLOR_YELLOW, 1, {8, 6, 2, 2, 1, 4, 1, 0}},
     /* goal area and penalty area: 4 + 4 + 4 L, 2 + 4 + 4 T */
     {"spl2020", 9000, 6000, 50, 700, 750, 1650, 4000, 600, 2200, 3200, 100, 1600, 100, 800,
-     FL_COLOUR_WHITE, FL_COLOUR_WHITE, 1, {12, 10, 2, 2, 1, 4, 1, 0}},
-    /* numbers of src/field.c (uncertain, see there); 4 corner beacons */
+     FL_COLOR_WHITE, FL_COLOR_WHITE, 1, {12, 10, 2, 2, 1, 4, 1, 0}},
+    /* numbers of src/model/field.c (uncertain, see there); 4 corner beacons */
     {"aibo2004", 4200, 2700, 25, 150, 150, 650, 1000, 0, 0, 0, 0, 600, 50, 300,
-     FL_COLOUR_SKYBLUE, FL_COLOUR_YELLOW, 0, {8, 6, 2, 0, 0, 4, 1, 4}},
+     FL_COLOR_SKYBLUE, FL_COLOR_YELLOW, 0, {8, 6, 2, 0, 0, 4, 1, 4}},
 };
 #define N_SPECS (sizeof specs / sizeof specs[0])
 
@@ -330,10 +330,10 @@ static void test_params(void)
         CHECK_EQ(f->goal_width_mm, e->goal_w);
         CHECK_EQ(f->post_diameter_mm, e->post_d);
         CHECK_EQ(f->post_height_mm, e->post_h);
-        CHECK_EQ(f->goal_colour[0], e->c_neg);
-        CHECK_EQ(f->goal_colour[1], e->c_pos);
+        CHECK_EQ(f->goal_color[0], e->c_neg);
+        CHECK_EQ(f->goal_color[1], e->c_pos);
         CHECK_EQ(f->symmetric, e->symmetric);
-        CHECK_EQ(f->symmetric, f->goal_colour[0] == f->goal_colour[1]);
+        CHECK_EQ(f->symmetric, f->goal_color[0] == f->goal_color[1]);
         CHECK_EQ(fl_field_carpet_half_x_mm(f), e->length / 2 + e->border);
         CHECK_EQ(fl_field_carpet_half_y_mm(f), e->width / 2 + e->border);
         CHECK_EQ(f->beacon_diameter_mm > 0, e->count[FL_LM_BEACON] > 0);
@@ -371,7 +371,7 @@ static void test_counts(void)
     }
 }
 
-/* Per-landmark field hygiene: arm slots, sides, colours, goals, positions. */
+/* Per-landmark field hygiene: arm slots, sides, colors, goals, positions. */
 static void test_landmark_fields(void)
 {
     size_t s;
@@ -403,9 +403,9 @@ static void test_landmark_fields(void)
                 CHECK_EQ(lm->goal, 0);
             }
             if (lm->kind != FL_LM_POST && lm->kind != FL_LM_BEACON)
-                CHECK_EQ(lm->colour, FL_COLOUR_NONE);
+                CHECK_EQ(lm->color, FL_COLOR_NONE);
             if (lm->kind != FL_LM_BEACON)
-                CHECK_EQ(lm->colour2, FL_COLOUR_NONE);
+                CHECK_EQ(lm->color2, FL_COLOR_NONE);
             for (j = 0; j < i; j++)   /* no duplicate of the same kind */
                 CHECK(!(f->landmarks[j].kind == lm->kind && f->landmarks[j].x_mm == lm->x_mm &&
                         f->landmarks[j].y_mm == lm->y_mm));
@@ -668,7 +668,7 @@ static void test_posts(void)
             CHECK(p->side == FL_SIDE_LEFT || p->side == FL_SIDE_RIGHT);
             CHECK_EQ(p->side == FL_SIDE_LEFT, p->y_mm * p->goal > 0);
             left[gi] += p->side == FL_SIDE_LEFT;
-            CHECK_EQ(p->colour, f->goal_colour[gi]);
+            CHECK_EQ(p->color, f->goal_color[gi]);
             CHECK_EQ(p->n_arms, 0);
         }
         CHECK_EQ(per_goal[0], 2);
@@ -694,15 +694,15 @@ static void test_beacons(void)
         n = fl_field_count_kind(f, FL_LM_BEACON);
         for (i = 0; i < n; i++) {
             const fl_landmark_t *b = fl_field_nth_kind(f, FL_LM_BEACON, i);
-            fl_colour_t end = f->goal_colour[b->x_mm > 0];
+            fl_color_t end = f->goal_color[b->x_mm > 0];
             /* outside the lines, one band pink, the other the nearer goal's */
             CHECK(abs(b->x_mm) > f->length_mm / 2 && abs(b->y_mm) > f->width_mm / 2);
             CHECK(b->x_mm != 0);
-            CHECK((b->colour == FL_COLOUR_PINK && b->colour2 == end) ||
-                  (b->colour2 == FL_COLOUR_PINK && b->colour == end));
+            CHECK((b->color == FL_COLOR_PINK && b->color2 == end) ||
+                  (b->color2 == FL_COLOR_PINK && b->color == end));
             for (j = 0; j < i; j++) {   /* every beacon unique */
                 const fl_landmark_t *c = fl_field_nth_kind(f, FL_LM_BEACON, j);
-                CHECK(!(c->colour == b->colour && c->colour2 == b->colour2));
+                CHECK(!(c->color == b->color && c->color2 == b->color2));
             }
         }
         if (n > 0)
@@ -711,7 +711,7 @@ static void test_beacons(void)
 }
 
 /* Image of landmark lm under 180-degree rotation (rot=1) or the mirror
- * y -> -y (rot=0) is present in the field, colours and sides included. */
+ * y -> -y (rot=0) is present in the field, colors and sides included. */
 static int image_present(const fl_field_t *f, const fl_landmark_t *lm, int rot)
 {
     int tx = rot ? -lm->x_mm : lm->x_mm, ty = -lm->y_mm, a;
@@ -729,7 +729,7 @@ static int image_present(const fl_field_t *f, const fl_landmark_t *lm, int rot)
             continue;
         lm_arms(m, arms2);
         if (arms_equal(arms, lm->n_arms, arms2, m->n_arms, 0) && m->side == side &&
-            m->goal == goal && m->colour == lm->colour && m->colour2 == lm->colour2)
+            m->goal == goal && m->color == lm->color && m->color2 == lm->color2)
             return 1;
     }
     return 0;
@@ -783,7 +783,7 @@ static void test_symmetry(void)
         if (f->symmetric) {
             CHECK_EQ(posts_rot, 4);
         } else {
-            CHECK_EQ(posts_rot, 0);    /* differently coloured goals */
+            CHECK_EQ(posts_rot, 0);    /* differently colored goals */
             CHECK_EQ(beacons_rot, 0);
         }
         CHECK_EQ(beacons_mirror, 0);
@@ -818,8 +818,8 @@ static void test_digest(void)
         h = t_hash_i32(h, f->goal_width_mm);
         h = t_hash_i32(h, f->post_diameter_mm);
         h = t_hash_i32(h, f->post_height_mm);
-        h = t_hash_i32(h, (int32_t)f->goal_colour[0]);
-        h = t_hash_i32(h, (int32_t)f->goal_colour[1]);
+        h = t_hash_i32(h, (int32_t)f->goal_color[0]);
+        h = t_hash_i32(h, (int32_t)f->goal_color[1]);
         h = t_hash_i32(h, f->symmetric);
         h = t_hash_i32(h, f->beacon_diameter_mm);
         h = t_hash_i32(h, f->beacon_height_mm);
@@ -834,8 +834,8 @@ static void test_digest(void)
             for (a = 0; a < FL_FIELD_MAX_ARMS; a++)
                 h = t_hash_i32(h, lm->arm[a]);
             h = t_hash_i32(h, (int32_t)lm->side);
-            h = t_hash_i32(h, (int32_t)lm->colour);
-            h = t_hash_i32(h, (int32_t)lm->colour2);
+            h = t_hash_i32(h, (int32_t)lm->color);
+            h = t_hash_i32(h, (int32_t)lm->color2);
             h = t_hash_i32(h, lm->goal);
         }
         for (i = 0; i < f->n_lines; i++) {

@@ -1,5 +1,5 @@
 /*
- * host_tests/test_fixed.c - suite `fixed`: the fixed-point core (src/fixed.c)
+ * host_tests/test_fixed.c - suite `fixed`: the fixed-point core (src/base/fixed.c)
  * against references computed another way (double libm, exact integer
  * inequalities, a multi-limb 160-bit product, int64 division identities).
  *
@@ -235,7 +235,7 @@ static void test_angle_mdeg(void)
 
 /* floor(2^128 * 65536 / (2 pi 10^6)) in four 32-bit limbs, low first
  * (computed with mpmath at 400 bits; independent of the Q70 constant in
- * src/fixed.c).  ref = round(|urad| K) from the 160-bit product. */
+ * src/base/fixed.c).  ref = round(|urad| K) from the 160-bit product. */
 static const uint32_t k_urad_q128[4] = {0x44707955u, 0x61314184u, 0xe6720050u, 0x02ab90b5u};
 
 static int32_t ref_from_urad(int32_t urad)
@@ -354,7 +354,7 @@ static void test_sin_cos_q15(void)
     t_info("sin/cos q15 max |err| %.0f LSB vs clamped round(32768 sin); %.4f LSB vs "
            "32768 sin (unclamped points)", max_round, max_exact);
     CHECK_LE(max_round, 2.0);    /* header promise */
-    CHECK_LE(max_exact, 0.66);   /* src/fixed.c bound: chord 0.154 + rounding 0.5 */
+    CHECK_LE(max_exact, 0.66);   /* src/base/fixed.c bound: chord 0.154 + rounding 0.5 */
     CHECK_EQ(fl_sin_q15(0), 0);
     CHECK_EQ(fl_sin_q15(FL_ANGLE_90), 32767);
     CHECK_EQ(fl_sin_q15(-FL_ANGLE_90), -32767);
@@ -399,7 +399,7 @@ static void test_sin_cos_q30(void)
     t_info("sin/cos q30 max |err| %.4f LSB (= 2^%.2f) at angle %ld; %.0f LSB vs "
            "round(2^30 sin)", maxerr, log(maxerr / 1073741824.0) / log(2.0), (long)worst,
            maxround);
-    CHECK_LE(maxerr, 0.76);            /* src/fixed.c bound */
+    CHECK_LE(maxerr, 0.76);            /* src/base/fixed.c bound */
     CHECK_LE(maxerr, 1073741824.0 / 1048576.0); /* requirement 2^-20 */
     CHECK_EQ(fl_sin_q30(0), 0);
     CHECK_EQ(fl_sin_q30(FL_ANGLE_90), 1 << 30);
@@ -438,7 +438,7 @@ static void atan_report(const atan_acc_t *acc, const char *what)
     t_info("atan2 %s: %ld inputs, max |err| %.4f units = %.5f deg at (y=%ld, x=%ld)", what,
            acc->n, acc->maxerr, acc->maxerr * 360.0 / 65536.0, (long)acc->wy, (long)acc->wx);
     CHECK_LE(acc->maxerr * 360.0 / 65536.0, 0.0199); /* requirement < 0.02 deg */
-    CHECK_LE(acc->maxerr, 0.93);                     /* src/fixed.c bound */
+    CHECK_LE(acc->maxerr, 0.93);                     /* src/base/fixed.c bound */
 }
 
 static void test_atan2_special(void)

@@ -5,7 +5,7 @@
  * these tests also prove the undefined behaviour is gone.
  */
 #include "test.h"
-#include "realdata.h"
+#include "io/realdata.h"
 
 #include <stdio.h>
 #include <stdlib.h>

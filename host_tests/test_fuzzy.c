@@ -9,7 +9,7 @@
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
-#include "sim.h"
+#include "world/sim.h"
 
 #include <math.h>
 #include <string.h>
@@ -42,7 +42,7 @@ static fl_obs_t make_obs(const fl_landmark_t *lm, int32_t x, int32_t y, fl_angle
     memset(&o, 0, sizeof o);
     o.kind = lm->kind;
     o.side = lm->kind == FL_LM_POST ? lm->side : FL_SIDE_UNKNOWN;
-    o.colour = lm->colour;
+    o.color = lm->color;
     o.range_mm = (int32_t)fl_hypot(dx, dy);
     o.bearing = fl_angle_sub(fl_atan2(dy, dx), h);
     if (fl_landmark_orientation(lm, &om)) {
@@ -1070,7 +1070,7 @@ static void test_abuse(void)
     for (k = 0; k < (t_quick ? 150 : 600); k++) {
         o.kind = (fl_landmark_kind_t)t_rng_range(&r, 0, 8);
         o.side = (fl_side_t)t_rng_range(&r, 0, 3);
-        o.colour = (fl_colour_t)t_rng_range(&r, 0, 5);
+        o.color = (fl_color_t)t_rng_range(&r, 0, 5);
         o.range_mm = t_rng_range(&r, -100, 13000);
         o.bearing = (fl_angle_t)t_rng_range(&r, -32768, 32767);
         o.orientation = (fl_angle_t)t_rng_range(&r, -32768, 32767);

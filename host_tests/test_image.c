@@ -62,7 +62,7 @@ static void ref_ycbcr(int r, int g, int b, double out[3])
 
 static void test_rgb_to_ycbcr(void)
 {
-    /* every 4th level of every channel (262144 colours; every colour would
+    /* every 4th level of every channel (262144 colors; every color would
      * take 16.7M calls through the accessor) */
     static uint8_t px[3];
     fl_image_t img;

@@ -8,7 +8,7 @@
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
-#include "scan_tool.h"
+#include "eval/scan_tool.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -97,15 +97,15 @@ static void test_params(void)
     /* per-frame calls never fail */
     CHECK_EQ(fl_lines_find_points(NULL, &scan, NULL, NULL, 50), 0);
     CHECK_EQ(fl_lines_find_points(&L, NULL, NULL, NULL, 50), 0);
-    CHECK_EQ(fl_lines_build(NULL, NULL), 0);
+    CHECK_EQ(fl_lines_find_segments(NULL, NULL), 0);
     CHECK(!fl_lines_reset(&L, 0, 10));
-    CHECK_EQ(fl_lines_build(&L, NULL), 0);
+    CHECK_EQ(fl_lines_find_segments(&L, NULL), 0);
     CHECK(!fl_lines_add_point(&L, 2, 2, 1, 0)); /* no frame */
     CHECK(fl_lines_reset(&L, 100, 80));
     CHECK(!fl_lines_add_point(&L, -1, 2, 1, 0));
     CHECK(!fl_lines_add_point(&L, 2 * 100, 2, 1, 0));
     CHECK(fl_lines_add_point(&L, 2 * 99, 2 * 79, 1, 0));
-    CHECK_EQ(fl_lines_build(&L, NULL), 0);     /* one point: no segment */
+    CHECK_EQ(fl_lines_find_segments(&L, NULL), 0);     /* one point: no segment */
     CHECK_EQ(fl_lines_white_pct(NULL, 0, 0, 100, 100), 100);
     CHECK_EQ(fl_lines_width_q4(&L, 10, false), 0); /* no camera */
     CHECK_EQ(fl_lines_points_near(NULL, 0, 0, 5, 5, NULL), 0);
@@ -128,7 +128,7 @@ static void test_straight(void)
         lines_default();
         CHECK(fl_lines_reset(&L, 320, 240));
         add_line(u0, v0, u1, v1, 5, 2, &r);
-        CHECK_EQ(fl_lines_build(&L, NULL), 1);
+        CHECK_EQ(fl_lines_find_segments(&L, NULL), 1);
         if (L.n_segments != 1)
             continue;
         sg = &L.segments[0];
@@ -159,7 +159,7 @@ static void test_l_and_x(void)
     CHECK(fl_lines_reset(&L, 320, 240));
     add_line(60, 60, 260, 180, 5, 1, &r);
     add_line(60, 180, 260, 60, 5, 1, &r);
-    CHECK_EQ(fl_lines_build(&L, NULL), 2);
+    CHECK_EQ(fl_lines_find_segments(&L, NULL), 2);
     for (i = 0; i < L.n_segments; i++) {
         CHECK_LE(seg_dist(&L.segments[i], 160, 120), 1.0);
         CHECK(seg_len(&L.segments[i]) > 200);
@@ -170,7 +170,7 @@ static void test_l_and_x(void)
     CHECK(fl_lines_reset(&L, 320, 240));
     add_line(100, 200, 300, 200, 5, 1, &r);
     add_line(100, 200, 100, 20, 5, 1, &r);
-    CHECK_EQ(fl_lines_build(&L, NULL), 2);
+    CHECK_EQ(fl_lines_find_segments(&L, NULL), 2);
     for (i = 0; i < L.n_segments; i++)
         CHECK_LE(seg_dist(&L.segments[i], 100, 200), 1.0);
     h = digest_lines(h);
@@ -189,7 +189,7 @@ static void test_arc(void)
                            (int32_t)lround(2 * (20 + 100 * sin(a))), 3,
                            fabs(cos(a)) < 0.7 ? FL_LINE_POINT_VERTICAL : 0);
     }
-    CHECK(fl_lines_build(&L, NULL) >= 3); /* chords, not one line */
+    CHECK(fl_lines_find_segments(&L, NULL) >= 3); /* chords, not one line */
     for (i = 0; i < L.n_segments; i++) {
         const fl_segment_t *s = &L.segments[i];
         double mu = (s->u0_q4 + s->u1_q4) / 32.0, mv = (s->v0_q4 + s->v1_q4) / 32.0;
@@ -222,7 +222,7 @@ static void test_noise_and_gaps(void)
     for (k = 0; k < 60; k++)
         fl_lines_add_point(&L, 2 * (25 * (k % 12) + 10), 2 * (28 * (k / 12) + 5 + (k % 3)),
                            2, (uint8_t)(k & 1));
-    CHECK_EQ(fl_lines_build(&L, NULL), 0);
+    CHECK_EQ(fl_lines_find_segments(&L, NULL), 0);
     for (k = 0; k < L.n_points; k++)
         CHECK_EQ(L.points[k].seg, FL_LINES_NONE);
     /* one line broken by a 20 px gap: two pieces merged back */
@@ -230,7 +230,7 @@ static void test_noise_and_gaps(void)
     CHECK(fl_lines_reset(&L, 320, 240));
     add_line(20, 100, 140, 110, 5, 1, &r);
     add_line(160, 111.7, 300, 123.3, 5, 1, &r);
-    CHECK_EQ(fl_lines_build(&L, NULL), 1);
+    CHECK_EQ(fl_lines_find_segments(&L, NULL), 1);
     CHECK(L.merges >= 1);
     CHECK(L.n_segments == 1 && seg_len(&L.segments[0]) > 270);
     /* the same with a 60 px gap (beyond 6 steps): two segments */
@@ -238,13 +238,13 @@ static void test_noise_and_gaps(void)
     CHECK(fl_lines_reset(&L, 320, 240));
     add_line(20, 100, 120, 108.3, 5, 1, &r);
     add_line(180, 113.3, 300, 123.3, 5, 1, &r);
-    CHECK_EQ(fl_lines_build(&L, NULL), 2);
+    CHECK_EQ(fl_lines_find_segments(&L, NULL), 2);
     /* parallel lines 6 px apart stay apart */
     lines_default();
     CHECK(fl_lines_reset(&L, 320, 240));
     add_line(20, 100, 300, 100, 5, 0, &r);
     add_line(20, 112, 300, 112, 5, 0, &r);
-    CHECK_EQ(fl_lines_build(&L, NULL), 2);
+    CHECK_EQ(fl_lines_find_segments(&L, NULL), 2);
 }
 
 static void test_capacity(void)
@@ -258,7 +258,7 @@ static void test_capacity(void)
         fl_lines_add_point(&L, t_rng_range(&r, 0, 2 * 639), t_rng_range(&r, 0, 2 * 479), 2, 0);
     CHECK_EQ(L.n_points, FL_LINES_MAX_POINTS);
     CHECK_EQ(L.points_dropped, 100);
-    fl_lines_build(&L, NULL);
+    fl_lines_find_segments(&L, NULL);
     CHECK(L.n_segments <= FL_LINES_MAX_SEGMENTS);
     for (k = 0; k < L.n_points; k++)
         CHECK(L.points[k].seg == FL_LINES_NONE || L.points[k].seg < L.n_segments);
@@ -269,7 +269,7 @@ static void test_capacity(void)
         double u = 10 + 40 * (k % 16), v = 10 + 45 * (k / 16);
         add_line(u, v, u + 20, v + 20, 5, 0, &r);
     }
-    fl_lines_build(&L, NULL);
+    fl_lines_find_segments(&L, NULL);
     CHECK_EQ(L.n_segments, FL_LINES_MAX_SEGMENTS);
     CHECK(L.segments_dropped > 0);
     t_digest("lines.capacity", digest_lines(t_hash_init()));
@@ -294,7 +294,7 @@ static void test_error_stop(void)
         fl_lines_add_point(&L, (int32_t)lround(2 * (160 + 5 * k * cos(0.436))),
                            (int32_t)lround(2 * (120 + 5 * k * sin(0.436))), 3,
                            FL_LINE_POINT_VERTICAL);
-    CHECK_EQ(fl_lines_build(&L, NULL), 2);
+    CHECK_EQ(fl_lines_find_segments(&L, NULL), 2);
     for (i = 0; i < L.n_segments; i++)
         CHECK_LE(L.segments[i].sse_q2 / (double)L.segments[i].n, 4.0); /* < 1 px^2 mean */
     /* the bend point is near an end of both */
@@ -360,7 +360,7 @@ static void test_painted(void)
          * lies up to 2 px off its centre) */
         CHECK_LE(dh < dd ? dh : dd, 2.5);
     }
-    fl_lines_build(&L, &scan);
+    fl_lines_find_segments(&L, &scan);
     for (i = 0; i < L.n_segments; i++) {
         const fl_segment_t *s = &L.segments[i];
         if (fabs(s->angle * 180.0 / 32768) < 2 && seg_len(s) > 250)
@@ -429,10 +429,10 @@ static void test_width_check(void)
 }
 
 
-/* Luma points (lines.h): far away a line is a pixel tall and its colour a
+/* Luma points (lines.h): far away a line is a pixel tall and its color a
  * blend of paint and carpet that the class map does not call white.  A
  * frame with such a faint 1 px line across the far band, a 1 px yellow
- * line (a far goal's crossbar colour) and a bright 1 px line on a grey
+ * line (a far goal's crossbar color) and a bright 1 px line on a grey
  * background above the field: in every pixel format the faint line gives
  * luma points (on the vertical scan lines, at its row) that make one
  * segment, the yellow and grey ones none; without the image, or with
@@ -508,7 +508,7 @@ static void test_luma(void)
         CHECK_EQ(L.luma_points, on + off);
         CHECK(on >= 50);
         CHECK_EQ(off, 0);
-        fl_lines_build(&L, &scan);
+        fl_lines_find_segments(&L, &scan);
         for (i = 0; i < L.n_segments; i++) {
             const fl_segment_t *s = &L.segments[i];
             if ((s->flags & FL_SEG_LUMA) && fabs(s->v0_q4 / 16.0 - vline) < 1 &&

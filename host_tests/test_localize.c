@@ -1,17 +1,17 @@
 /*
  * host_tests/test_localize.c - suite `localize`: the glue between vision
- * and the fuzzy grid (tools/locrun.h), the `localize` sequence format, a
+ * and the fuzzy grid (tools/loc/locrun.h), the `localize` sequence format, a
  * short run of rendered frames through the real vision path into the grid,
- * and the pictures (tools/picture.h).
+ * and the pictures (tools/eval/picture.h).
  *
  * The two rendering cases (frames_walk, sequence_run) render 21 and 8
  * frames (about 1.5 s together on the host); under --quick (qemu, ~20x
  * slower) they return at once, printing the same "ok" line.
  */
-#include "locrun.h"
-#include "picture.h"
-#include "ppm.h"
-#include "sim.h"
+#include "loc/locrun.h"
+#include "eval/picture.h"
+#include "io/ppm.h"
+#include "world/sim.h"
 #include "test.h"
 
 #include <math.h>

@@ -8,7 +8,7 @@
 static void test_list(void)
 {
     static fl_obs_list_t list;
-    fl_obs_t o = {FL_LM_T, FL_SIDE_UNKNOWN, FL_COLOUR_NONE, 1500, 1000, 0, false, 200, -1, -1, FL_COLOUR_NONE};
+    fl_obs_t o = {FL_LM_T, FL_SIDE_UNKNOWN, FL_COLOR_NONE, 1500, 1000, 0, false, 200, -1, -1, FL_COLOR_NONE};
     int i;
     fl_obs_list_clear(&list);
     CHECK_EQ(list.n, 0);

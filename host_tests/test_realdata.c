@@ -1,7 +1,7 @@
 /*
- * host_tests/test_realdata.c - the real-data loader (tools/realdata.c) and
- * the UvA 2013 camera calibration (tools/calibrate.c, camera "uva2013" in
- * src/camera.c).
+ * host_tests/test_realdata.c - the real-data loader (tools/io/realdata.c) and
+ * the UvA 2013 camera calibration (tools/eval/calibrate.c, camera "uva2013" in
+ * src/model/camera.c).
  *
  * Always run (synthetic content written to build/):
  *  - CSV parsing of UvA-style and physar-style text: comments, quotes, CRLF,
@@ -37,9 +37,9 @@
  */
 #include "test.h"
 
-#include "calibrate.h"
+#include "eval/calibrate.h"
 #include "fieldloc/fieldloc.h"
-#include "realdata.h"
+#include "io/realdata.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -1,6 +1,6 @@
 /*
  * host_tests/test_render.c - suite `render`: the synthetic world of
- * tools/render.h and tools/truth.h against the firmware camera model, its
+ * tools/world/render.h and tools/world/truth.h against the firmware camera model, its
  * own invariants, and the committed fixtures in fixtures/frames/ (run from
  * the repository root).
  *
@@ -31,8 +31,8 @@
  *    every fixture and the set is under 20 MB.
  *  - round trips: scene and truth text write -> read -> write identical.
  *  - formats: YUYV / planar bytes are the integer BT.601 of the RGB frame.
- *  - colours: mean carpet and line colour of a nominal frame within 12% of
- *    the UvA measurement in tools/render.c.
+ *  - colors: mean carpet and line color of a nominal frame within 12% of
+ *    the UvA measurement in tools/world/render.c.
  * Quick mode (--quick, qemu, about 20x slower): 2 fixtures re-rendered
  * instead of 5, 1 random scene instead of 8, line/border checks on 1 frame
  * (208x160) instead of 4, features in the mask on 2 fixtures instead of 14,
@@ -44,8 +44,8 @@
 #include "fieldloc/camera.h"
 #include "fieldloc/field.h"
 #include "fieldloc/image.h"
-#include "render.h"
-#include "truth.h"
+#include "world/render.h"
+#include "world/truth.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -637,7 +637,7 @@ static void test_formats(void)
     render_frame_free(&planar);
 }
 
-static void test_colours(void)
+static void test_colors(void)
 {
     render_scene_t sc;
     render_frame_t fr;
@@ -665,8 +665,8 @@ static void test_colours(void)
         }
     CHECK(n[0] > 1000 && n[1] > 50);
     for (c = 0; c < 3 && n[0] && n[1]; c++) {
-        CHECK_LE(fabs(sum[0][c] / n[0] - render_colour_carpet[c]), 0.12 * render_colour_carpet[c]);
-        CHECK_LE(fabs(sum[1][c] / n[1] - render_colour_line[c]), 0.12 * render_colour_line[c]);
+        CHECK_LE(fabs(sum[0][c] / n[0] - render_color_carpet[c]), 0.12 * render_color_carpet[c]);
+        CHECK_LE(fabs(sum[1][c] / n[1] - render_color_line[c]), 0.12 * render_color_line[c]);
     }
     if (n[0] && n[1])
         t_info("mean carpet %.0f %.0f %.0f (measured 82 141 85), line %.0f %.0f %.0f (254 253 250)",
@@ -824,7 +824,7 @@ void suite_render(void)
     t_run("render.border", test_border);
     t_run("render.features_in_mask", test_features_in_mask);
     t_run("render.formats", test_formats);
-    t_run("render.colours", test_colours);
+    t_run("render.colours", test_colors);
     t_run("render.fixture_set", test_fixture_set);
     t_run("render.fixtures_rerender", test_fixtures_rerender);
 }

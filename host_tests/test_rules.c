@@ -1,5 +1,5 @@
 /*
- * host_tests/test_rules.c - the firmware-rule checker (tools/check_firmware.sh)
+ * host_tests/test_rules.c - the firmware-rule checker (tools/build/check_firmware.sh)
  * must catch each kind of violation: fed a tiny source tree that breaks one
  * rule, it fails and names the rule; fed a clean one, it passes.  Needs a
  * shell and the host compiler, so it is skipped under --quick (qemu).
@@ -28,7 +28,7 @@ static int run_checker(const char *name, const char *source, char *log, size_t n
     fclose(f);
     snprintf(cmd, sizeof cmd,
              "SRC_DIR=%s/src INC_DIR=include BUILD=%s/build CC=${CC:-cc} "
-             "sh tools/check_firmware.sh > %s/log 2>&1", dir, dir, dir);
+             "sh tools/build/check_firmware.sh > %s/log 2>&1", dir, dir, dir);
     rc = system(cmd);
     snprintf(path, sizeof path, "%s/log", dir);
     f = fopen(path, "r");

@@ -7,10 +7,10 @@
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
-#include "realdata.h"
-#include "render.h"
-#include "scan_tool.h"
-#include "truth.h"
+#include "io/realdata.h"
+#include "world/render.h"
+#include "eval/scan_tool.h"
+#include "world/truth.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -271,7 +271,7 @@ static void test_lines_posts_painted(void)
 }
 
 /* White decided by contrast: a grey stripe barely brighter than the carpet
- * is a white-box colour but not a line; a bright one is. */
+ * is a white-box color but not a line; a bright one is. */
 static void test_contrast(void)
 {
     static uint8_t rgb[PW * PH * 3];
@@ -750,12 +750,12 @@ static void test_realdata(void)
 
 /* ---- golden scanner outputs -------------------------------------------------------
  * Every output of fl_scan_frame (border, the whole class map, yellow
- * histograms, feet, field-colour estimate, counters) over every fixture
+ * histograms, feet, field-color estimate, counters) over every fixture
  * frame in all three pixel formats (RGB888, YUYV, planar YCbCr, converted
- * from the stored frame with the BT.601 integers of src/image.c), on
+ * from the stored frame with the BT.601 integers of src/base/image.c), on
  * several grids (full resolution, the default 2x2, 3x1, 1x3, 4x4), with
  * the fixture's camera and without one, with capped and uncapped
- * per-column work, and with the default and a re-centred colour table.
+ * per-column work, and with the default and a re-centred color table.
  * One line per fixture in fixtures/golden/scan.txt: NAME 0xRGB 0xYUYV
  * 0xPLANAR (FNV-1a of integers, identical on every architecture).  The
  * vision goldens see the default grid only; this one pins the full
@@ -822,7 +822,7 @@ static uint32_t scan_configs(const fl_image_t *img, const fl_camera_t *cam,
                 p.feet_per_column = 1;
                 p.checks_per_column = 2;
                 p.estimate_step_px = 7;
-            } else if (k == 3) {   /* long runs, no field-colour samples */
+            } else if (k == 3) {   /* long runs, no field-color samples */
                 p.border_run_px = 24;
                 p.horizon_margin_px = 0;
                 p.estimate_step_px = 0;
@@ -908,7 +908,7 @@ static void test_outputs_golden(void)
         for (v = 0; v < fr.height; v++)
             for (u = 0; u < fr.width; u++)
                 fl_image_get_rgb(&fr.view, u, v, rgb + 3 * ((size_t)v * (size_t)fr.width + (size_t)u));
-        /* the re-centred table: the field colour the default scan estimated */
+        /* the re-centred table: the field color the default scan estimated */
         scan_init(2, 2);
         fl_scan_frame(&scan, &colors, &fr.view, &cam);
         adapted = colors;
@@ -931,7 +931,7 @@ static void test_outputs_golden(void)
  * seldom the start of a run: phase A must not skip a run (and its test
  * classifies rows around the sampled one only while some column is still
  * green).  Pixel classes at random with carpet at p %, the rest line, post,
- * grey or a uniform random colour; then 60 vertical carpet stretches of
+ * grey or a uniform random color; then 60 vertical carpet stretches of
  * 1..24 rows; p = 0 is the bench's worst case (uniform noise).  Their
  * outputs over 3 formats x 25 configurations are pinned in SPARSE_GOLDEN
  * (written by the scanner before the run test in phase A). */

@@ -1,5 +1,5 @@
 /*
- * host_tests/test_sim.c - suite `sim`: the walk simulator (tools/sim.h).
+ * host_tests/test_sim.c - suite `sim`: the walk simulator (tools/world/sim.h).
  *
  * Checks: integrating the true motion reproduces the true path; odometry
  * error statistics match the configured noise over a long walk; noiseless
@@ -12,7 +12,7 @@
  * fixtures equal the generator's output; the sequence writer (mode b).
  */
 #include "test.h"
-#include "sim.h"
+#include "world/sim.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -692,7 +692,7 @@ static uint32_t walk_digest(const sim_scenario_t *sc, uint32_t *n_steps)
             h = t_hash_i32(h, v[k]);
         for (j = 0; j < st.obs.n; j++) {
             const fl_obs_t *o = &st.obs.obs[j];
-            int32_t w[] = {(int32_t)o->kind, (int32_t)o->side, (int32_t)o->colour,
+            int32_t w[] = {(int32_t)o->kind, (int32_t)o->side, (int32_t)o->color,
                            o->range_mm, o->bearing, o->orientation, o->has_orientation,
                            o->confidence, o->u_q4, o->v_q4, st.obs_landmark[j],
                            st.obs_confused[j]};
@@ -777,7 +777,7 @@ static void test_sequence(void)
     FILE *f;
     int frames = 0, header = 0, prior = 0;
     if (render_frame == NULL) {
-        t_info("sim.sequence: skipped, tools/render.c not built");
+        t_info("sim.sequence: skipped, tools/world/render.c not built");
         return;
     }
     if (t_quick) {

@@ -11,7 +11,7 @@
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
-#include "sim.h"
+#include "world/sim.h"
 
 #include <math.h>
 #include <stdio.h>

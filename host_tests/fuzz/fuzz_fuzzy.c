@@ -57,7 +57,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             memset(&o, 0, sizeof o);
             o.kind = (fl_landmark_kind_t)(r[1] % (FL_LM_KIND_COUNT + 2));
             o.side = (fl_side_t)(r[2] % 4);
-            o.colour = (fl_colour_t)(r[3] % 6);
+            o.color = (fl_color_t)(r[3] % 6);
             o.range_mm = rd32(r + 4);
             o.bearing = (fl_angle_t)(int16_t)(r[8] | (r[9] << 8));
             o.orientation = (fl_angle_t)(int16_t)(r[10] | (r[11] << 8));

@@ -1,5 +1,5 @@
 /* libFuzzer harness: arbitrary bytes through the host PPM reader. */
-#include "ppm.h"
+#include "io/ppm.h"
 
 #include <stddef.h>
 #include <stdint.h>

@@ -1,9 +1,9 @@
 /* libFuzzer harness: arbitrary text through the `fieldloc localize`
- * sequence-file parser (lr_seq_parse, tools/locrun.c): header lines, frame
+ * sequence-file parser (lr_seq_parse, tools/loc/locrun.c): header lines, frame
  * lines with odometry and head angles, the optional prior, comments, long
  * lines and long paths.  A parse that succeeds must give a consistent
  * sequence (known field and camera, 0 <= n <= cap, finite numbers). */
-#include "locrun.h"
+#include "loc/locrun.h"
 
 #include <math.h>
 #include <stdint.h>

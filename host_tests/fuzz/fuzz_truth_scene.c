@@ -1,7 +1,7 @@
 /* libFuzzer harness: arbitrary text through the fixture readers (truth and
  * scene files). */
-#include "render.h"
-#include "truth.h"
+#include "world/render.h"
+#include "world/truth.h"
 
 #include <stdint.h>
 #include <stdio.h>

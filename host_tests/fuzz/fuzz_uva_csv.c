@@ -1,6 +1,6 @@
 /* libFuzzer harness: arbitrary text through the UvA 2013 annotation parser
  * (uva2013_annotations.csv) and the physar pose parser. */
-#include "realdata.h"
+#include "io/realdata.h"
 
 #include <stdint.h>
 #include <stdlib.h>

@@ -1,6 +1,6 @@
 /*
  * libFuzzer harness: arbitrary bytes as a frame of arbitrary geometry and
- * format (valid or not) through the colour tables, the column scanner and
+ * format (valid or not) through the color tables, the column scanner and
  * the whole vision path.  Input layout: 12 header bytes
  *   [0] format (mod 4: 0 invalid, 1 RGB888, 2 YUYV422, 3 planar)
  *   [1..2] width, [3..4] height (little end first, taken mod 700)

@@ -1,5 +1,5 @@
 /*
- * fieldloc/beacon.h - coloured landmarks of the AIBO fields (seed 004's
+ * fieldloc/beacon.h - colored landmarks of the AIBO fields (seed 004's
  * four-legged league): the sky-blue goal's posts and the corner beacons.
  *
  * The column scanner's classes are green, white, yellow and other; a
@@ -8,14 +8,14 @@
  * that lies above the field border the scanner found (plus a few pixels
  * below it), and classifies each sample exactly: the pixel's HSV
  * (fl_hsv_from_rgb; YUYV and planar frames through fl_rgb_from_ycbcr, the
- * integer BT.601 of src/image.c) against three boxes of the params:
- * sky-blue, pink and a yellow narrower than the colour table's.
+ * integer BT.601 of src/base/image.c) against three boxes of the params:
+ * sky-blue, pink and a yellow narrower than the color table's.
  *
- * Method.  Per sampled column: vertical runs of one colour (a one-sample
+ * Method.  Per sampled column: vertical runs of one color (a one-sample
  * gap bridged), their top and bottom refined to the pixel.  Runs of the
- * same colour that overlap vertically in neighbouring sampled columns are
+ * same color that overlap vertically in neighbouring sampled columns are
  * joined into blobs (union-find over a fixed table).  Then:
- *  - sky-blue goal (and yellow with yellow_goals; the post colour is the
+ *  - sky-blue goal (and yellow with yellow_goals; the post color is the
  *    blob's): a blob at least 3 sampled columns wide whose
  *    bottom meets the field border (border within 1 row step + 3 px under
  *    the bottom and carpet within 3 px under it, in half of its columns:
@@ -33,11 +33,11 @@
  *    (the gap between them at most one row step + 2 px + a third of a
  *    band), overlapping by half the narrower width, widths within a factor
  *    2, each band 0.4 .. 2.5 times as tall as wide (the upper band may be
- *    cut by the image top), white under the lower band (the base).  Colour
- *    = upper band, colour2 = lower band.  A single yellow or sky-blue band
+ *    cut by the image top), white under the lower band (the base).  Color
+ *    = upper band, color2 = lower band.  A single yellow or sky-blue band
  *    cut by the image top with the white base under it is reported with
- *    colour NONE and colour2 = that band (it can only be a lower band: the
- *    other colour would be visible under it otherwise).
+ *    color NONE and color2 = that band (it can only be a lower band: the
+ *    other color would be visible under it otherwise).
  *    Foot: down the beacon's centre column from the lower band, the first
  *    carpet (green) pixel, accepted 1.2 .. 3.2 band heights under the band
  *    (the white base is two bands tall).  Range from the foot (half a
@@ -69,8 +69,8 @@
 #include "fieldloc/scan.h"
 
 /* ---- capacities ----------------------------------------------------------
- * FL_BEACON_MAX_RUNS   coloured vertical runs per frame.  Default 384
- *                      (a 208x160 frame full of colour at the default
+ * FL_BEACON_MAX_RUNS   colored vertical runs per frame.  Default 384
+ *                      (a 208x160 frame full of color at the default
  *                      grid: 104 columns x a few runs), range 16..4096.
  * FL_BEACON_MAX_BLOBS  blobs per frame.  Default 48, range 4..255.
  * FL_BEACON_MAX_FOUND  beacons + posts reported per frame.  Default 8,
@@ -98,14 +98,14 @@
 
 /*
  * Default boxes (fl_beacon_params_default), measured on the rendered
- * aibo2004 fixtures re-rendered at gain 40..160 % (tools/render.c paints
+ * aibo2004 fixtures re-rendered at gain 40..160 % (tools/world/render.c paints
  * sky-blue 80,175,230 and pink 245,90,170; the renderer's mask says which
  * pixels are goal, beacon or background), OpenCV hue units:
  *   sky-blue goal pixels: hue 90..104 (99..102 for 80 %), S p1 134, V p1 53
  *   pink beacon bands:    hue 154..170 (163..165 for 80 %), S p1 98, V p1 57
  *   background (room clutter, robots) with S >= 50 in those hues: sky-blue
  *     couches / bags / books 102..118 (peak 104: a couch is sky-blue as far
- *     as hue goes: geometry, not colour, rejects it), red 175..179 and 0..1,
+ *     as hue goes: geometry, not color, rejects it), red 175..179 and 0..1,
  *     purple shirts ~146, 69 of 567550 background pixels in the pink box.
  *   skyblue  hue 88..108, S 90..255, V 40..255 (goal +- 2 of hue drift; S
  *            and V far below the measured p1: shadow, dark frames)
@@ -119,7 +119,7 @@
 typedef struct {
     fl_hsv_box_t skyblue;
     fl_hsv_box_t pink;
-    fl_hsv_box_t yellow;      /* beacon bands (not the colour table's
+    fl_hsv_box_t yellow;      /* beacon bands (not the color table's
                                  yellow: its hue 15..40, S >= 90 takes in
                                  brown furniture, hue 15 S 110) */
     int32_t col_step;         /* px between sampled columns, 0 = auto
@@ -136,29 +136,29 @@ typedef struct {
                                  model rejects); 0: sky-blue only */
 } fl_beacon_params_t;
 
-/* One vertical run of a colour in a sampled column. */
+/* One vertical run of a color in a sampled column. */
 typedef struct {
     int16_t u;                /* column, px */
-    int16_t v0, v1;           /* first and last row of the colour, px */
-    uint8_t colour;           /* fl_colour_t: YELLOW, SKYBLUE, PINK */
+    int16_t v0, v1;           /* first and last row of the color, px */
+    uint8_t color;           /* fl_color_t: YELLOW, SKYBLUE, PINK */
     uint8_t blob;             /* blob index (after joining) */
 } fl_beacon_run_t;
 
-/* A blob: joined runs of one colour. */
+/* A blob: joined runs of one color. */
 typedef struct {
     int16_t u0, u1;           /* first and last sampled column, px */
     int16_t v0, v1;           /* highest top, lowest bottom, px */
-    uint16_t samples;         /* samples of the colour (saturating) */
-    uint8_t colour;           /* fl_colour_t */
+    uint16_t samples;         /* samples of the color (saturating) */
+    uint8_t color;           /* fl_color_t */
     uint8_t used;             /* private: taken by a result */
 } fl_beacon_blob_t;
 
 /* One result: a beacon or a post of a sky-blue goal. */
 typedef struct {
     fl_landmark_kind_t kind;  /* FL_LM_BEACON or FL_LM_POST */
-    fl_colour_t colour;       /* beacon: upper band (NONE when cut off);
-                                 post: the goal's colour (SKYBLUE, YELLOW) */
-    fl_colour_t colour2;      /* beacon: lower band; post: NONE */
+    fl_color_t color;       /* beacon: upper band (NONE when cut off);
+                                 post: the goal's color (SKYBLUE, YELLOW) */
+    fl_color_t color2;      /* beacon: lower band; post: NONE */
     fl_side_t side;           /* posts: LEFT / RIGHT; beacons: UNKNOWN */
     int32_t u_q4, v_q4;       /* foot: base centre (Q4 px); for a beacon
                                  without a foot, the lower band's bottom */
@@ -188,7 +188,7 @@ typedef struct {
     int32_t runs_dropped;      /* runs beyond FL_BEACON_MAX_RUNS */
     int32_t blobs_dropped;     /* runs that found no blob slot */
     int32_t found_dropped;     /* results beyond FL_BEACON_MAX_FOUND */
-    int32_t rejected_goal;     /* goal-coloured blobs failing the goal checks */
+    int32_t rejected_goal;     /* goal-colored blobs failing the goal checks */
     int32_t rejected_beacon;   /* stacked band pairs failing the checks */
     /* private: union-find parents of the blobs while joining */
     uint8_t parent[FL_BEACON_MAX_BLOBS];
@@ -212,9 +212,9 @@ int32_t fl_beacon_find(fl_beacon_t *b, const fl_scan_t *scan,
                        const fl_image_t *img, const fl_color_table_t *colors,
                        const fl_camera_t *camera, const fl_field_t *field);
 
-/* Colour of one pixel by the boxes of p: FL_COLOUR_YELLOW, SKYBLUE, PINK
+/* Color of one pixel by the boxes of p: FL_COLOR_YELLOW, SKYBLUE, PINK
  * or NONE (also outside the image, an invalid view, or NULL). */
-fl_colour_t fl_beacon_pixel_colour(const fl_beacon_params_t *p,
+fl_color_t fl_beacon_pixel_color(const fl_beacon_params_t *p,
                                    const fl_image_t *img, int32_t u, int32_t v);
 
 #endif /* FIELDLOC_BEACON_H */

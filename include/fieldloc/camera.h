@@ -36,7 +36,7 @@ typedef struct {
      * the head pitch axis above the ground in the robot's usual stance
      * (NAO StandInit, AIBO standing) and the extra downward tilt.  For a
      * calibrated model ("uva2013") they are the fitted values; for the
-     * others nominal values (src/camera.c).  Not read by fl_camera_init. */
+     * others nominal values (src/model/camera.c).  Not read by fl_camera_init. */
     int32_t default_neck_height_mm; /* FL_CAMERA_NECK_MIN_MM..MAX_MM */
     fl_angle_t default_pitch_offset; /* positive = tilted further down */
 } fl_camera_model_t;
@@ -108,10 +108,10 @@ int32_t fl_camera_horizon_v_q4(const fl_camera_t *cam, int32_t u_q4);
 void fl_polar_from_point(fl_point_t p, int32_t *range_mm, fl_angle_t *bearing);
 fl_point_t fl_point_from_polar(int32_t range_mm, fl_angle_t bearing);
 
-/* ---- limits (added with src/camera.c) ----------------------------------
+/* ---- limits (added with src/model/camera.c) ----------------------------------
  * Validated by fl_camera_init (FL_ERR_RANGE beyond them) or enforced by the
  * projection calls (false beyond them), so that every 64-bit intermediate
- * stays in range; see "Scaling and overflow" in src/camera.c. */
+ * stays in range; see "Scaling and overflow" in src/model/camera.c. */
 
 /* Neck height range accepted by fl_camera_init, mm. */
 #define FL_CAMERA_NECK_MIN_MM 50

@@ -28,7 +28,7 @@
  * ground line passes within max(150 mm, range / 10) of the centre and that
  * is longer than R on the ground: the halfway line.
  *
- * Lifecycle: fl_circle_find per frame after fl_lines_build and before
+ * Lifecycle: fl_circle_find per frame after fl_lines_find_segments and before
  * fl_crossings_find.  Cost: O(points) for the bulges, O(segments^2) for
  * the pairs, O(candidates^2) clustering, 4 x (fit points) refinement, about
  * 3 camera projections per segment plus one per fit point.

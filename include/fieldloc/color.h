@@ -1,5 +1,5 @@
 /*
- * fieldloc/color.h - colour classes: integer HSV and the lookup tables that
+ * fieldloc/color.h - color classes: integer HSV and the lookup tables that
  * turn a pixel into green (field), white (lines), yellow (goals) or other.
  * Seed 000 (section 3.1, Table 1) classifies in HSV because hue hardly
  * changes with the light; this module keeps that definition and makes it
@@ -7,10 +7,10 @@
  *
  * HSV.  fl_hsv_from_rgb is OpenCV's 8-bit COLOR_RGB2HSV bit for bit (hue
  * 0..179 = 2 degrees per unit, saturation and value 0..255; checked for all
- * 2^24 colours against OpenCV when the tests are built with it).
+ * 2^24 colors against OpenCV when the tests are built with it).
  *
  * Classes.  A class is an HSV box (fl_hsv_box_t: hue range, saturation
- * range, value range, inclusive).  The class of a colour is the first box
+ * range, value range, inclusive).  The class of a color is the first box
  * that contains it in the order yellow, green, white; none: other.  White
  * is only a candidate here: the scanner (scan.h) keeps a white run only
  * when it is brighter than the neighbouring green by white_contrast_pct.
@@ -52,7 +52,7 @@
  *
  * Tables (fl_color_table_t, built by fl_color_init / rebuilt by
  * fl_color_adapt, no heap, 254 KiB, build < 1 ms on the host):
- *   YCbCr (YUYV and planar frames): BT.601 full range as src/image.c,
+ *   YCbCr (YUYV and planar frames): BT.601 full range as src/base/image.c,
  *   R = Y + a, G = Y + b, B = Y + c with integer offsets a, b, c that
  *   depend on (Cb, Cr) only.  So for one chroma, hue H and D = max - min
  *   are constant and V = Y + M (M = max offset) while no channel clips:
@@ -61,7 +61,7 @@
  *   M, so that class = pattern[chroma[Cb << 8 | Cr] + Y]: one 16-bit and
  *   one 8-bit load per pixel, and YUYV pixel pairs share the first.  Exact
  *   (equal to fl_color_class_ycbcr_exact) whenever BT.601 conversion does
- *   not clip a channel; for clipped colours (outside the RGB gamut) the
+ *   not clip a channel; for clipped colors (outside the RGB gamut) the
  *   pattern is extrapolated (hue frozen, S and V from the clipped formula,
  *   chroma with D > 255 -> other).  `exact` is 0 when the patterns did not
  *   fit and D had to be quantized (never with the default boxes).
@@ -71,14 +71,14 @@
  *   store.  The cell table is 169 x 169: each difference in one bucket per
  *   value for |R - G|, |B - G| <= FL_COLOR_RGB_EXACT (52), wider buckets
  *   (4, 6, 10) beyond.  Exact (equal to fl_color_class_rgb_exact) for
- *   every colour in the exact cells when `exact` is 1: all colours with
+ *   every color in the exact cells when `exact` is 1: all colors with
  *   S <= 52, i.e. white and the white/green boundary; 99.6 % of the cube
  *   overall (coarse cells use the centre's hue and D and the cell's
  *   smallest M).
  *
  * Lifecycle: fl_color_init(&t, &params) -> per frame fl_scan_frame(.., &t,
  * ..) (scan.h) -> fl_color_adapt(&t, &scan.field) re-centres the green and
- * yellow hue ranges on the measured field colour and rebuilds when it moved
+ * yellow hue ranges on the measured field color and rebuilds when it moved
  * (returns 1: the caller may re-scan the frame).  Callers read `params`,
  * `green`, `white`, `yellow`, `hue_shift`, `exact`; the tables are private.
  */
@@ -101,7 +101,7 @@ fl_hsv_t fl_hsv_from_rgb(uint8_t r, uint8_t g, uint8_t b);
 /* n pixels of packed RGB888 -> packed H, S, V bytes (may not overlap). */
 void fl_hsv_from_rgb_row(const uint8_t *rgb, uint8_t *hsv, int32_t n);
 
-/* Integer BT.601 full range, the same arithmetic as src/image.c:
+/* Integer BT.601 full range, the same arithmetic as src/base/image.c:
  * Y, Cb, Cr -> R, G, B (rounded, clamped) and R, G, B -> Y (luma). */
 void fl_rgb_from_ycbcr(uint8_t y, uint8_t cb, uint8_t cr, uint8_t rgb[3]);
 uint8_t fl_luma_from_rgb(uint8_t r, uint8_t g, uint8_t b);
@@ -146,14 +146,14 @@ typedef struct {
 /* The measured defaults described at the top of this file. */
 void fl_color_params_default(fl_color_params_t *p);
 
-/* Field colour measured by the scanner (scan.h, fl_scan_t.field). */
+/* Field color measured by the scanner (scan.h, fl_scan_t.field). */
 typedef struct {
     int32_t n;          /* samples used; 0 = no estimate */
     uint8_t hue;        /* centre, 0..179 */
     uint8_t sat;        /* mean saturation of the samples */
     uint8_t val;        /* mean value */
     uint8_t luma;       /* mean BT.601 luma */
-} fl_field_colour_t;
+} fl_field_color_t;
 
 /* Capacity of the YCbCr pattern store, bytes (the defaults use ~62 KiB). */
 #define FL_COLOR_PATTERN_BYTES 65536
@@ -190,14 +190,14 @@ typedef struct {
  * everything as other. */
 fl_status_t fl_color_init(fl_color_table_t *t, const fl_color_params_t *p);
 
-/* Re-centre on a field-colour estimate (at least 16 samples): hue shift =
+/* Re-centre on a field-color estimate (at least 16 samples): hue shift =
  * estimate hue - centre of params.green's hue range, limited to
  * +-adapt_max_hue, applied to green and yellow; green.s_lo scaled down by
  * sat / green_sat_ref (never up, never below half); white.s_hi capped by
  * the per-frame white level (fl_color_white_cap).  Rebuilds when the shift
  * moved by >= 2, s_lo by >= 6 or the white cap by >= 3 and returns 1; 0
  * when nothing changed or the estimate is empty; FL_ERR_NULL. */
-int fl_color_adapt(fl_color_table_t *t, const fl_field_colour_t *field);
+int fl_color_adapt(fl_color_table_t *t, const fl_field_color_t *field);
 
 /* Per-frame white level.  Where the field is bright the lines clip at 255
  * and the blurred pixel at a line's edge, a mix of carpet and a line
@@ -213,12 +213,12 @@ int fl_color_adapt(fl_color_table_t *t, const fl_field_colour_t *field);
  * unchanged s_hi when white_line_pct is 0 or the estimate is empty.
  * Scaling: val, sat <= 255; val * white_line_pct <= 65025; the mix sum
  * 5 * 255 + 3 * 650 < 2^12; integer floor divisions. */
-int32_t fl_color_white_cap(const fl_color_params_t *p, const fl_field_colour_t *field);
+int32_t fl_color_white_cap(const fl_color_params_t *p, const fl_field_color_t *field);
 
 /* Back to params (shift 0) and rebuild.  FL_OK or FL_ERR_NULL. */
 fl_status_t fl_color_reset(fl_color_table_t *t);
 
-/* Class of one colour through the tables (what the scanner uses). */
+/* Class of one color through the tables (what the scanner uses). */
 fl_color_class_t fl_color_class_rgb(const fl_color_table_t *t, uint8_t r,
                                     uint8_t g, uint8_t b);
 fl_color_class_t fl_color_class_ycbcr(const fl_color_table_t *t, uint8_t y,

@@ -156,4 +156,22 @@
 #error "FL_CIRCLE_MAX_POINTS must be in 16..4096"
 #endif
 
+/* Ids one fl_lines_points_near query stores (lines.h); more are counted,
+ * not stored.  Default 48, range 8..256. */
+#ifndef FL_LINES_NEAR_MAX
+#define FL_LINES_NEAR_MAX 48
+#endif
+#if FL_LINES_NEAR_MAX < 8 || FL_LINES_NEAR_MAX > 256
+#error "FL_LINES_NEAR_MAX must be in 8..256"
+#endif
+
+/* Capacity of one frame's observation list (obs.h, fl_obs_list_t): more
+ * observations are counted in `dropped`.  Default 32, range 4..255. */
+#ifndef FL_OBS_MAX
+#define FL_OBS_MAX 32
+#endif
+#if FL_OBS_MAX < 4 || FL_OBS_MAX > 255
+#error "FL_OBS_MAX must be in 4..255"
+#endif
+
 #endif /* FIELDLOC_CONFIG_H */

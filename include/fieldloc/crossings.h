@@ -43,7 +43,7 @@
  * border gives a T when: its paint, followed past that end (at most the
  * reach), stops, the crossing being half a line width (on the ground)
  * before that; the field border lies within 1000 mm (ground) beyond it
- * with only field colours between and runs square to the segment on the
+ * with only field colors between and runs square to the segment on the
  * ground (ground_tol); the segment's continuation past the crossing is not
  * white (probe_green_pct); and no crossing from a pair is already within
  * the merge distance.  Arms: the segment and the boundary line both ways;
@@ -80,7 +80,7 @@
  * marks found as blobs have none.
  *
  * Lifecycle: fl_crossings_params_default, fl_crossings_init once; per
- * frame fl_crossings_find after fl_lines_build (and after the circle stage,
+ * frame fl_crossings_find after fl_lines_find_segments (and after the circle stage,
  * which flags its chords: chord pairs are skipped), then
  * fl_crossings_add_circle.  Work: O(segments^2) pair tests (at most
  * FL_LINES_MAX_SEGMENTS^2 / 2), each surviving pair 4 probes of at most 64

@@ -22,7 +22,7 @@ typedef enum {
     FL_LM_CENTRE_MARK = 4,  /* centre mark (4 arms) */
     FL_LM_POST = 5,         /* goal post foot (centre of the post base) */
     FL_LM_CENTRE_CIRCLE = 6,/* centre of the centre circle */
-    FL_LM_BEACON = 7,       /* coloured corner beacon (AIBO fields) */
+    FL_LM_BEACON = 7,       /* colored corner beacon (AIBO fields) */
     FL_LM_KIND_COUNT = 8
 } fl_landmark_kind_t;
 
@@ -34,12 +34,12 @@ typedef enum {
 } fl_side_t;
 
 typedef enum {
-    FL_COLOUR_NONE = 0,
-    FL_COLOUR_WHITE = 1,
-    FL_COLOUR_YELLOW = 2,
-    FL_COLOUR_SKYBLUE = 3,
-    FL_COLOUR_PINK = 4
-} fl_colour_t;
+    FL_COLOR_NONE = 0,
+    FL_COLOR_WHITE = 1,
+    FL_COLOR_YELLOW = 2,
+    FL_COLOR_SKYBLUE = 3,
+    FL_COLOR_PINK = 4
+} fl_color_t;
 
 #define FL_FIELD_MAX_ARMS 4
 
@@ -57,11 +57,11 @@ typedef struct {
     uint8_t n_arms;                     /* lines leaving the point: L 2, T 3, X 4 */
     fl_angle_t arm[FL_FIELD_MAX_ARMS];  /* direction of each arm (unused: 0) */
     fl_side_t side;                     /* posts: left/right facing the goal */
-    fl_colour_t colour;                 /* posts and beacons */
+    fl_color_t color;                 /* posts and beacons */
     int8_t goal;                        /* posts: +1 goal at +x, -1 at -x; else 0 */
-    fl_colour_t colour2;                /* added: beacons: lower colour band
-                                           (colour is the upper band);
-                                           FL_COLOUR_NONE for every other kind */
+    fl_color_t color2;                /* added: beacons: lower color band
+                                           (color is the upper band);
+                                           FL_COLOR_NONE for every other kind */
 } fl_landmark_t;
 
 /* A straight painted line, centre line of the paint, field frame.  Every
@@ -74,7 +74,7 @@ typedef struct {
 typedef struct {
     const char *name;            /* "spl2013", "uva2013", "spl2020", "aibo2004"
                                     (aibo2004: partly unverified numbers,
-                                    sources and uncertainty in src/field.c) */
+                                    sources and uncertainty in src/model/field.c) */
     int32_t length_mm;           /* between goal line centres (x extent) */
     int32_t width_mm;            /* between touchline centres (y extent) */
     int32_t line_width_mm;
@@ -86,14 +86,14 @@ typedef struct {
     int32_t mark_size_mm;        /* penalty/centre mark cross size, 0 if none */
     int32_t goal_width_mm;       /* post centre to post centre */
     int32_t post_diameter_mm, post_height_mm;
-    fl_colour_t goal_colour[2];  /* [0] goal at -x, [1] goal at +x */
+    fl_color_t goal_color[2];  /* [0] goal at -x, [1] goal at +x */
     bool symmetric;              /* true when the field looks the same turned
                                     by 180 degrees (identical goals) */
     const fl_landmark_t *landmarks;
     uint16_t n_landmarks;
     const fl_field_line_t *lines;
     uint16_t n_lines;
-    /* added: coloured beacons (AIBO fields), 0 when the field has none */
+    /* added: colored beacons (AIBO fields), 0 when the field has none */
     int32_t beacon_diameter_mm, beacon_height_mm;
 } fl_field_t;
 
@@ -103,7 +103,7 @@ int32_t fl_field_carpet_half_x_mm(const fl_field_t *f);
 int32_t fl_field_carpet_half_y_mm(const fl_field_t *f);
 
 /* The catalogue: "spl2013", "uva2013", "spl2020", "aibo2004" (in that
- * order; see src/field.c for every number and its source).  Names are
+ * order; see src/model/field.c for every number and its source).  Names are
  * compared exactly (case-sensitive); NULL name gives NULL. */
 const fl_field_t *fl_field_find(const char *name);  /* NULL if unknown */
 size_t fl_field_count(void);

@@ -40,7 +40,7 @@
  *     sizeof(fl_fuzzy_t) = 64,720 B on x86-64, < 64 KiB (printed by the
  *     fuzzy suite).
  *     No heap; stack at most about 1 KB per call (make stack).
- * Cost (tools/bench_fuzzy.c, x86-64 host, gcc -O2): one predict + 5
+ * Cost (tools/bench/bench_fuzzy.c, x86-64 host, gcc -O2): one predict + 5
  * observation updates on the SPL grid: about 0.14 ms (2.2 M instructions)
  * with a tracked mode, about 0.47 ms (8.1 M instructions) from total
  * ignorance (every cell possible: the worst case, for a fraction of a
@@ -360,7 +360,7 @@ fl_status_t fl_fuzzy_params_check(const fl_fuzzy_params_t *p);
  * observations with 8 % range noise; vision's ranges are within about 1 %,
  * its bearings within 0.2 deg, at 10 Hz, with L/T confusions and far false
  * marks instead.  Changes (measured in the frames-mode simulations, README
- * "Localization"; the reasoning and the numbers of each in src/fuzzy.c):
+ * "Localization"; the reasoning and the numbers of each in src/loc/fuzzy.c):
  * narrower rings (core 3 % and slope 9 % of the range), precise rings
  * while tracked (ring_track_q8 FL_FUZZY_RING_TRACK_VISION), 9 deg heading
  * uncertainty per metre walked, outlier heading bias, kidnap rate 0.5,
@@ -431,7 +431,7 @@ void fl_fuzzy_predict(fl_fuzzy_t *g, int32_t dx_mm, int32_t dy_mm,
 
 /* One observation: product intersection of every cell with the union of
  * fuzzy rings around every map landmark of the observation's kind (posts:
- * of its side and colour when known), then normalization.  Returns true if
+ * of its side and color when known), then normalization.  Returns true if
  * it was applied (false: ignored and counted). */
 bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *obs);
 /* Every observation of a frame in turn; returns how many were applied. */

@@ -7,7 +7,7 @@
  * the border) and lists yellow->green transitions (feet).  Because a post
  * stands on the goal line, a line between the yellow and the carpet can
  * keep the scanner from following it up; so the image is also probed (by
- * the colour table) at 2, 6, 12 and 20 px above each grid column's border.
+ * the color table) at 2, 6, 12 and 20 px above each grid column's border.
  * A candidate is a run of columns with yellow at two probes or
  * yellow_cols >= min_cells (gaps of two columns bridged).  In the image:
  * its yellow column is followed down to the foot and up through the post
@@ -81,7 +81,7 @@ int32_t fl_goal_find(fl_posts_t *out, const fl_scan_t *scan,
                      const fl_image_t *img, const fl_color_table_t *colors,
                      const fl_camera_t *camera, const fl_field_t *field);
 
-/* Colour class of one image pixel through the tables (RGB888: the RGB
+/* Color class of one image pixel through the tables (RGB888: the RGB
  * table; YUYV/planar: the YCbCr table).  OTHER outside the image. */
 fl_color_class_t fl_goal_pixel_class(const fl_image_t *img,
                                      const fl_color_table_t *colors,

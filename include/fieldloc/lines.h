@@ -12,14 +12,14 @@
  * robots, goals and clutter are wider still).
  *
  * Luma points.  Far away a line is a pixel or two across: blurred into
- * the carpet, its colour is no longer white and the class map misses it,
+ * the carpet, its color is no longer white and the class map misses it,
  * or it lies a few pixels above the field border.  With the frame's image,
  * the same scan lines are read in the image's luma over the band of rows
  * where the projected width is at most luma_width_px (vertical scan lines
  * from a few pixels above their border): a ridge brighter than the pixels
  * d = 1 + 1.5 w (2..6 px) to either side by luma_contrast_pct of the
  * brighter one (and 8 levels), at most d - 1 px wide at half its height,
- * with carpet-coloured flanks (Cb, Cr below grey), neither yellow nor
+ * with carpet-colored flanks (Cb, Cr below grey), neither yellow nor
  * orange itself, going on in the pixel line beside the scan line (a line,
  * not a speck of noise), where the class map has no white within a cell,
  * gives a point flagged FL_LINE_POINT_LUMA (at most 8 ridges per scan line
@@ -68,10 +68,10 @@
  *
  * Lifecycle: fl_lines_params_default(&p); fl_lines_init(&l, &p) once;
  * per frame fl_lines_find_points(&l, &scan, &image, camera, line_width_mm)
- * then fl_lines_build(&l, &scan); the image's pixels are read until the
- * frame's last fl_lines_build / fl_lines_paint_pct / fl_crossings_find
+ * then fl_lines_find_segments(&l, &scan); the image's pixels are read until the
+ * frame's last fl_lines_find_segments / fl_lines_paint_pct / fl_crossings_find
  * (the view is kept in l).  Tests may instead fill points[] / n_points
- * with fl_lines_reset + fl_lines_add_point and call fl_lines_build with a
+ * with fl_lines_reset + fl_lines_add_point and call fl_lines_find_segments with a
  * NULL scan (no white checks).  Callers read everything before the
  * "private" mark.
  *
@@ -235,7 +235,7 @@ bool fl_lines_add_point(fl_lines_t *l, int32_t u_q1, int32_t v_q1,
 
 /* Grow and merge segments from points[] (seed 000, Algorithm 1).  scan may
  * be NULL: every connection then counts as white.  Returns n_segments. */
-int32_t fl_lines_build(fl_lines_t *l, const fl_scan_t *scan);
+int32_t fl_lines_find_segments(fl_lines_t *l, const fl_scan_t *scan);
 
 /* Percentage (0..100) of white grid cells on the straight path between two
  * pixels (Q4), thin-line tolerant (a cell counts as white when it or a
@@ -273,8 +273,8 @@ int32_t fl_lines_width_q4(const fl_lines_t *l, int32_t v_px, bool vertical);
 /* Ids of the points in the box |du| <= ru_px, |dv| <= rv_px around
  * (u_q1, v_q1): at most FL_LINES_NEAR_MAX stored in ids (which must hold
  * that many; may be NULL), all counted in the return value.  Valid after
- * fl_lines_build.  Cost: the buckets the box covers. */
-#define FL_LINES_NEAR_MAX 48
+ * fl_lines_find_segments.  Cost: the buckets the box covers.  FL_LINES_NEAR_MAX:
+ * config.h. */
 int32_t fl_lines_points_near(const fl_lines_t *l, int32_t u_q1, int32_t v_q1,
                              int32_t ru_px, int32_t rv_px, uint16_t *ids);
 

@@ -25,7 +25,7 @@
 typedef struct {
     fl_landmark_kind_t kind;   /* FL_LM_L ... FL_LM_BEACON */
     fl_side_t side;            /* posts: left/right when the crossbar says so */
-    fl_colour_t colour;        /* posts and beacons; FL_COLOUR_NONE if unknown */
+    fl_color_t color;        /* posts and beacons; FL_COLOR_NONE if unknown */
     int32_t range_mm;          /* ground distance from the robot origin, >= 0 */
     fl_angle_t bearing;        /* 0 ahead, positive left */
     fl_angle_t orientation;    /* see above; 0 when !has_orientation */
@@ -33,23 +33,16 @@ typedef struct {
     uint8_t confidence;        /* Q0.8: 255 = certain, 0 = ignore */
     int32_t u_q4, v_q4;        /* image position it came from (Q4 px), for
                                   pictures and evaluation; -1 if none */
-    fl_colour_t colour2;       /* added: beacons: the lower colour band
-                                  (colour is the upper band, as
-                                  fl_landmark_t.colour / colour2); a beacon
-                                  whose upper band was not seen has colour
-                                  FL_COLOUR_NONE and colour2 set.
-                                  FL_COLOUR_NONE (0, what memset gives)
+    fl_color_t color2;       /* added: beacons: the lower color band
+                                  (color is the upper band, as
+                                  fl_landmark_t.color / color2); a beacon
+                                  whose upper band was not seen has color
+                                  FL_COLOR_NONE and color2 set.
+                                  FL_COLOR_NONE (0, what memset gives)
                                   for every other kind and when unknown */
 } fl_obs_t;
 
-/* Capacity of one frame's observation list.  Default 32, range 4..255. */
-#ifndef FL_OBS_MAX
-#define FL_OBS_MAX 32
-#endif
-#if FL_OBS_MAX < 4 || FL_OBS_MAX > 255
-#error "FL_OBS_MAX must be in 4..255"
-#endif
-
+/* Capacity of one frame's observation list: FL_OBS_MAX, config.h. */
 typedef struct {
     fl_obs_t obs[FL_OBS_MAX];
     uint16_t n;          /* valid entries */

@@ -25,7 +25,7 @@
  * next to it, is skipped: the border is the next run below it when a
  * floor-like gap separates them and it comes back to the level; (3) a
  * column without any run between columns with one (a line running down the
- * column) gets the top of its lowest stretch of field colours (green and
+ * column) gets the top of its lowest stretch of field colors (green and
  * white).  No run: border = height.
  * Output: the class map.  Two bits per grid cell (fl_color_class_t), 32
  * cells per uint64_t, cell i of a row in word i / 32 at bits
@@ -34,7 +34,7 @@
  * the border every cell is OTHER (background) except the yellow of goal
  * posts: where yellow touches the border from above (the post foot is the
  * border of its columns), the yellow run is followed upward and kept.
- * White is a colour candidate kept only when it contrasts with the green
+ * White is a color candidate kept only when it contrasts with the green
  * next to it: at the top of each vertical white run the luma of the run
  * (brightest pixel from its first sample to the next) must be >=
  * (100 + white_contrast_pct) % of the green next to it: the darkest green
@@ -56,7 +56,7 @@
  * (at least 2 yellow samples kept above it).  At most feet_per_column per
  * column and FL_SCAN_MAX_FEET in all (the rest counted in feet_dropped).
  *
- * Field colour: every estimate_step_px-th pixel (in u and v) below the
+ * Field color: every estimate_step_px-th pixel (in u and v) below the
  * border is converted to HSV; the hue centre (mean around the histogram
  * mode, within +-30 of the green range's centre, S >= half of green s_lo)
  * and the mean S, V and luma go to `field` for fl_color_adapt (color.h).
@@ -94,12 +94,12 @@ typedef struct {
                                    0..255 px (with a camera) */
     int32_t feet_per_column;    /* 0..255 */
     int32_t checks_per_column;  /* white contrast checks, 0..255 */
-    int32_t estimate_step_px;   /* field-colour sample spacing, 0 (off) or
+    int32_t estimate_step_px;   /* field-color sample spacing, 0 (off) or
                                    1..255 px */
 } fl_scan_params_t;
 
 /* col/row step 2, N 8 px, margin 2 px, 4 feet and 32 checks per column,
- * field-colour samples every 24 px. */
+ * field-color samples every 24 px. */
 void fl_scan_params_default(fl_scan_params_t *p);
 
 typedef struct {
@@ -122,7 +122,7 @@ typedef struct {
     uint16_t yellow_rows[FL_SCAN_MAX_ROWS];
     int32_t n_feet;
     fl_scan_foot_t feet[FL_SCAN_MAX_FEET];
-    fl_field_colour_t field;
+    fl_field_color_t field;
     /* counters of this frame */
     int32_t feet_dropped;       /* beyond a cap */
     int32_t checks_skipped;     /* white runs kept without a check (cap) */
@@ -136,7 +136,7 @@ typedef struct {
     uint16_t hue_hist[180];
     /* phase B's border row (gend_row) and the first non-green grid row
      * below it (gend; none when the column's bit in gend_none is set), for
-     * src/scan.c, rerun_column */
+     * src/vision/scan.c, rerun_column */
     int16_t gend_row[FL_SCAN_MAX_COLS];
     int16_t gend[FL_SCAN_MAX_COLS];
     uint64_t gend_none[FL_SCAN_WORDS];

@@ -17,15 +17,15 @@
  * vis.crossings, vis.posts, vis.scan) for pictures and evaluation.
  *
  * Observations (obs.h), in this order: posts (kind FL_LM_POST, side,
- * colour = the field's goal colour, range from the foot or the width),
+ * color = the field's goal color, range from the foot or the width),
  * the centre circle (FL_LM_CENTRE_CIRCLE, orientation = halfway line),
  * then crossings and marks by falling confidence (FL_LM_L, T, X,
  * PENALTY_MARK, CENTRE_MARK).  Image positions are kept in u_q4 / v_q4.
  * Then, on fields with beacons or a sky-blue or pink goal (fl_vision_
- * wants_beacons), the coloured landmarks of beacon.h: sky-blue and yellow
- * posts (FL_LM_POST, colour SKYBLUE / YELLOW, side LEFT/RIGHT; a post
+ * wants_beacons), the colored landmarks of beacon.h: sky-blue and yellow
+ * posts (FL_LM_POST, color SKYBLUE / YELLOW, side LEFT/RIGHT; a post
  * fl_goal_find already reported is not repeated) and beacons
- * (FL_LM_BEACON, colour = upper band, colour2 = lower band), in the order
+ * (FL_LM_BEACON, color = upper band, color2 = lower band), in the order
  * found.  Other fields never run that stage, so their outputs do not
  * depend on it.  Those below min_confidence are left out.
  */
@@ -57,7 +57,7 @@ typedef struct {
     int32_t min_confidence;       /* observations below are dropped, 0..255 */
     int32_t posts;                /* 1: goal posts */
     int32_t circle;               /* 1: centre circle */
-    int32_t beacons;              /* added: 1: coloured landmarks (beacon.h)
+    int32_t beacons;              /* added: 1: colored landmarks (beacon.h)
                                      on fields that have them; 0: never */
     fl_beacon_params_t beacon;    /* added: their params */
 } fl_vision_params_t;
@@ -83,7 +83,7 @@ typedef struct {
 void fl_vision_params_default(fl_vision_params_t *p);
 
 /* True when the field has something for the beacon stage: beacons
- * (beacon_height_mm > 0 or an FL_LM_BEACON landmark) or a goal coloured
+ * (beacon_height_mm > 0 or an FL_LM_BEACON landmark) or a goal colored
  * sky-blue or pink.  NULL: false. */
 bool fl_vision_wants_beacons(const fl_field_t *field);
 

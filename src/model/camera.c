@@ -1,0 +1,461 @@
+/*
+ * src/model/camera.c - pinhole camera model in fixed point (see camera.h for the
+ * frames).
+ *
+ * Algorithm.  fl_camera_init turns the pose into a rotation R (Q30, camera
+ * frame -> robot frame) and a camera centre p (Q4 mm, robot frame):
+ *     alpha = mount_tilt + head_pitch + pitch_offset  (total downward tilt)
+ *     theta = head_pitch + pitch_offset               (head pitch)
+ *     R = Rz(yaw) * Ry(alpha)
+ *       = [ cy*ca  -sy  cy*sa ]
+ *         [ sy*ca   cy  sy*sa ]     (cy = cos yaw, ca = cos alpha, ...)
+ *         [ -sa     0   ca    ]
+ *     p = (0, 0, neck) + Rz(yaw) * Ry(theta) * (mount_x, 0, mount_z)
+ * (Ry(a) with a > 0 turns the x axis down: x -> (cos a, 0, -sin a).)
+ * The camera has no roll, so R[2][1] is exactly 0 and the horizon is a
+ * horizontal image row.
+ * pixel -> ground: the ray in the camera frame is (f, -(u - cx), -(v - cy))
+ * (x optical, y left, z up); d = R * ray; the ray hits the ground when
+ * d_z < 0, at p + d * (p_z / -d_z).
+ * ground -> pixel: c = R^T * (g - p); in front when c_x > 0; then
+ * u = cx - f * c_y / c_x, v = cy - f * c_z / c_x.
+ *
+ * Invariant.  A camera is either valid (R from fl_sin_q30/fl_cos_q30 with
+ * R[2][1] = 0 and R[2][2] >= 0, p within 3414 mm of the origin) or all zero
+ * after a failed init; the all-zero camera projects nothing (p_z = 0 and
+ * R = 0 make every call return false / INT32_MAX).  A valid camera whose
+ * centre is at or below the ground (possible only with odd mounts) has no
+ * ground points either.  The ray test of pixel_to_ground (d_z < 0) and
+ * fl_camera_horizon_v_q4 use the same integers, so "v_q4 > horizon" is
+ * exactly "the ray points below the horizon".
+ *
+ * Memory: the caller's fl_camera_t (about 90 bytes); no other state.
+ * Catalogue: one static const table.
+ * Cost: init 4 table sin/cos calls and a few multiplies; pixel_to_ground
+ * 9 64-bit multiply-adds, a normalisation, 2 64-bit divisions and one
+ * fl_hypot; ground_to_pixel 9 multiply-adds and 2 divisions.
+ */
+#include "fieldloc/camera.h"
+#include "fieldloc/config.h"
+
+#include <string.h>
+
+/* ---- catalogue -------------------------------------------------------------
+ * Focal length f = (W/2) / tan(HFOV/2), rounded to 1/16 px; the principal
+ * point is the image centre ((W-1)/2, (H-1)/2) in the pixel-centre
+ * convention of camera.h.  Angles in binary units (65536 per turn):
+ * 39.7 deg = 7227, 40 deg = 7282, 1.2 deg = 218.
+ *
+ * Sources and uncertainty (all from memory of the Aldebaran documentation
+ * and RoboCup team code, none re-measured here; "uva2013" below calibrates
+ * the UvA NAO v4 bottom camera from real labels):
+ *  - NAO v4 (and v5): MT9M114, HFOV 60.9 x VFOV 47.6 deg (the docs give
+ *    60.97 x 47.64; both give 272.0 px at 320 wide, DESIGN.md's "about 272
+ *    px").  Top camera 58.71 mm forward, 63.64 mm up from the head pitch
+ *    joint, tilted 1.2 deg down; bottom 50.71 forward, 17.74 up, 39.7 deg
+ *    down (DESIGN.md).  Offsets to about 0.1 mm, tilts to about 0.5 deg
+ *    for an individual robot.
+ *  - NAO v3 (v3.2/v3.3): OV7670, HFOV 47.8 x VFOV 36.8 deg.  Bottom camera
+ *    tilted 40 deg down.  The mounting offsets (top 53.9 forward, 67.9 up,
+ *    tilt 0; bottom 48.8 forward, 23.81 up) are from memory of the v3.3
+ *    kinematics page: uncertain by a few mm; the top tilt of 0 deg is
+ *    uncertain by about 1 deg.
+ *  - NAO v6: OV5640, HFOV 56.3 x VFOV 43.7 deg; same head geometry as v4:
+ *    top 58.71 / 63.64 mm, 1.2 deg; bottom 50.71 / 17.74 mm, 39.7 deg.
+ *  - AIBO ERS-7: 208x160, HFOV 56.9 x VFOV 45.2 deg (f = 191.9 px).  The
+ *    mounting is APPROXIMATE: the ERS-7 head has neck tilt, pan and a second
+ *    (nod) tilt, which this model folds into one pitch; the camera sits in
+ *    the snout about 81 mm ahead of and 15 mm below the nod axis (from
+ *    memory of the GermanTeam ERS-7 dimensions), optical axis along the
+ *    snout (tilt 0).  Expect errors of 5-10 mm and a few degrees: callers
+ *    should fold the nod/neck-tilt split into neck_height and pitch_offset.
+ * Integer values: f_q4 = round(16 f): nao3 5777 / 11554, nao4 4355 / 8709,
+ * nao6 4784 / 9569 (320 / 640 wide), aibo 3071; cx_q4 = 8 (W - 1),
+ * cy_q4 = 8 (H - 1).
+ */
+static const fl_camera_model_t fl_camera_catalogue[] = {
+    /* name               W    H    f_q4   cx_q4 cy_q4 mx     mz   tilt neck poff */
+    {"nao3-top-320",     320, 240,  5777, 2552, 1912, 54,   68,    0, 445, 0},
+    {"nao3-bottom-320",  320, 240,  5777, 2552, 1912, 49,   24, 7282, 445, 0},
+    {"nao3-top-640",     640, 480, 11554, 5112, 3832, 54,   68,    0, 445, 0},
+    {"nao3-bottom-640",  640, 480, 11554, 5112, 3832, 49,   24, 7282, 445, 0},
+    {"nao4-top-320",     320, 240,  4355, 2552, 1912, 59,   64,  218, 445, 0},
+    {"nao4-bottom-320",  320, 240,  4355, 2552, 1912, 51,   18, 7227, 445, 0},
+    {"nao4-top-640",     640, 480,  8709, 5112, 3832, 59,   64,  218, 445, 0},
+    {"nao4-bottom-640",  640, 480,  8709, 5112, 3832, 51,   18, 7227, 445, 0},
+    {"nao6-top-320",     320, 240,  4784, 2552, 1912, 59,   64,  218, 445, 0},
+    {"nao6-bottom-320",  320, 240,  4784, 2552, 1912, 51,   18, 7227, 445, 0},
+    {"nao6-top-640",     640, 480,  9569, 5112, 3832, 59,   64,  218, 445, 0},
+    {"nao6-bottom-640",  640, 480,  9569, 5112, 3832, 51,   18, 7227, 445, 0},
+    {"aibo-ers7",        208, 160,  3071, 1656, 1272, 81,  -15,    0, 160, 0},
+    {"uva2013",          320, 240,  4405, 2552, 1912, 51,   18, 7227, 450, 1140},
+};
+/* Default poses (default_neck_height_mm, default_pitch_offset), nominal:
+ *  - NAO (all versions, same leg and neck geometry): StandInit, hip pitch
+ *    about -0.45 rad, knee 0.7, ankle -0.35: the legs (thigh 100, tibia
+ *    102.9 mm, foot height 45.19) put the hip joints 231 mm above the
+ *    ground; plus hip-to-torso 85 and torso-to-neck 126.5 mm = 443 -> 445
+ *    mm (a straight-legged stand is 460).  From memory of the Aldebaran
+ *    kinematics pages, not measured; the uva2013 fit gives 450 +- 5.
+ *    Pitch offset 0 (the torso lean of StandInit, about 6 deg by the
+ *    uva2013 fit, is left to the caller).
+ *  - AIBO ERS-7: 160 mm, a rough standing value (test_camera sweeps
+ *    100..200), uncertain by 30 mm; pitch offset 0.
+ * uva2013: the UvA 2013 dataset's NAO v4 bottom camera at 320x240, fitted by
+ * `fieldloc calibrate` (tools/eval/calibrate.c) to the 151 hand labels of
+ * ../shared/realdata/uva2013_annotations.csv with the nao4-bottom mount
+ * (51 / 18 mm, 39.7 deg) and per-image pose corrections as nuisance
+ * parameters (the file-name poses are several degrees off):
+ *     neck height   449.6 +- 5.4 mm   -> 450 mm (camera ~487 mm high at
+ *                                         HeadPitch -0.545)
+ *     pitch offset  6.26 +- 0.12 deg  -> 1140 (6.262 deg); the StandInit
+ *                                         torso lean plausibly explains it
+ *     focal length  275.3 +- 1.9 px   -> 4405 (275.31 px; the data sheet's
+ *                                         272.2 is within 1.6 sigma)
+ *     principal point: image centre (a fit gives 159.0 +- 2.7, 116.8 +- 7.9
+ *                                         px: not significant)
+ * Residuals and outliers: see `fieldloc calibrate`; the top-camera mount
+ * fits the labels as well only with an impossible 45 deg pitch offset.
+ * With the file-name poses (which this model must live with) the median
+ * residual is ~8 px, dominated by those pose errors; with each image's pose
+ * refitted it is 3.3 px (X 2.3, L 3.8, T 3.4, G 3.2). */
+/* Mount offsets are whole mm (the model stores int32 mm): 58.71 -> 59,
+ * 63.64 -> 64, 50.71 -> 51, 17.74 -> 18, 53.9 -> 54, 67.9 -> 68,
+ * 48.8 -> 49, 23.81 -> 24; the rounding (< 0.5 mm) is far below the
+ * uncertainty of the pose itself. */
+
+#define FL_CAMERA_COUNT (sizeof fl_camera_catalogue / sizeof fl_camera_catalogue[0])
+
+static int fl_cam_streq(const char *a, const char *b)
+{
+    while (*a && *a == *b) {
+        a++;
+        b++;
+    }
+    return *a == *b;
+}
+
+const fl_camera_model_t *fl_camera_model_find(const char *name)
+{
+    size_t i;
+    if (!name)
+        return NULL;
+    for (i = 0; i < FL_CAMERA_COUNT; i++)
+        if (fl_cam_streq(fl_camera_catalogue[i].name, name))
+            return &fl_camera_catalogue[i];
+    return NULL;
+}
+
+size_t fl_camera_model_count(void) { return FL_CAMERA_COUNT; }
+
+const fl_camera_model_t *fl_camera_model_at(size_t i)
+{
+    return i < FL_CAMERA_COUNT ? &fl_camera_catalogue[i] : NULL;
+}
+
+/* ---- helpers --------------------------------------------------------------- */
+
+static int64_t fl_cam_abs64(int64_t v) { return v < 0 ? -v : v; } /* |v| < 2^62 here */
+
+/* Smallest s >= 0 with (m >> s) < 2^40, for 0 <= m < 2^62. */
+static unsigned fl_cam_norm_shift(int64_t m)
+{
+    unsigned s = 0;
+    while ((m >> s) >= ((int64_t)1 << 40))
+        s++;
+    return s;
+}
+
+/* floor(n / d) for d > 0, 64 bit (C division truncates toward zero). */
+static int64_t fl_cam_floor_div64(int64_t n, int64_t d)
+{
+    int64_t q = n / d;
+    if (n % d != 0 && n < 0)
+        q--;
+    return q;
+}
+
+/* ---- init ------------------------------------------------------------------ */
+
+/* Scaling and overflow.  Angles are binary angles summed in int32 and wrapped
+ * with fl_angle_wrap.  sin/cos are Q2.30 in [-2^30, 2^30]; the products in R
+ * use fl_mul_q30 (64-bit intermediate, rounded, |result| <= 2^30).
+ * Position: mount_x*cos(theta) + mount_z*sin(theta) is mm * Q30 in int64,
+ * |.| <= 2 * 1000 * 2^30 < 2^41; it is rounded to Q16 mm (>> 14, |.| < 2^27),
+ * multiplied by cos/sin(yaw) Q30 (|.| < 2^57) and rounded to Q4 (>> 42).
+ * The vertical part is rounded straight to Q4 (>> 26).  Each step rounds to
+ * nearest (fl_rshift_round); the position is within 1/16 mm of exact. */
+fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
+                           const fl_camera_pose_t *pose)
+{
+    fl_angle_t alpha, theta;
+    int32_t sa, ca, sy, cy, st, ct;
+    int64_t xh_q30, zh_q30;
+    int32_t xh_q16;
+
+    if (!cam)
+        return FL_ERR_NULL;
+    memset(cam, 0, sizeof *cam); /* projects nothing until fully valid */
+    if (!model || !pose)
+        return FL_ERR_NULL;
+    if (model->width_px <= 0 || model->height_px <= 0 ||
+        model->width_px > FL_IMAGE_MAX_DIM || model->height_px > FL_IMAGE_MAX_DIM)
+        return FL_ERR_SIZE;
+    if (model->focal_q4 <= 0 || model->focal_q4 > FL_CAMERA_MAX_FOCAL_Q4)
+        return FL_ERR_RANGE;
+    if (model->cx_q4 < 0 || model->cx_q4 > 16 * model->width_px ||
+        model->cy_q4 < 0 || model->cy_q4 > 16 * model->height_px)
+        return FL_ERR_RANGE;
+    if (model->mount_x_mm < -FL_CAMERA_MAX_MOUNT_MM || model->mount_x_mm > FL_CAMERA_MAX_MOUNT_MM ||
+        model->mount_z_mm < -FL_CAMERA_MAX_MOUNT_MM || model->mount_z_mm > FL_CAMERA_MAX_MOUNT_MM)
+        return FL_ERR_RANGE;
+    if (pose->neck_height_mm < FL_CAMERA_NECK_MIN_MM || pose->neck_height_mm > FL_CAMERA_NECK_MAX_MM)
+        return FL_ERR_RANGE;
+    alpha = fl_angle_wrap((int32_t)model->mount_tilt + pose->head_pitch + pose->pitch_offset);
+    if (alpha < -FL_ANGLE_90 || alpha > FL_ANGLE_90)
+        return FL_ERR_RANGE;
+    theta = fl_angle_wrap((int32_t)pose->head_pitch + pose->pitch_offset);
+
+    sa = fl_sin_q30(alpha);
+    ca = fl_cos_q30(alpha);
+    sy = fl_sin_q30(pose->head_yaw);
+    cy = fl_cos_q30(pose->head_yaw);
+    st = fl_sin_q30(theta);
+    ct = fl_cos_q30(theta);
+
+    cam->model = *model;
+    cam->pose = *pose;
+    cam->rot_q30[0][0] = fl_mul_q30(cy, ca);
+    cam->rot_q30[0][1] = -sy;
+    cam->rot_q30[0][2] = fl_mul_q30(cy, sa);
+    cam->rot_q30[1][0] = fl_mul_q30(sy, ca);
+    cam->rot_q30[1][1] = cy;
+    cam->rot_q30[1][2] = fl_mul_q30(sy, sa);
+    cam->rot_q30[2][0] = -sa;
+    cam->rot_q30[2][1] = 0;
+    cam->rot_q30[2][2] = ca;
+
+    /* camera centre: head pitch theta, then yaw, then up by the neck */
+    xh_q30 = (int64_t)model->mount_x_mm * ct + (int64_t)model->mount_z_mm * st;
+    zh_q30 = -(int64_t)model->mount_x_mm * st + (int64_t)model->mount_z_mm * ct;
+    xh_q16 = fl_rshift_round(xh_q30, 14);
+    cam->pos_q4[0] = fl_rshift_round((int64_t)xh_q16 * cy, 42);
+    cam->pos_q4[1] = fl_rshift_round((int64_t)xh_q16 * sy, 42);
+    cam->pos_q4[2] = pose->neck_height_mm * 16 + fl_rshift_round(zh_q30, 26);
+    return FL_OK;
+}
+
+/* ---- pixel -> ground --------------------------------------------------------- */
+
+/* Scaling and overflow.  Inputs Q4 px; |u - cx|, |v - cy| <= 2^28 (else
+ * false) and 0 < f <= 2^20, so the camera ray has components < 2^28 (Q4 px).
+ * d = R * ray is Q34 (Q4 px * Q30) in int64, each component |.| < 3 * 2^58.
+ * d is then shifted right (floor) until max |d_i| < 2^40; the sign of d_z
+ * survives the shift (a negative value stays <= -1), and the direction keeps
+ * a relative precision better than 2^-30 (|d| >= f * 2^30 >= 2^30 before
+ * the shift, >= 2^39 after a shift).  Camera position Q4 mm:
+ * |p_x|, |p_y| < 2^15, 0 < p_z < 2^16.  Offsets p_z * d_x < 2^56; a ray whose
+ * horizontal offset would reach 2^20 Q4 mm (65 m) is rejected before
+ * dividing, by comparing (|p_z * d_x| >> 20) with -d_z (exact test of
+ * |offset| >= 2^20).  The ground coordinate is one rounded division
+ * (p_x * (-d_z) + p_z * d_x) / (16 * (-d_z)): numerator < 2^57, divisor
+ * < 2^44, result |.| < 2^17 mm, rounded to nearest (ties away from zero), so
+ * the only rounding after R and p is this final 0.5 mm. */
+bool fl_camera_pixel_to_ground(const fl_camera_t *cam, int32_t u_q4,
+                               int32_t v_q4, fl_point_t *ground)
+{
+    const int32_t(*r)[3];
+    int64_t a, b, c, dx, dy, dz, nz, nx, ny, m, pz;
+    unsigned s;
+    int32_t gx, gy;
+
+    if (!cam || !ground)
+        return false;
+    r = cam->rot_q30;
+    pz = cam->pos_q4[2];
+    if (pz <= 0) /* camera at or below the ground, or a failed init */
+        return false;
+    b = -((int64_t)u_q4 - cam->model.cx_q4);
+    c = -((int64_t)v_q4 - cam->model.cy_q4);
+    if (b > FL_CAMERA_MAX_OFFSET_Q4 || b < -FL_CAMERA_MAX_OFFSET_Q4 ||
+        c > FL_CAMERA_MAX_OFFSET_Q4 || c < -FL_CAMERA_MAX_OFFSET_Q4)
+        return false;
+    a = cam->model.focal_q4;
+
+    dz = r[2][0] * a + r[2][1] * b + r[2][2] * c;
+    if (dz >= 0) /* at or above the horizon */
+        return false;
+    dx = r[0][0] * a + r[0][1] * b + r[0][2] * c;
+    dy = r[1][0] * a + r[1][1] * b + r[1][2] * c;
+
+    m = fl_cam_abs64(dx);
+    if (fl_cam_abs64(dy) > m)
+        m = fl_cam_abs64(dy);
+    if (-dz > m)
+        m = -dz;
+    s = fl_cam_norm_shift(m);
+    dx >>= s;
+    dy >>= s;
+    dz >>= s;
+    nz = -dz; /* in [1, 2^40) */
+
+    nx = pz * dx;
+    ny = pz * dy;
+    if ((fl_cam_abs64(nx) >> 20) >= nz || (fl_cam_abs64(ny) >> 20) >= nz)
+        return false; /* grazing ray: farther than 65 m */
+    gx = fl_div_round(cam->pos_q4[0] * nz + nx, nz * 16);
+    gy = fl_div_round(cam->pos_q4[1] * nz + ny, nz * 16);
+    if (fl_hypot(gx, gy) > (uint32_t)FL_CAMERA_MAX_RANGE_MM)
+        return false;
+    ground->x_mm = gx;
+    ground->y_mm = gy;
+    return true;
+}
+
+/* ---- ground -> pixel --------------------------------------------------------- */
+
+/* Scaling and overflow.  Ground input mm with |x|, |y| <= 10^7 (else false);
+ * w = 16 g - p in Q4 mm, |w_i| < 2^28.  c = R^T w is Q34 mm in int64,
+ * |c_i| < 3 * 2^58.  Behind the camera (c_x <= 0): false.  c is shifted
+ * right (floor) until max |c_i| < 2^40 (a c_x that drops to 0 is a point
+ * 90 deg off axis: false).  f * c_y with f <= 2^20 is < 2^60; the pixel
+ * offset f * c_y / c_x must stay below FL_CAMERA_MAX_OFFSET_Q4 (2^28),
+ * tested exactly before dividing as (|f c_y| >> 28) < c_x, else false.  The
+ * division rounds to nearest (ties away from zero); the result is
+ * cx_q4 + offset, |.| < 2^29, no saturation needed. */
+bool fl_camera_ground_to_pixel(const fl_camera_t *cam, fl_point_t ground,
+                               int32_t *u_q4, int32_t *v_q4)
+{
+    const int32_t(*r)[3];
+    int64_t wx, wy, wz, cx, cy, cz, m, nu, nv, f;
+    unsigned s;
+
+    if (!cam || !u_q4 || !v_q4)
+        return false;
+    if (ground.x_mm > FL_CAMERA_MAX_GROUND_MM || ground.x_mm < -FL_CAMERA_MAX_GROUND_MM ||
+        ground.y_mm > FL_CAMERA_MAX_GROUND_MM || ground.y_mm < -FL_CAMERA_MAX_GROUND_MM)
+        return false;
+    r = cam->rot_q30;
+    wx = (int64_t)ground.x_mm * 16 - cam->pos_q4[0];
+    wy = (int64_t)ground.y_mm * 16 - cam->pos_q4[1];
+    wz = -(int64_t)cam->pos_q4[2];
+    cx = r[0][0] * wx + r[1][0] * wy + r[2][0] * wz;
+    if (cx <= 0) /* behind the camera (or a failed init: R = 0) */
+        return false;
+    cy = r[0][1] * wx + r[1][1] * wy + r[2][1] * wz;
+    cz = r[0][2] * wx + r[1][2] * wy + r[2][2] * wz;
+
+    m = cx;
+    if (fl_cam_abs64(cy) > m)
+        m = fl_cam_abs64(cy);
+    if (fl_cam_abs64(cz) > m)
+        m = fl_cam_abs64(cz);
+    s = fl_cam_norm_shift(m);
+    cx >>= s;
+    cy >>= s;
+    cz >>= s;
+    if (cx <= 0)
+        return false;
+
+    f = cam->model.focal_q4;
+    nu = -f * cy;
+    nv = -f * cz;
+    if ((fl_cam_abs64(nu) >> 28) >= cx || (fl_cam_abs64(nv) >> 28) >= cx)
+        return false;
+    *u_q4 = cam->model.cx_q4 + fl_div_round(nu, cx);
+    *v_q4 = cam->model.cy_q4 + fl_div_round(nv, cx);
+    return true;
+}
+
+/* ---- horizon ------------------------------------------------------------------ */
+
+/* Scaling and overflow.  The ray test of pixel_to_ground is
+ * d_z = R20 f + R22 (cy - v) < 0 (R21 = 0: no roll), i.e., with R22 > 0,
+ * v - cy > R20 f / R22  <=>  v - cy > q = floor(R20 f / R22)  (v integer).
+ * R20 f is Q30 * Q4 < 2^50 in int64; the floor division is exact.  So the
+ * result cy + q is exact for the integer test, not just close: every
+ * v_q4 > result (within the accepted pixel range) has a downward ray and
+ * every v_q4 <= result has not.  When q is outside +-FL_CAMERA_MAX_OFFSET_Q4
+ * (no accepted pixel of the column is on the other side), or when R22 = 0
+ * (optical axis vertical), the result is INT32_MIN (the whole column looks
+ * down) or INT32_MAX (none does).  Columns outside the accepted pixel range
+ * and failed cameras give INT32_MAX.  The row does not depend on u_q4. */
+int32_t fl_camera_horizon_v_q4(const fl_camera_t *cam, int32_t u_q4)
+{
+    int64_t r20, r22, du, q;
+
+    if (!cam || cam->pos_q4[2] <= 0)
+        return INT32_MAX;
+    du = (int64_t)u_q4 - cam->model.cx_q4;
+    if (du > FL_CAMERA_MAX_OFFSET_Q4 || du < -FL_CAMERA_MAX_OFFSET_Q4)
+        return INT32_MAX;
+    r20 = cam->rot_q30[2][0];
+    r22 = cam->rot_q30[2][2];
+    if (r22 <= 0) /* vertical axis (init keeps R22 >= 0) */
+        return r20 < 0 ? INT32_MIN : INT32_MAX;
+    q = fl_cam_floor_div64(r20 * cam->model.focal_q4, r22);
+    if (q >= FL_CAMERA_MAX_OFFSET_Q4)
+        return INT32_MAX;
+    if (q < -FL_CAMERA_MAX_OFFSET_Q4 - 1)
+        return INT32_MIN;
+    return (int32_t)(cam->model.cy_q4 + q);
+}
+
+/* ---- polar ------------------------------------------------------------------- */
+
+/* Scaling and overflow.  Range: s = fl_hypot(x, y) = floor(sqrt(n)), n =
+ * x^2 + y^2 < 2^63 exact in uint64; rounded up when n - s^2 > s (i.e.
+ * sqrt(n) >= s + 1/2; equality is impossible for integers), then saturated
+ * to INT32_MAX (only for |p| beyond 2^31 mm).  Bearing: fl_atan2(y, x),
+ * 0 for the origin. */
+void fl_polar_from_point(fl_point_t p, int32_t *range_mm, fl_angle_t *bearing)
+{
+    uint64_t n, s;
+    int64_t x = p.x_mm, y = p.y_mm;
+
+    if (range_mm) {
+        n = (uint64_t)(x * x) + (uint64_t)(y * y);
+        s = fl_hypot(p.x_mm, p.y_mm);
+        if (n - s * s > s)
+            s++;
+        *range_mm = s > (uint64_t)INT32_MAX ? INT32_MAX : (int32_t)s;
+    }
+    if (bearing)
+        *bearing = fl_atan2(p.y_mm, p.x_mm);
+}
+
+/* Scaling and overflow.  x = r cos(b), y = r sin(b): int32 mm times Q30 in a
+ * 64-bit intermediate, rounded to nearest (fl_mul_q30); |result| <= |r|, no
+ * saturation.  A negative range gives the point in the opposite direction. */
+fl_point_t fl_point_from_polar(int32_t range_mm, fl_angle_t bearing)
+{
+    fl_point_t p;
+    p.x_mm = fl_mul_q30(range_mm, fl_cos_q30(bearing));
+    p.y_mm = fl_mul_q30(range_mm, fl_sin_q30(bearing));
+    return p;
+}
+
+bool fl_camera_foot_to_centre(const fl_camera_t *cam, int32_t *u_q4, int32_t *v_q4,
+                              int32_t diameter_mm, fl_point_t *centre)
+{
+    fl_point_t g;
+    uint32_t r;
+    int64_t rc;
+    int32_t u2, v2;
+    if (!cam || !u_q4 || !v_q4 || !centre ||
+        !fl_camera_pixel_to_ground(cam, *u_q4, *v_q4, &g))
+        return false;
+    r = fl_hypot(g.x_mm, g.y_mm);
+    if (r == 0) {
+        *centre = g;
+        return true;
+    }
+    rc = (int64_t)r + diameter_mm / 2;
+    centre->x_mm = fl_div_round((int64_t)g.x_mm * rc, (int64_t)r);
+    centre->y_mm = fl_div_round((int64_t)g.y_mm * rc, (int64_t)r);
+    if (fl_camera_ground_to_pixel(cam, *centre, &u2, &v2)) {
+        *u_q4 = u2;
+        *v_q4 = v2;
+    }
+    return true;
+}

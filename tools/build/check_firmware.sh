@@ -1,0 +1,100 @@
+#!/bin/sh
+# tools/build/check_firmware.sh - prove the firmware rules on the sources in src/.
+# Run by `make check` (CC and BUILD come from make).  Exit status 0 only when
+# every rule holds:
+#   1. every src/**/*.c compiles with -std=c99 -pedantic -Werror -Wall -Wextra
+#      -Wconversion -Wshadow, and on x86 with -mgeneral-regs-only (any
+#      floating-point operation is then a compile error);
+#   2. no object references an allocator (malloc, calloc, realloc, free, ...)
+#      and nothing but memcpy/memset/memmove/memcmp from libc (plus libgcc's
+#      integer helpers on 32-bit targets; a soft-float helper fails);
+#   3. every exported symbol starts with fl_;
+#   4. no object has mutable file-scope (or function-static) data: nothing in
+#      .data, .bss, .sdata, .sbss or common; const data in .rodata or
+#      .data.rel.ro (relocated, read-only after start-up) is fine;
+#   5. src/ and include/ include only <stdint.h> <stdbool.h> <stddef.h>
+#      <string.h> <limits.h> and fieldloc's own headers.
+set -u
+CC=${CC:-cc}
+BUILD=${BUILD:-build}
+SRC=${SRC_DIR:-src}        # overridable so host_tests/test_rules.c can feed
+INC=${INC_DIR:-include}    # deliberately broken sources to this script
+out="$BUILD/check"
+rm -rf "$out"; mkdir -p "$out"
+fail=0
+say() { echo "check: $*"; }
+bad() { echo "check: FAIL: $*"; fail=1; }
+
+case "$($CC -dumpmachine)" in
+  x86_64*|i686*|i386*) nofp=-mgeneral-regs-only ;;
+  *) nofp= ;;
+esac
+prefix=
+case "$CC" in *-gcc) prefix=${CC%gcc} ;; esac
+NM=${prefix}nm
+OBJDUMP=${prefix}objdump
+command -v "$NM" >/dev/null 2>&1 || NM=nm
+command -v "$OBJDUMP" >/dev/null 2>&1 || OBJDUMP=objdump
+
+# 1. strict compile, no floating point
+n=0
+fw_src=$(find "$SRC" -name '*.c' | sort)
+for f in $fw_src; do
+  o="$out/$(basename "$f" .c).o"
+  if ! $CC -std=c99 -pedantic -Werror -Wall -Wextra -Wconversion -Wshadow \
+        -O2 -fno-common $nofp -I"$INC" -c "$f" -o "$o" 2>"$o.err"; then
+    bad "$f does not compile under the firmware flags ($nofp):"; sed 's/^/    /' "$o.err" | head -20
+  fi
+  n=$((n + 1))
+done
+say "$n sources compiled with -std=c99 -pedantic -Werror -Wall -Wextra -Wconversion -Wshadow ${nofp:-(no -mgeneral-regs-only for this target)}"
+
+objs=$(ls "$out"/*.o 2>/dev/null)
+[ -n "$objs" ] || { bad "no objects"; exit 1; }
+
+# 2. undefined symbols: no allocator, only the allowed libc functions
+und=$($NM -u $objs | awk 'NF>=2 {print $NF}' | sort -u)
+for s in $und; do
+  case "$s" in
+    malloc|calloc|realloc|free|aligned_alloc|posix_memalign|memalign|valloc|pvalloc|strdup|strndup|alloca)
+      bad "allocator symbol referenced: $s" ;;
+    fl_*|memcpy|memset|memmove|memcmp|_GLOBAL_OFFSET_TABLE_|__stack_chk_fail|__stack_chk_guard|_gp_disp|__gnu_local_gp|__x86.get_pc_thunk.*) ;;
+    __divdi3|__udivdi3|__moddi3|__umoddi3|__udivmoddi4|__divmoddi4|__ashldi3|__ashrdi3|__lshrdi3|__muldi3|__ucmpdi2|__cmpdi2|__clzsi2|__clzdi2|__ctzsi2|__ctzdi2|__popcountsi2|__popcountdi2|__bswapsi2|__bswapdi2) ;;
+    *) bad "symbol outside the allowed libc subset: $s" ;;
+  esac
+done
+say "undefined symbols: $(echo $und | tr '\n' ' ')"
+
+# 3. exported symbols carry the fl_ prefix
+exp=$($NM -g --defined-only $objs | awk 'NF>=3 {print $3}' | sort -u)
+for s in $exp; do
+  case "$s" in fl_*|__x86.get_pc_thunk.*) ;; *) bad "exported symbol without fl_ prefix: $s" ;; esac
+done
+say "$(echo "$exp" | grep -c .) exported symbols checked for the fl_ prefix"
+
+# 4. mutable file-scope state
+mut=$($OBJDUMP -t $objs | awk '
+  /^[0-9a-f]+ / {
+    sec = ""; for (i = 2; i <= NF; i++) if ($i ~ /^(\.|\*COM\*)/) { sec = $i; break }
+    if (sec ~ /^\.data\.rel\.ro/) next
+    if (sec ~ /^(\.data|\.bss|\.sdata|\.sbss|\.tbss|\.tdata|\*COM\*)/ && $0 ~ / O /) print sec, $NF
+  }' | sort -u)
+if [ -n "$mut" ]; then
+  bad "mutable file-scope state:"; echo "$mut" | sed 's/^/    /'
+else
+  say "no mutable file-scope or static data"
+fi
+
+# 5. libc headers
+inc=$(grep -hoE '^[[:space:]]*#[[:space:]]*include[[:space:]]*<[^>]+>' $(find "$SRC" -name '*.[ch]') "$INC"/fieldloc/*.h 2>/dev/null |
+      sed -E 's/.*<([^>]+)>.*/\1/' | sort -u)
+for h in $inc; do
+  case "$h" in
+    stdint.h|stdbool.h|stddef.h|string.h|limits.h) ;;
+    *) bad "header outside the allowed libc subset: <$h>" ;;
+  esac
+done
+say "system headers: $(echo $inc | tr '\n' ' ')"
+
+if [ $fail -ne 0 ]; then echo "check: FAILED"; exit 1; fi
+echo "check: all firmware rules hold"

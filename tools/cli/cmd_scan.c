@@ -1,0 +1,226 @@
+/*
+ * tools/cli/cmd_scan.c - `fieldloc scan`: run the column scanner (scan.h) on
+ * one frame, print the border per column and the counts, optionally draw
+ * the picture. The scanner helpers are in tools/eval/scan_tool.c.
+ *
+ *   fieldloc scan IMAGE.ppm|FRAME.raw [--picture OUT.ppm|OUT.png]
+ *        [--format rgb|yuyv|planar] [--step COL ROW] [--full]
+ *        [--run N] [--camera NAME --head PITCH_RAD YAW_RAD [--neck MM]]
+ *        [--uva] [--adapt] [--repeat N] [--quiet]
+ * --full is --step 1 1.  --uva takes the camera from the UvA 2013 labels
+ * (camera "uva2013", the record of the image's file name).  --adapt re-scans
+ * once after fl_color_adapt when the field color moved.  --repeat scans
+ * the same frame N times (for callgrind: instructions per frame =
+ * difference of two N / difference of N).
+ */
+#include "eval/scan_tool.h"
+
+#include "io/ppm.h"
+#include "io/realdata.h"
+#include "cli/registry.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+
+static int usage(void)
+{
+    fprintf(stderr,
+            "usage: fieldloc scan IMAGE.ppm|FRAME.raw [--picture OUT.ppm|.png]\n"
+            "         [--format rgb|yuyv|planar] [--step COL ROW] [--full] [--run N]\n"
+            "         [--camera NAME --head PITCH_RAD YAW_RAD [--neck MM]] [--uva]\n"
+            "         [--adapt] [--repeat N] [--quiet]\n");
+    return 2;
+}
+
+static const char *base_name(const char *p)
+{
+    const char *s = strrchr(p, '/');
+    return s ? s + 1 : p;
+}
+
+/* Camera of a UvA 2013 image from its labels; 0 when found. */
+static int uva_camera(const char *path, fl_camera_t *cam)
+{
+    const char *dir = rd_dir();
+    char csv[4096], err[256];
+    rd_uva_set_t set;
+    int k, found = -1;
+    const fl_camera_model_t *m = fl_camera_model_find("uva2013");
+    if (!dir || !m || rd_path(csv, sizeof csv, dir, RD_UVA_CSV) != 0)
+        return -1;
+    if (rd_uva_load(csv, &set, err, sizeof err) != 0) {
+        fprintf(stderr, "scan: %s\n", err);
+        return -1;
+    }
+    for (k = 0; k < set.n; k++)
+        if (!strcmp(set.rec[k].file, base_name(path))) {
+            fl_camera_pose_t pose;
+            rd_uva_camera_pose(&set.rec[k], m, &pose);
+            found = fl_camera_init(cam, m, &pose) == FL_OK ? 0 : -1;
+            break;
+        }
+    rd_uva_free(&set);
+    return found;
+}
+
+int cmd_scan(int argc, char **argv)
+{
+    const char *in = NULL, *picture = NULL, *camname = NULL;
+    fl_pixel_format_t fmt = 0;
+    fl_scan_params_t sp;
+    fl_color_params_t cp;
+    static fl_color_table_t colors;
+    static fl_scan_t scan;
+    fl_camera_t cam;
+    fl_camera_pose_t pose = {460, 0, 0, 0};
+    int use_cam = 0, uva = 0, adapt = 0, quiet = 0, repeat = 1, k, i;
+    double pitch = 0, yaw = 0;
+    render_frame_t fr;
+    scantool_frame_t conv;
+    const fl_image_t *view;
+    uint8_t *rgb;
+    char err[256];
+
+    fl_scan_params_default(&sp);
+    fl_color_params_default(&cp);
+    for (k = 0; k < argc; k++) {
+        if (!strcmp(argv[k], "--picture") && k + 1 < argc)
+            picture = argv[++k];
+        else if (!strcmp(argv[k], "--format") && k + 1 < argc) {
+            fmt = render_format_from_name(argv[++k]);
+            if (!fmt)
+                return usage();
+        } else if (!strcmp(argv[k], "--step") && k + 2 < argc) {
+            sp.col_step = atoi(argv[++k]);
+            sp.row_step = atoi(argv[++k]);
+        } else if (!strcmp(argv[k], "--full"))
+            sp.col_step = sp.row_step = 1;
+        else if (!strcmp(argv[k], "--run") && k + 1 < argc)
+            sp.border_run_px = atoi(argv[++k]);
+        else if (!strcmp(argv[k], "--camera") && k + 1 < argc)
+            camname = argv[++k];
+        else if (!strcmp(argv[k], "--head") && k + 2 < argc) {
+            pitch = atof(argv[++k]);
+            yaw = atof(argv[++k]);
+            use_cam = 1;
+        } else if (!strcmp(argv[k], "--neck") && k + 1 < argc)
+            pose.neck_height_mm = atoi(argv[++k]);
+        else if (!strcmp(argv[k], "--uva"))
+            uva = 1;
+        else if (!strcmp(argv[k], "--adapt"))
+            adapt = 1;
+        else if (!strcmp(argv[k], "--repeat") && k + 1 < argc)
+            repeat = atoi(argv[++k]);
+        else if (!strcmp(argv[k], "--quiet"))
+            quiet = 1;
+        else if (argv[k][0] == '-' || in)
+            return usage();
+        else
+            in = argv[k];
+    }
+    if (!in || repeat < 1)
+        return usage();
+    if (fl_scan_init(&scan, &sp) != FL_OK) {
+        fprintf(stderr, "scan: bad --step or --run\n");
+        return 2;
+    }
+    fl_color_init(&colors, &cp);
+    if (render_read_frame(in, &fr, err, sizeof err) != 0) {
+        fprintf(stderr, "scan: %s\n", err);
+        return 1;
+    }
+    /* RGB for the picture and for conversions */
+    rgb = malloc((size_t)fr.width * (size_t)fr.height * 3);
+    if (!rgb)
+        return 1;
+    for (i = 0; i < fr.width * fr.height; i++)
+        fl_image_get_rgb(&fr.view, i % fr.width, i / fr.width, rgb + 3 * (size_t)i);
+    view = &fr.view;
+    memset(&conv, 0, sizeof conv);
+    if (fmt && fmt != fr.format) {
+        if (scantool_frame_from_rgb(rgb, fr.width, fr.height, fmt, &conv) != 0) {
+            fprintf(stderr, "scan: cannot convert to %s\n", render_format_name(fmt));
+            return 1;
+        }
+        view = &conv.view;
+    }
+    if (uva) {
+        if (uva_camera(in, &cam) != 0) {
+            fprintf(stderr, "scan: no UvA 2013 label record for %s (%s)\n", base_name(in),
+                    rd_dir() ? "not in the CSV" : rd_skip_message());
+            return 1;
+        }
+        use_cam = 1;
+    } else if (use_cam || camname) {
+        const fl_camera_model_t *m =
+            fl_camera_model_find(camname ? camname : "nao4-bottom-320");
+        if (!m) {
+            fprintf(stderr, "scan: unknown camera %s\n", camname);
+            return 2;
+        }
+        pose.head_pitch = (fl_angle_t)lrint(pitch * 32768.0 / M_PI);
+        pose.head_yaw = (fl_angle_t)lrint(yaw * 32768.0 / M_PI);
+        if (fl_camera_init(&cam, m, &pose) != FL_OK) {
+            fprintf(stderr, "scan: bad camera pose\n");
+            return 2;
+        }
+        use_cam = 1;
+    }
+    for (k = 0; k < repeat; k++)
+        fl_scan_frame(&scan, &colors, view, use_cam ? &cam : NULL);
+    if (adapt && fl_color_adapt(&colors, &scan.field) == 1) {
+        printf("adapted: hue shift %d, green s_lo %d; re-scanned\n", colors.hue_shift,
+               colors.green.s_lo);
+        fl_scan_frame(&scan, &colors, view, use_cam ? &cam : NULL);
+    }
+    if (scan.status != FL_OK) {
+        fprintf(stderr, "scan: %s\n", fl_status_str(scan.status));
+        return 1;
+    }
+    if (!quiet) {
+        printf("frame %dx%d %s  grid %dx%d (step %d %d)  border search from row %d\n",
+               scan.width, scan.height, render_format_name(view->format), scan.cols,
+               scan.rows, sp.col_step, sp.row_step, scan.start_v);
+        printf("border");
+        for (i = 0; i < scan.cols; i++)
+            printf(" %d", scan.border_v[i]);
+        printf("\n");
+        printf("columns with border %d/%d\n", scan.n_border, scan.cols);
+        printf("cells green %d white %d yellow %d other %d\n",
+               fl_scan_count(&scan, FL_CLASS_GREEN), fl_scan_count(&scan, FL_CLASS_WHITE),
+               fl_scan_count(&scan, FL_CLASS_YELLOW), fl_scan_count(&scan, FL_CLASS_OTHER));
+        printf("white runs rejected %d, checks skipped %d, feet dropped %d\n",
+               scan.white_rejected, scan.checks_skipped, scan.feet_dropped);
+        printf("feet %d:", scan.n_feet);
+        for (i = 0; i < scan.n_feet; i++)
+            printf(" (%d,%d)", scan.feet[i].u, scan.feet[i].v);
+        printf("\n");
+        printf("field colour: n %d hue %d sat %d val %d luma %d (table hue shift %d)\n",
+               scan.field.n, scan.field.hue, scan.field.sat, scan.field.val,
+               scan.field.luma, colors.hue_shift);
+    }
+    if (picture) {
+        uint8_t *pic = malloc((size_t)fr.width * (size_t)fr.height * 3);
+        size_t len = strlen(picture);
+        int rc;
+        if (!pic)
+            return 1;
+        scantool_picture(&scan, rgb, fr.width, fr.height, pic);
+        if (len > 4 && !strcmp(picture + len - 4, ".png"))
+            rc = png_write(picture, pic, fr.width, fr.height);
+        else
+            rc = ppm_write(picture, pic, fr.width, fr.height);
+        if (rc != 0)
+            fprintf(stderr, "scan: cannot write %s\n", picture);
+        else if (!quiet)
+            printf("picture %s\n", picture);
+        free(pic);
+    }
+    scantool_frame_free(&conv);
+    free(rgb);
+    render_frame_free(&fr);
+    return 0;
+}

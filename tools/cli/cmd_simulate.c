@@ -1,0 +1,248 @@
+/*
+ * tools/cli/cmd_simulate.c - `fieldloc simulate`: a simulated walk (tools/world/sim.h)
+ * localized by the fuzzy position grid (include/fieldloc/fuzzy.h).
+ *
+ *   fieldloc simulate --field spl2013|uva2013|aibo2004 --localizer fuzzy
+ *                     --seed N [--features | --frames] [--steps N] [--quiet]
+ *                     [--scenario FILE.walk] [--every N] [--param NAME=V]...
+ *                     [--obs-cache FILE] [--print-obs]
+ *
+ * The walk is the built-in scenario of the field (fixtures/walks/NAME.walk:
+ * >= 120 s of walking with head scanning, one kidnap, one penalty), with its
+ * PRNG seed replaced by --seed.  --steps N stops after N simulator steps.
+ *
+ * --features (default) feeds the simulator's feature-level observations
+ * (fl_obs_list_t) to the localizer.  Per step: predict(odometry); on
+ * SIM_EV_PENALIZED reset to the two touchline placement spots;
+ * update(observations); estimate.
+ *
+ * --frames renders the frame of the true pose (sim_render_scene +
+ * render_frame: the renderer's defaults, RGB888, cluttered room, sensor
+ * noise; camera pose = the step's head, exactly what the renderer used)
+ * and runs it through the firmware vision path (fl_vision_frame with the
+ * default color tables) into the grid.  Rendering is the slow part (about
+ * 55 ms a frame on one core of the host; frames are rendered in batches
+ * on lr_threads_default() threads, which does not change the results:
+ * about 45 s for the 130 s spl2013 walk on 2 cores), so vision runs on
+ * every Nth simulator step only (--every N, default 3: 10 Hz for the 30 Hz
+ * walks) and the
+ * odometry of the steps between is composed (lr_odo_add) and given to one
+ * predict; per vision step: predict(accumulated odometry) ; update(vision
+ * observations) ; estimate; a penalty placement on a skipped step resets
+ * the grid at that step and drops the odometry before it.  The metrics are
+ * then computed over the vision steps only (one record per vision step,
+ * printed as "# frames: ..." at the start).  Also printed: per observation
+ * kind, how vision's observations compare with the map at the true pose
+ * ("# vision ..." lines, tools/loc/locrun.h lr_vdiag_t) and the time spent
+ * rendering and in vision + grid.
+ *
+ * Localizer parameters: --features uses fl_fuzzy_params_default; --frames
+ * uses lr_params_frames (tools/loc/locrun.c: narrower rings for vision's
+ * accurate ranges, measured there).  --param NAME=VALUE (repeatable)
+ * changes one field of fl_fuzzy_params_t on top (raw integer units, see
+ * fuzzy.h); every value that differs from the defaults is printed.
+ * --obs-cache FILE (frames mode, for parameter studies) stores
+ * the vision observations of the walk in FILE, or reads them from it when
+ * it holds those of the same walk, field, seed and --every: the localizer
+ * does not change what vision sees, so a study renders once (delete the
+ * file when the vision code changes: its header records the walk only).
+ *
+ * --print-obs adds after each step line one "#  obs ..." line per
+ * observation given to the localizer (kind, range, bearing, orientation,
+ * side, confidence).
+ *
+ * The localizer starts in total ignorance with the prior "own half" (the
+ * half of the start pose, as the game controller tells a robot at
+ * kick-off).
+ *
+ * Output: per record (unless --quiet)
+ *   step K T_S est X_MM Y_MM DEG REL truth X_MM Y_MM DEG err MM DEG
+ * (K the simulator step) then "# ..." information lines and exactly these
+ * summary lines:
+ *   pos_rmse_mm X       root mean square position error over the records
+ *                       after convergence (t >= converge_s), excluding the
+ *                       kidnap's window [kidnap, kidnap + kidnap_recover_s)
+ *                       (to the end of the run when it never recovers)
+ *                       and the same window after the penalty placement
+ *                       (the robot is told "one of the two touchline
+ *                       spots"; until a landmark decides, its estimate is
+ *                       either one: "# penalty_recover_s" gives the
+ *                       window's length, and a "# every record" line the
+ *                       RMSE with nothing excluded);
+ *                       nan if no record qualifies
+ *   heading_rmse_deg X  the same for the heading error (degrees)
+ *   converge_s X        first time t from the start (total ignorance) such
+ *                       that the error stays below 300 mm AND 15 degrees for
+ *                       every record in [t, t + 1 s]; inf if never
+ *   kidnap_recover_s X  time from the first kidnap to the first t after it
+ *                       with the same 1 s criterion; inf if never, nan if
+ *                       the run has no kidnap
+ *   flips N             symmetric flips: episodes (counted once per entry)
+ *                       during which the starting half is known and the
+ *                       estimate is near the 180-degree mirror of the truth
+ *                       (within 500 mm and 30 deg of (-x, -y, h + 180)) and
+ *                       more than 1000 mm from the truth.  Only on symmetric
+ *                       fields (spl2013, uva2013).
+ * The "error" above: on a symmetric field, from a kidnap (the robot is told
+ * nothing, so its half is unknown) until the next penalty placement (which
+ * tells it the half again), the error is taken modulo the symmetry (the
+ * smaller of the errors to the truth and to its mirror); otherwise it is the
+ * plain error to the truth.
+ */
+#include "fieldloc/fieldloc.h"
+#include "loc/locrun.h"
+#include "cli/registry.h"
+#include "world/sim.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void usage(void)
+{
+    fprintf(stderr,
+            "usage: fieldloc simulate --field spl2013|uva2013|aibo2004 --localizer fuzzy\n"
+            "                         --seed N [--features | --frames] [--steps N] [--quiet]\n"
+            "                         [--scenario FILE.walk] [--every N] [--param NAME=V]...\n"
+            "                         [--obs-cache FILE] [--print-obs]\n"
+            "  --frames: render each frame at the true pose and run the vision path;\n"
+            "            vision on every Nth step (--every, default 3 = 10 Hz at 30 Hz)\n");
+}
+
+int cmd_simulate(int argc, char **argv)
+{
+    const char *field_name = NULL, *localizer = NULL, *scen_path = NULL;
+    long seed = -1, max_steps = -1, every = 3;
+    int frames = 0, quiet = 0, print_obs = 0, post_sides = 1, k;
+    static sim_scenario_t sc;
+    lr_walk_opts_t o;
+    lr_walk_result_t res;
+    char err[256], *end;
+    const char *obs_cache = NULL, *param[64];
+    int n_param = 0;
+    fl_fuzzy_params_t params, defaults;
+
+    for (k = 0; k < argc; k++) {
+        if (!strcmp(argv[k], "--field") && k + 1 < argc)
+            field_name = argv[++k];
+        else if (!strcmp(argv[k], "--localizer") && k + 1 < argc)
+            localizer = argv[++k];
+        else if (!strcmp(argv[k], "--seed") && k + 1 < argc) {
+            seed = strtol(argv[++k], &end, 10);
+            if (*end != '\0' || seed < 0) {
+                fprintf(stderr, "simulate: --seed needs a non-negative integer\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[k], "--steps") && k + 1 < argc) {
+            max_steps = strtol(argv[++k], &end, 10);
+            if (*end != '\0' || max_steps < 0) {
+                fprintf(stderr, "simulate: --steps needs a non-negative integer\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[k], "--every") && k + 1 < argc) {
+            every = strtol(argv[++k], &end, 10);
+            if (*end != '\0' || every < 1 || every > 1000) {
+                fprintf(stderr, "simulate: --every needs an integer in 1..1000\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[k], "--param") && k + 1 < argc) {
+            if (n_param < 64)
+                param[n_param++] = argv[++k];
+        } else if (!strcmp(argv[k], "--obs-cache") && k + 1 < argc)
+            obs_cache = argv[++k];
+        else if (!strcmp(argv[k], "--scenario") && k + 1 < argc)
+            scen_path = argv[++k];
+        else if (!strcmp(argv[k], "--frames"))
+            frames = 1;
+        else if (!strcmp(argv[k], "--features"))
+            frames = 0;
+        else if (!strcmp(argv[k], "--quiet"))
+            quiet = 1;
+        else if (!strcmp(argv[k], "--print-obs"))
+            print_obs = 1;
+        else if (!strcmp(argv[k], "--post-sides") && k + 1 < argc)
+            post_sides = atoi(argv[++k]);
+        else {
+            usage();
+            return 2;
+        }
+    }
+    if (scen_path == NULL && field_name == NULL) {
+        usage();
+        return 2;
+    }
+    if (localizer != NULL && strcmp(localizer, "fuzzy") != 0) {
+        fprintf(stderr, "simulate: unknown localizer '%s' (available: fuzzy)\n", localizer);
+        return 2;
+    }
+    /* the localizer's parameters: the mode's base set, then --param */
+    if (frames)
+        lr_params_frames(&params);
+    else
+        fl_fuzzy_params_default(&params);
+    fl_fuzzy_params_default(&defaults);
+    for (k = 0; k < n_param; k++) {
+        if (lr_param_set(&params, param[k]) != 0) {
+            fprintf(stderr, "simulate: bad --param '%s' (NAME=INTEGER, a field of "
+                            "fl_fuzzy_params_t, in range)\n", param[k]);
+            return 2;
+        }
+    }
+    if (scen_path != NULL) {
+        if (sim_scenario_load(&sc, scen_path, err, (int)sizeof err) != 0) {
+            fprintf(stderr, "simulate: %s: %s\n", scen_path, err);
+            return 1;
+        }
+    } else if (sim_scenario_builtin(&sc, field_name) != 0) {
+        fprintf(stderr, "simulate: no built-in walk for field '%s' (spl2013, uva2013, aibo2004)\n",
+                field_name);
+        return 2;
+    }
+    if (seed >= 0)
+        sc.seed = (uint64_t)seed;
+    memset(&o, 0, sizeof o);
+    o.frames = frames;
+    o.every = (int)every;
+    o.max_steps = max_steps;
+    o.steps = quiet ? NULL : stdout;
+    o.print_obs = print_obs;
+    o.ignore_post_sides = !post_sides;
+    o.params = &params;
+    o.obs_cache = obs_cache;
+    printf("# simulate field %s localizer fuzzy seed %llu %s, %.0f s at %.0f Hz\n",
+           sc.field->name, (unsigned long long)sc.seed, frames ? "frames" : "features",
+           sc.duration_s, sc.frame_hz);
+    if (frames)
+        printf("# frames: camera %s %dx%d rendered at the true pose, vision on every %ld%s step "
+               "(%.1f Hz), odometry accumulated between; metrics over the vision steps\n",
+               sc.camera->name, (int)sc.camera->width_px, (int)sc.camera->height_px, every,
+               every == 1 ? "st" : every == 2 ? "nd" : every == 3 ? "rd" : "th",
+               sc.frame_hz / (double)every);
+    if (memcmp(&params, &defaults, sizeof params) != 0) {
+        printf("# localizer params changed from fl_fuzzy_params_default:");
+        lr_param_print(stdout, &params, &defaults);
+        printf("\n");
+    }
+    fflush(stdout);
+    if (lr_walk_run(&sc, &o, &res, err, (int)sizeof err) != 0) {
+        fprintf(stderr, "simulate: %s\n", err);
+        return 1;
+    }
+    printf("# steps %ld (%.1f s), %ld records, rmse over %ld records\n", res.steps,
+           (double)res.steps / sc.frame_hz, res.records, res.used);
+    printf("# localizer: %u kidnaps detected, %u empty resets, %u mode switches, "
+           "%u obs used, %u deferred (contradicting the tracked mode), %u ignored, "
+           "%u odometry rejected\n",
+           res.stats.kidnaps, res.stats.empty_resets, res.stats.mode_switches,
+           res.stats.obs_used, res.stats.obs_gated, res.stats.obs_ignored,
+           res.stats.odo_rejected);
+    if (frames) {
+        lr_walk_print_vdiag(stdout, &res);
+        printf("# time: rendering %.1f s, vision + grid %.1f s (%.2f ms per frame)\n",
+               res.render_s, res.vision_grid_s,
+               res.records ? 1000.0 * res.vision_grid_s / (double)res.records : 0.0);
+    }
+    lr_walk_print_summary(stdout, &res);
+    return 0;
+}

@@ -1,0 +1,36 @@
+/*
+ * tools/cli/registry.h - the CLI's subcommands, each implemented in its own
+ * tools/cli/cmd_NAME.c (the benchmark sections: bench/bench.h).  Weak declarations: a missing
+ * implementation shows as "not built" instead of breaking the link.
+ */
+#ifndef FL_TOOLS_REGISTRY_H
+#define FL_TOOLS_REGISTRY_H
+
+#include "bench/bench.h"
+
+#include <stdio.h>
+
+#define FL_WEAK __attribute__((weak))
+
+/* Subcommands: int cmd_NAME(int argc, char **argv), argv[0] = first argument
+ * after the command name.  Return the process exit status. */
+#define FL_COMMANDS(X)                                                        \
+    X(fields, "list the field models")                                        \
+    X(cameras, "list the camera models")                                      \
+    X(project, "[--camera NAME] [--neck MM] [--head PITCH_RAD YAW_RAD] U V: pixel -> ground") \
+    X(sizes, "static memory of every firmware state struct (sizeof)")          \
+    X(render, "render one frame of the synthetic world (see --help)")        \
+    X(fixtures, "regenerate the fixture set (make fixtures)")                \
+    X(calibrate, "fit the UvA 2013 camera to the hand labels")                \
+    X(scan, "IMAGE.ppm [--picture OUT.ppm]: column scanner")                  \
+    X(detect, "[--field F] [--camera C] [--head P Y] IMAGE.ppm: features")    \
+    X(eval_detect, "score detections against ground truth")                   \
+    X(simulate, "--field F --localizer fuzzy --seed N: simulated walk")       \
+    X(localize, "SEQUENCE.txt: localize a frame sequence")                    \
+    X(demo, "the bundled walk, with pictures")                                \
+    X(bench, "[--out FILE.tsv]: benchmarks")
+
+#define FL_DECL_CMD(name, help) int cmd_##name(int argc, char **argv) FL_WEAK;
+FL_COMMANDS(FL_DECL_CMD)
+
+#endif

@@ -1,0 +1,342 @@
+/*
+ * tools/eval/picture.c - belief-grid and frame pictures (picture.h).
+ *
+ * Drawing is plain RGB888 with clipped pixel writes: lines by uniform
+ * stepping (one pixel per step of the longer axis), rings by angle
+ * stepping.  Cost: one pass over the cells plus a few hundred line pixels
+ * per cell tick; about 1 ms for the SPL grid at 8 px per cell.
+ */
+#include "eval/picture.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PIC_PI 3.14159265358979323846
+
+static void pic_px(host_image_t *im, int u, int v, const uint8_t *c)
+{
+    if (u < 0 || v < 0 || u >= im->width || v >= im->height)
+        return;
+    memcpy(im->rgb + 3 * ((size_t)v * (size_t)im->width + (size_t)u), c, 3);
+}
+
+static void pic_line(host_image_t *im, double u0, double v0, double u1, double v1,
+                     const uint8_t *c, int dotted)
+{
+    double du = u1 - u0, dv = v1 - v0, n = fmax(fabs(du), fabs(dv));
+    int k, steps = (int)ceil(n);
+    if (!isfinite(n))
+        return;
+    if (steps > 16384)
+        steps = 16384;
+    for (k = 0; k <= steps; k++) {
+        double t = steps ? (double)k / steps : 0;
+        if (dotted && (k & 2))
+            continue;
+        pic_px(im, (int)lround(u0 + t * du), (int)lround(v0 + t * dv), c);
+    }
+}
+
+static void pic_ring(host_image_t *im, double u, double v, double r, const uint8_t *c)
+{
+    int k, n = (int)(2 * PIC_PI * r) + 8;
+    for (k = 0; k < n; k++) {
+        double a = 2 * PIC_PI * k / n;
+        pic_px(im, (int)lround(u + r * cos(a)), (int)lround(v + r * sin(a)), c);
+    }
+}
+
+static void pic_square(host_image_t *im, double u, double v, int r, const uint8_t *fill,
+                       const uint8_t *edge)
+{
+    int i, j, cu = (int)lround(u), cv = (int)lround(v);
+    for (j = -r; j <= r; j++)
+        for (i = -r; i <= r; i++)
+            pic_px(im, cu + i, cv + j, (abs(i) == r || abs(j) == r) ? edge : fill);
+}
+
+/* Height (0..1) -> color: dark purple, red, orange, pale yellow. */
+static void pic_ramp(double h, uint8_t *c)
+{
+    static const double stop[5][3] = {
+        {40, 10, 70}, {130, 20, 110}, {220, 60, 40}, {250, 160, 30}, {255, 250, 170}};
+    double x = h < 0 ? 0 : h > 1 ? 4 : h * 4;
+    int i = (int)x, k;
+    double f;
+    if (i > 3)
+        i = 3;
+    f = x - i;
+    for (k = 0; k < 3; k++)
+        c[k] = (uint8_t)lround(stop[i][k] + f * (stop[i + 1][k] - stop[i][k]));
+}
+
+int pic_belief_size(const fl_fuzzy_t *g, int px_per_cell, int *width, int *height)
+{
+    int s = px_per_cell <= 0 ? PIC_DEFAULT_PX_PER_CELL : px_per_cell;
+    if (g == NULL || g->field == NULL || g->nx == 0 || g->ny == 0)
+        return -1;
+    if (s < 2)
+        s = 2;
+    if (s > 32)
+        s = 32;
+    if (width)
+        *width = g->nx * s;
+    if (height)
+        *height = g->ny * s;
+    return 0;
+}
+
+typedef struct {
+    double x0, y0, s, h;   /* grid corner (mm), px per mm, picture height */
+} pic_map_t;
+
+static void pic_to_px(const pic_map_t *m, double x, double y, double *u, double *v)
+{
+    *u = (x - m->x0) * m->s - 0.5;
+    *v = m->h - (y - m->y0) * m->s - 0.5;
+}
+
+int pic_belief(const fl_fuzzy_t *g, int px_per_cell, const pic_pose_t *truth,
+               const fl_fuzzy_estimate_t *est, const fl_obs_list_t *obs,
+               host_image_t *out)
+{
+    static const uint8_t carpet[3] = {18, 62, 28}, white[3] = {235, 235, 235},
+                         black[3] = {0, 0, 0}, cyan[3] = {0, 230, 255},
+                         magenta[3] = {255, 40, 255};
+    int W, H, s, ix, iy, i, u, v;
+    pic_map_t m;
+    const fl_field_t *f;
+    memset(out, 0, sizeof *out);
+    if (pic_belief_size(g, px_per_cell, &W, &H) != 0)
+        return -1;
+    s = W / g->nx;
+    *out = host_image_new(W, H, carpet[0], carpet[1], carpet[2]);
+    if (out->rgb == NULL)
+        return -1;
+    f = g->field;
+    m.x0 = g->x0_mm;
+    m.y0 = g->y0_mm;
+    m.s = (double)s / FL_FUZZY_CELL_MM;
+    m.h = H;
+    /* cells */
+    for (iy = 0; iy < g->ny; iy++) {
+        for (ix = 0; ix < g->nx; ix++) {
+            const fl_fuzzy_cell_t *c = &g->cell[iy * g->nx + ix];
+            uint8_t col[3];
+            int v0 = (g->ny - 1 - iy) * s, u0 = ix * s;
+            if (c->height == 0)
+                continue;
+            pic_ramp(c->height / 255.0, col);
+            for (v = 0; v < s; v++)
+                for (u = 0; u < s; u++)
+                    pic_px(out, u0 + u, v0 + v, col);
+        }
+    }
+    /* field lines and circle */
+    for (i = 0; i < f->n_lines; i++) {
+        double a, b, c2, d;
+        pic_to_px(&m, f->lines[i].x0_mm, f->lines[i].y0_mm, &a, &b);
+        pic_to_px(&m, f->lines[i].x1_mm, f->lines[i].y1_mm, &c2, &d);
+        pic_line(out, a, b, c2, d, white, 0);
+    }
+    if (f->circle_radius_mm > 0) {
+        double cu, cv;
+        pic_to_px(&m, 0, 0, &cu, &cv);
+        pic_ring(out, cu, cv, f->circle_radius_mm * m.s, white);
+    }
+    for (i = 0; i < f->n_landmarks; i++) {
+        const fl_landmark_t *lm = &f->landmarks[i];
+        double a, b;
+        if (lm->kind != FL_LM_POST && lm->kind != FL_LM_BEACON && lm->kind != FL_LM_PENALTY_MARK &&
+            lm->kind != FL_LM_CENTRE_MARK)
+            continue;
+        pic_to_px(&m, lm->x_mm, lm->y_mm, &a, &b);
+        if (lm->kind == FL_LM_POST || lm->kind == FL_LM_BEACON) {
+            static const uint8_t yellow[3] = {255, 220, 0}, sky[3] = {80, 180, 255},
+                                 pink[3] = {255, 120, 200};
+            const uint8_t *pc = lm->color == FL_COLOR_SKYBLUE ? sky
+                              : lm->color == FL_COLOR_YELLOW ? yellow
+                              : lm->color == FL_COLOR_WHITE ? white : pink;
+            pic_square(out, a, b, s / 3 > 1 ? s / 3 : 1, pc, black);
+        } else {
+            pic_line(out, a - 2, b, a + 2, b, white, 0);
+            pic_line(out, a, b - 2, a, b + 2, white, 0);
+        }
+    }
+    /* heading ticks */
+    for (iy = 0; iy < g->ny; iy++) {
+        for (ix = 0; ix < g->nx; ix++) {
+            const fl_fuzzy_cell_t *c = &g->cell[iy * g->nx + ix];
+            double cu = ix * s + (s - 1) / 2.0, cv = (g->ny - 1 - iy) * s + (s - 1) / 2.0;
+            double a = c->centre * (PIC_PI / 32768.0), L = 0.45 * s;
+            if (c->height < 64 || (uint32_t)c->core * FL_FUZZY_AUNIT >= 8192u)
+                continue;
+            pic_line(out, cu, cv, cu + L * cos(a), cv - L * sin(a), black, 0);
+        }
+    }
+    /* observations from the estimate */
+    if (obs != NULL && est != NULL) {
+        double eh = est->heading * (PIC_PI / 32768.0);
+        for (i = 0; i < obs->n; i++) {
+            const fl_obs_t *o = &obs->obs[i];
+            double b = eh + o->bearing * (PIC_PI / 32768.0), a, c2;
+            pic_to_px(&m, est->x_mm + o->range_mm * cos(b), est->y_mm + o->range_mm * sin(b), &a,
+                      &c2);
+            pic_square(out, a, c2, s >= 6 ? 3 : 2, white, black);
+        }
+    }
+    if (truth != NULL) {
+        double a, b, h = truth->heading_deg * (PIC_PI / 180.0);
+        pic_to_px(&m, truth->x_mm, truth->y_mm, &a, &b);
+        pic_ring(out, a, b, 1.6 * s, cyan);
+        pic_ring(out, a, b, 1.6 * s + 1, cyan);
+        pic_line(out, a, b, a + 3.5 * s * cos(h), b - 3.5 * s * sin(h), cyan, 0);
+    }
+    if (est != NULL) {
+        double a, b, h = est->heading * (PIC_PI / 32768.0);
+        double L = (2.0 + 2.5 * est->reliability_q16 / 65536.0) * s;
+        pic_to_px(&m, est->x_mm, est->y_mm, &a, &b);
+        pic_ring(out, a, b, 1.1 * s, magenta);
+        pic_ring(out, a, b, 1.1 * s + 1, magenta);
+        pic_line(out, a, b, a + L * cos(h), b - L * sin(h), magenta, 0);
+        pic_line(out, a + 1, b, a + 1 + L * cos(h), b - L * sin(h), magenta, 0);
+    }
+    return 0;
+}
+
+/* Field point -> pixel of the camera at a robot pose (false when behind). */
+static int pic_project(const fl_camera_t *cam, const pic_pose_t *p, double fx, double fy,
+                       double *u, double *v)
+{
+    double h = p->heading_deg * (PIC_PI / 180.0), dx = fx - p->x_mm, dy = fy - p->y_mm;
+    fl_point_t gp;
+    int32_t uq, vq;
+    gp.x_mm = (int32_t)lround(dx * cos(h) + dy * sin(h));
+    gp.y_mm = (int32_t)lround(-dx * sin(h) + dy * cos(h));
+    if (gp.x_mm < 50 || !fl_camera_ground_to_pixel(cam, gp, &uq, &vq))
+        return 0;
+    *u = uq / 16.0;
+    *v = vq / 16.0;
+    return 1;
+}
+
+static void pic_project_polyline(host_image_t *im, const fl_camera_t *cam, const pic_pose_t *p,
+                                 const double *xs, const double *ys, int n, int scale,
+                                 const uint8_t *col)
+{
+    int k, prev = 0;
+    double pu = 0, pv = 0;
+    for (k = 0; k < n; k++) {
+        double u, v;
+        if (pic_project(cam, p, xs[k], ys[k], &u, &v) && fabs(u) < 4000 && fabs(v) < 4000) {
+            u = (u + 0.5) * scale - 0.5;
+            v = (v + 0.5) * scale - 0.5;
+            if (prev)
+                pic_line(im, pu, pv, u, v, col, 1);
+            pu = u;
+            pv = v;
+            prev = 1;
+        } else {
+            prev = 0;
+        }
+    }
+}
+
+int pic_frame(const det_ctx_t *det, const fl_image_t *img, const fl_camera_t *cam,
+              const fl_field_t *field, const pic_pose_t *pose, int scale,
+              host_image_t *out)
+{
+    static const uint8_t yellow[3] = {255, 235, 0};
+    uint8_t *rgb;
+    int W, H, u, v, i;
+    memset(out, 0, sizeof *out);
+    if (det == NULL || img == NULL || cam == NULL || field == NULL)
+        return -1;
+    if (scale < 1)
+        scale = 1;
+    if (scale > 4)
+        scale = 4;
+    rgb = det_rgb_copy(img);
+    if (rgb == NULL)
+        return -1;
+    W = img->width;
+    H = img->height;
+    det_draw(det, rgb, W, H, cam, field);
+    *out = host_image_new(W * scale, H * scale, 0, 0, 0);
+    if (out->rgb == NULL) {
+        free(rgb);
+        return -1;
+    }
+    for (v = 0; v < H * scale; v++)
+        for (u = 0; u < W * scale; u++)
+            memcpy(out->rgb + 3 * ((size_t)v * (size_t)(W * scale) + (size_t)u),
+                   rgb + 3 * ((size_t)(v / scale) * (size_t)W + (size_t)(u / scale)), 3);
+    free(rgb);
+    if (pose != NULL) {
+        /* the model seen from the pose: lines sampled every 50 mm */
+        for (i = 0; i < field->n_lines; i++) {
+            const fl_field_line_t *l = &field->lines[i];
+            double len = hypot(l->x1_mm - l->x0_mm, l->y1_mm - l->y0_mm);
+            int n = (int)(len / 50) + 2, k;
+            double *xs = malloc((size_t)n * 2 * sizeof *xs);
+            if (xs == NULL)
+                continue;
+            for (k = 0; k < n; k++) {
+                xs[k] = l->x0_mm + (l->x1_mm - l->x0_mm) * (double)k / (n - 1);
+                xs[n + k] = l->y0_mm + (l->y1_mm - l->y0_mm) * (double)k / (n - 1);
+            }
+            pic_project_polyline(out, cam, pose, xs, xs + n, n, scale, yellow);
+            free(xs);
+        }
+        if (field->circle_radius_mm > 0) {
+            double xs[97], ys[97];
+            int k;
+            for (k = 0; k <= 96; k++) {
+                xs[k] = field->circle_radius_mm * cos(2 * PIC_PI * k / 96);
+                ys[k] = field->circle_radius_mm * sin(2 * PIC_PI * k / 96);
+            }
+            pic_project_polyline(out, cam, pose, xs, ys, 97, scale, yellow);
+        }
+    }
+    return 0;
+}
+
+int pic_side_by_side(const host_image_t *a, const host_image_t *b, int gap,
+                     host_image_t *out)
+{
+    int W, H, v;
+    memset(out, 0, sizeof *out);
+    if (a == NULL || b == NULL || a->rgb == NULL || b->rgb == NULL || gap < 0)
+        return -1;
+    W = a->width + gap + b->width;
+    H = a->height > b->height ? a->height : b->height;
+    *out = host_image_new(W, H, 40, 40, 40);
+    if (out->rgb == NULL)
+        return -1;
+    for (v = 0; v < a->height; v++)
+        memcpy(out->rgb + 3 * (size_t)v * (size_t)W, a->rgb + 3 * (size_t)v * (size_t)a->width,
+               3 * (size_t)a->width);
+    for (v = 0; v < b->height; v++)
+        memcpy(out->rgb + 3 * ((size_t)v * (size_t)W + (size_t)(a->width + gap)),
+               b->rgb + 3 * (size_t)v * (size_t)b->width, 3 * (size_t)b->width);
+    return 0;
+}
+
+int pic_save(const host_image_t *img, const char *base, int png, int *png_written)
+{
+    char path[1100];
+    int rc;
+    if (png_written)
+        *png_written = 0;
+    if (img == NULL || img->rgb == NULL || base == NULL ||
+        snprintf(path, sizeof path, "%s.ppm", base) >= (int)sizeof path)
+        return -1;
+    rc = ppm_write(path, img->rgb, img->width, img->height);
+    if (png) {
+        snprintf(path, sizeof path, "%s.png", base);
+        if (png_write(path, img->rgb, img->width, img->height) == 0 && png_written)
+            *png_written = 1;
+    }
+    return rc == 0 ? 0 : -1;
+}

@@ -1,0 +1,1140 @@
+/*
+ * tools/loc/locrun.c - vision-to-grid glue and the sequence parser (locrun.h).
+ *
+ * Algorithm: lr_predict rounds the (double) odometry to mm and binary
+ * angles with error diffusion (the remainder of each call is added to the
+ * next), so a long run of small motions integrates without bias; a
+ * component beyond the grid's odo_max_mm is split into equal parts.
+ * lr_frame builds the camera for the frame's pose, runs fl_vision_frame and
+ * feeds the observation list to fl_fuzzy_update.
+ * Memory: the grid (about 64 KiB) and the vision context (color tables,
+ * vision workspace) are malloc'd once per lr_t; a parsed sequence holds
+ * one lr_seq_frame_t (about 1 KiB) per frame.
+ */
+#include "loc/locrun.h"
+#include "eval/picture.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#define LR_PI 3.14159265358979323846
+
+/* ---- engine ---------------------------------------------------------------- */
+
+int lr_init(lr_t *r, const fl_field_t *field, const fl_camera_model_t *model,
+            const fl_fuzzy_params_t *params, char *err, int err_len)
+{
+    fl_fuzzy_params_t pw;
+    memset(r, 0, sizeof *r);
+    if (field == NULL || model == NULL) {
+        if (err)
+            snprintf(err, (size_t)err_len, "no field or camera");
+        return -1;
+    }
+    r->field = field;
+    r->model = model;
+    r->grid = malloc(sizeof *r->grid);
+    if (r->grid == NULL || det_ctx_init(&r->det) != 0) {
+        if (err)
+            snprintf(err, (size_t)err_len, "out of memory (vision context or grid)");
+        lr_free(r);
+        return -1;
+    }
+    if (params != NULL) {
+        /* the camera-dependent part of the vision parameters (fuzzy.h
+         * fl_fuzzy_params_for_camera: wide rings and crossings up to 2.5 m
+         * for the AIBO); a no-op for other parameters */
+        pw = *params;
+        fl_fuzzy_params_for_camera(&pw, model);
+        params = &pw;
+    }
+    if (fl_fuzzy_init(r->grid, field, params) != FL_OK) {
+        if (err)
+            snprintf(err, (size_t)err_len, "cannot size the grid for field %s (or bad params)",
+                     field->name);
+        lr_free(r);
+        return -1;
+    }
+    fl_obs_list_clear(&r->obs);
+    return 0;
+}
+
+void lr_free(lr_t *r)
+{
+    if (r == NULL)
+        return;
+    free(r->grid);
+    r->grid = NULL;
+    if (r->det.colors != NULL || r->det.vis != NULL)
+        det_ctx_free(&r->det);
+}
+
+void lr_predict(lr_t *r, double dx_mm, double dy_mm, double dtheta_rad)
+{
+    double x = dx_mm + r->carry_x, y = dy_mm + r->carry_y;
+    double a = dtheta_rad * (32768.0 / LR_PI) + r->carry_a;
+    double rx, ry, ra, lim = (double)r->grid->params.odo_max_mm, m;
+    int parts, k;
+    if (!isfinite(x) || !isfinite(y) || !isfinite(a))
+        return;
+    rx = floor(x + 0.5);
+    ry = floor(y + 0.5);
+    ra = floor(a + 0.5);
+    r->carry_x = x - rx;
+    r->carry_y = y - ry;
+    r->carry_a = a - ra;
+    ra = fmod(ra, 65536.0);
+    if (fabs(rx) > 2e6 || fabs(ry) > 2e6) {
+        /* absurd: one call, which the grid rejects and counts */
+        fl_fuzzy_predict(r->grid, rx > 0 ? 2000000 : -2000000, 0, 0);
+        return;
+    }
+    m = fabs(rx) > fabs(ry) ? fabs(rx) : fabs(ry);
+    parts = m > lim ? (int)ceil(m / lim) : 1;
+    if (parts == 1) {
+        fl_fuzzy_predict(r->grid, (int32_t)rx, (int32_t)ry, fl_angle_wrap((int32_t)ra));
+        return;
+    }
+    {
+        /* equal parts along the straight line, the turn in the last part */
+        int32_t done_x = 0, done_y = 0;
+        for (k = 1; k <= parts; k++) {
+            int32_t tx = (int32_t)floor(rx * k / parts + 0.5);
+            int32_t ty = (int32_t)floor(ry * k / parts + 0.5);
+            fl_fuzzy_predict(r->grid, tx - done_x, ty - done_y,
+                             k == parts ? fl_angle_wrap((int32_t)ra) : 0);
+            done_x = tx;
+            done_y = ty;
+        }
+    }
+}
+
+void lr_camera_pose(const fl_camera_model_t *m, double head_pitch_rad,
+                    double head_yaw_rad, fl_camera_pose_t *pose)
+{
+    memset(pose, 0, sizeof *pose);
+    pose->neck_height_mm = m ? m->default_neck_height_mm : 450;
+    pose->pitch_offset = m ? m->default_pitch_offset : 0;
+    pose->head_pitch = fl_angle_from_urad((int32_t)lround(head_pitch_rad * 1e6));
+    pose->head_yaw = fl_angle_from_urad((int32_t)lround(head_yaw_rad * 1e6));
+}
+
+/* Glue-side choices about what vision reports (see lr_t). */
+static void lr_filter(lr_t *r)
+{
+    int i;
+    if (r->ignore_post_sides)
+        for (i = 0; i < r->obs.n; i++)
+            if (r->obs.obs[i].kind == FL_LM_POST)
+                r->obs.obs[i].side = FL_SIDE_UNKNOWN;
+}
+
+int lr_frame(lr_t *r, const fl_image_t *img, const fl_camera_pose_t *pose)
+{
+    fl_obs_list_clear(&r->obs);
+    r->obs_used = 0;
+    if (img == NULL || pose == NULL || img->width != r->model->width_px ||
+        img->height != r->model->height_px)
+        return -1;
+    if (fl_camera_init(&r->cam, r->model, pose) != FL_OK)
+        return -1;
+    fl_vision_frame(r->det.vis, r->det.colors, img, &r->cam, r->field, &r->obs);
+    r->frames++;
+    lr_filter(r);
+    fl_obs_view_vision(&r->cam, &r->view);
+    r->obs_used = fl_fuzzy_update_view(r->grid, &r->obs, &r->view);
+    return r->obs_used;
+}
+
+int lr_frame_obs(lr_t *r, const fl_camera_pose_t *pose, const fl_obs_list_t *obs)
+{
+    fl_obs_list_clear(&r->obs);
+    r->obs_used = 0;
+    if (pose == NULL || obs == NULL || fl_camera_init(&r->cam, r->model, pose) != FL_OK)
+        return -1;
+    r->obs = *obs;
+    r->frames++;
+    lr_filter(r);
+    fl_obs_view_vision(&r->cam, &r->view);
+    r->obs_used = fl_fuzzy_update_view(r->grid, &r->obs, &r->view);
+    return r->obs_used;
+}
+
+void lr_estimate(lr_t *r, fl_fuzzy_estimate_t *est)
+{
+    fl_fuzzy_estimate(r->grid, est);
+}
+
+void lr_odo_add(lr_odo_t *o, double dx_mm, double dy_mm, double dtheta_rad)
+{
+    double c = cos(o->a), s = sin(o->a);
+    o->x += dx_mm * c - dy_mm * s;
+    o->y += dx_mm * s + dy_mm * c;
+    o->a += dtheta_rad;
+}
+
+static double lr_wrap_deg(double d)
+{
+    d = fmod(d, 360.0);
+    if (d >= 180.0)
+        d -= 360.0;
+    if (d < -180.0)
+        d += 360.0;
+    return d;
+}
+
+void lr_pose_error(double ex, double ey, double eh_deg, double tx, double ty,
+                   double th_deg, double *pos_mm, double *head_deg,
+                   double *mirror_pos_mm, double *mirror_head_deg)
+{
+    if (pos_mm)
+        *pos_mm = hypot(ex - tx, ey - ty);
+    if (head_deg)
+        *head_deg = fabs(lr_wrap_deg(eh_deg - th_deg));
+    if (mirror_pos_mm)
+        *mirror_pos_mm = hypot(ex + tx, ey + ty);
+    if (mirror_head_deg)
+        *mirror_head_deg = fabs(lr_wrap_deg(eh_deg - th_deg - 180.0));
+}
+
+int lr_mkdirs(const char *path)
+{
+    char buf[LR_PATH_MAX];
+    struct stat sb;
+    size_t i, n;
+    if (path == NULL || (n = strlen(path)) == 0 || n >= sizeof buf)
+        return -1;
+    memcpy(buf, path, n + 1);
+    for (i = 1; i <= n; i++) {
+        if (buf[i] == '/' || buf[i] == '\0') {
+            char c = buf[i];
+            buf[i] = '\0';
+            if (stat(buf, &sb) != 0)
+                mkdir(buf, 0777);
+            buf[i] = c;
+        }
+    }
+    return stat(path, &sb) == 0 && S_ISDIR(sb.st_mode) ? 0 : -1;
+}
+
+double lr_deg(fl_angle_t a)
+{
+    return (double)a * (180.0 / 32768.0);
+}
+
+/* ---- sequence files ------------------------------------------------------- */
+
+static int lr_fail(char *err, int err_len, int line, const char *fmt, ...)
+{
+    va_list ap;
+    char msg[512];
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (err != NULL && err_len > 0) {
+        if (line > 0)
+            snprintf(err, (size_t)err_len, "line %d: %s", line, msg);
+        else
+            snprintf(err, (size_t)err_len, "%s", msg);
+    }
+    return -1;
+}
+
+/* A finite number filling the whole token, |v| <= lim. */
+static int lr_num(const char *tok, double lim, double *v)
+{
+    char *end;
+    double d;
+    errno = 0;
+    d = strtod(tok, &end);
+    if (end == tok || *end != '\0' || errno == ERANGE || !isfinite(d) || fabs(d) > lim)
+        return -1;
+    *v = d;
+    return 0;
+}
+
+#define LR_MAX_TOK 12
+
+int lr_seq_parse(const char *text, const char *base_dir, lr_seq_t *out,
+                 char *err, int err_len)
+{
+    const char *p = text;
+    int line = 0;
+    memset(out, 0, sizeof *out);
+    if (text == NULL)
+        return lr_fail(err, err_len, 0, "no text");
+    while (*p != '\0') {
+        char buf[2 * LR_PATH_MAX], *tok[LR_MAX_TOK], *q;
+        const char *eol = strchr(p, '\n');
+        size_t len = eol ? (size_t)(eol - p) : strlen(p);
+        int nt = 0;
+        line++;
+        if (len >= sizeof buf) {
+            lr_seq_free(out);
+            return lr_fail(err, err_len, line, "line too long");
+        }
+        memcpy(buf, p, len);
+        buf[len] = '\0';
+        p += len + (eol ? 1 : 0);
+        q = strchr(buf, '#');
+        if (q != NULL)
+            *q = '\0';
+        for (q = buf; *q != '\0';) {
+            while (*q != '\0' && isspace((unsigned char)*q))
+                *q++ = '\0';
+            if (*q == '\0')
+                break;
+            if (nt == LR_MAX_TOK) {
+                lr_seq_free(out);
+                return lr_fail(err, err_len, line, "too many fields");
+            }
+            tok[nt++] = q;
+            while (*q != '\0' && !isspace((unsigned char)*q))
+                q++;
+        }
+        if (nt == 0)
+            continue;
+        if (!strcmp(tok[0], "field") || !strcmp(tok[0], "camera")) {
+            int is_field = tok[0][0] == 'f';
+            if (nt != 2) {
+                lr_seq_free(out);
+                return lr_fail(err, err_len, line, "expected '%s NAME'", tok[0]);
+            }
+            if (out->n > 0) {
+                lr_seq_free(out);
+                return lr_fail(err, err_len, line, "'%s' after the first frame", tok[0]);
+            }
+            if (is_field ? out->field != NULL : out->camera != NULL) {
+                lr_seq_free(out);
+                return lr_fail(err, err_len, line, "'%s' given twice", tok[0]);
+            }
+            if (is_field) {
+                out->field = fl_field_find(tok[1]);
+                if (out->field == NULL) {
+                    lr_seq_free(out);
+                    return lr_fail(err, err_len, line,
+                                   "unknown field '%s' (see: fieldloc fields)", tok[1]);
+                }
+            } else {
+                out->camera = fl_camera_model_find(tok[1]);
+                if (out->camera == NULL) {
+                    lr_seq_free(out);
+                    return lr_fail(err, err_len, line,
+                                   "unknown camera '%s' (see: fieldloc cameras)", tok[1]);
+                }
+            }
+        } else if (!strcmp(tok[0], "prior")) {
+            if (nt != 4 || lr_num(tok[1], 20000, &out->prior_x_mm) ||
+                lr_num(tok[2], 20000, &out->prior_y_mm) ||
+                lr_num(tok[3], 3600, &out->prior_theta_deg)) {
+                lr_seq_free(out);
+                return lr_fail(err, err_len, line,
+                               "expected 'prior X_MM Y_MM THETA_DEG' (|x|, |y| <= 20000)");
+            }
+            if (out->n > 0 || out->has_prior) {
+                lr_seq_free(out);
+                return lr_fail(err, err_len, line,
+                               "'prior' must come once, before the first frame");
+            }
+            out->has_prior = 1;
+        } else if (!strcmp(tok[0], "frame")) {
+            lr_seq_frame_t *f;
+            if (nt != 9 || strcmp(tok[2], "odo") != 0 || strcmp(tok[6], "head") != 0) {
+                lr_seq_free(out);
+                return lr_fail(err, err_len, line,
+                               "expected 'frame IMAGE odo DX_MM DY_MM DTHETA_DEG head "
+                               "PITCH_RAD YAW_RAD'");
+            }
+            if (out->field == NULL || out->camera == NULL) {
+                lr_seq_free(out);
+                return lr_fail(err, err_len, line,
+                               "frame before the 'field' and 'camera' lines");
+            }
+            if (out->n == out->cap) {
+                int cap = out->cap ? 2 * out->cap : 64;
+                lr_seq_frame_t *nf = realloc(out->frame, (size_t)cap * sizeof *nf);
+                if (nf == NULL) {
+                    lr_seq_free(out);
+                    return lr_fail(err, err_len, line, "out of memory");
+                }
+                out->frame = nf;
+                out->cap = cap;
+            }
+            f = &out->frame[out->n];
+            memset(f, 0, sizeof *f);
+            f->line = line;
+            if (lr_num(tok[3], 20000, &f->odo_dx_mm) || lr_num(tok[4], 20000, &f->odo_dy_mm) ||
+                lr_num(tok[5], 3600, &f->odo_dtheta_deg)) {
+                lr_seq_free(out);
+                return lr_fail(err, err_len, line,
+                               "bad odometry (numbers, |dx|, |dy| <= 20000 mm, |dtheta| <= "
+                               "3600 deg)");
+            }
+            if (lr_num(tok[7], 3.2, &f->head_pitch_rad) || lr_num(tok[8], 3.2, &f->head_yaw_rad)) {
+                lr_seq_free(out);
+                return lr_fail(err, err_len, line, "bad head angles (radians, |a| <= 3.2)");
+            }
+            if (tok[1][0] == '/' || base_dir == NULL || base_dir[0] == '\0') {
+                if (strlen(tok[1]) >= LR_PATH_MAX) {
+                    lr_seq_free(out);
+                    return lr_fail(err, err_len, line, "image path too long");
+                }
+                strcpy(f->image, tok[1]);
+            } else if (snprintf(f->image, LR_PATH_MAX, "%s/%s", base_dir, tok[1]) >=
+                       LR_PATH_MAX) {
+                lr_seq_free(out);
+                return lr_fail(err, err_len, line, "image path too long");
+            }
+            out->n++;
+        } else {
+            lr_seq_free(out);
+            return lr_fail(err, err_len, line,
+                           "unknown keyword '%s' (field, camera, prior, frame)", tok[0]);
+        }
+    }
+    if (out->field == NULL || out->camera == NULL) {
+        lr_seq_free(out);
+        return lr_fail(err, err_len, 0, "missing 'field NAME' or 'camera NAME' line");
+    }
+    if (out->n == 0) {
+        lr_seq_free(out);
+        return lr_fail(err, err_len, 0, "no 'frame' line");
+    }
+    return 0;
+}
+
+int lr_seq_load(const char *path, lr_seq_t *out, char *err, int err_len)
+{
+    FILE *f;
+    char *text, dir[LR_PATH_MAX];
+    const char *slash;
+    long size;
+    int rc;
+    memset(out, 0, sizeof *out);
+    f = fopen(path, "rb");
+    if (f == NULL)
+        return lr_fail(err, err_len, 0, "cannot open: %s", strerror(errno));
+    if (fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0 || size > (64L << 20) ||
+        fseek(f, 0, SEEK_SET) != 0) {
+        fclose(f);
+        return lr_fail(err, err_len, 0, "cannot read (or larger than 64 MiB)");
+    }
+    text = malloc((size_t)size + 1);
+    if (text == NULL || fread(text, 1, (size_t)size, f) != (size_t)size) {
+        free(text);
+        fclose(f);
+        return lr_fail(err, err_len, 0, "cannot read");
+    }
+    fclose(f);
+    text[size] = '\0';
+    if (memchr(text, '\0', (size_t)size) != NULL) {
+        free(text);
+        return lr_fail(err, err_len, 0, "binary file (NUL byte), not a sequence");
+    }
+    slash = strrchr(path, '/');
+    if (slash == NULL)
+        snprintf(dir, sizeof dir, ".");
+    else if (slash == path)
+        snprintf(dir, sizeof dir, "/");
+    else
+        snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    rc = lr_seq_parse(text, dir, out, err, err_len);
+    free(text);
+    return rc;
+}
+
+void lr_seq_free(lr_seq_t *s)
+{
+    if (s == NULL)
+        return;
+    free(s->frame);
+    memset(s, 0, sizeof *s);
+}
+
+/* ---- running a sequence --------------------------------------------------- */
+
+static void lr_seq_picture(const lr_seq_opts_t *o, lr_t *lr, const render_frame_t *fr, int have_frame,
+                       const fl_fuzzy_estimate_t *est, int k)
+{
+    host_image_t belief, frame, both;
+    pic_pose_t ep;
+    char base[1100];
+    ep.x_mm = est->x_mm;
+    ep.y_mm = est->y_mm;
+    ep.heading_deg = lr_deg(est->heading);
+    if (pic_belief(lr->grid, 0, NULL, est, have_frame ? &lr->obs : NULL, &belief) != 0)
+        return;
+    snprintf(base, sizeof base, "%s/%s%05d", o->pictures,
+             o->picture_prefix ? o->picture_prefix : "frame_", k);
+    if (have_frame && pic_frame(&lr->det, &fr->view, &lr->cam, lr->field, &ep, 2, &frame) == 0) {
+        if (pic_side_by_side(&frame, &belief, 8, &both) == 0) {
+            pic_save(&both, base, 1, NULL);
+            host_image_free(&both);
+        }
+        host_image_free(&frame);
+    } else {
+        pic_save(&belief, base, 1, NULL);
+    }
+    host_image_free(&belief);
+}
+
+int lr_seq_run(const lr_seq_t *seq, const lr_seq_opts_t *o, lr_frame_result_t *res)
+{
+    lr_t lr;
+    char err[256];
+    int k, skipped = 0;
+    const char *name = o->name != NULL ? o->name : "sequence";
+    if (lr_init(&lr, seq->field, seq->camera, o->params, err, (int)sizeof err) != 0) {
+        fprintf(stderr, "localize: %s\n", err);
+        return -1;
+    }
+    if (seq->has_prior) {
+        int32_t x = (int32_t)lround(seq->prior_x_mm), y = (int32_t)lround(seq->prior_y_mm);
+        fl_angle_t h = fl_angle_from_mdeg((int32_t)lround(fmod(seq->prior_theta_deg, 360.0) * 1000));
+        fl_fuzzy_set_prior_pose(lr.grid, x, y, h, 1000);
+        fl_fuzzy_reset_pose(lr.grid, x, y, h, 300, fl_angle_from_mdeg(20000));
+    }
+    for (k = 0; k < seq->n; k++) {
+        const lr_seq_frame_t *f = &seq->frame[k];
+        render_frame_t fr;
+        fl_camera_pose_t pose;
+        fl_fuzzy_estimate_t est;
+        int have = 0, used = -1;
+        lr_predict(&lr, f->odo_dx_mm, f->odo_dy_mm, f->odo_dtheta_deg * (LR_PI / 180.0));
+        if (render_read_frame(f->image, &fr, err, (int)sizeof err) != 0) {
+            if (!o->quiet)
+                fprintf(stderr, "localize: %s line %d: %s; frame skipped (odometry only)\n",
+                        name, f->line, err);
+        } else {
+            have = 1;
+            lr_camera_pose(seq->camera, f->head_pitch_rad, f->head_yaw_rad, &pose);
+            used = lr_frame(&lr, &fr.view, &pose);
+            if (used < 0 && !o->quiet)
+                fprintf(stderr,
+                        "localize: %s line %d: %s: image %dx%d does not fit camera %s (%dx%d) "
+                        "or bad head pose; frame skipped (odometry only)\n",
+                        name, f->line, f->image, fr.width, fr.height, seq->camera->name,
+                        (int)seq->camera->width_px, (int)seq->camera->height_px);
+        }
+        if (used < 0)
+            skipped++;
+        lr_estimate(&lr, &est);
+        if (o->out != NULL) {
+            double h = lr_deg(est.heading);
+            if (h <= -180.0)
+                h += 360.0;
+            fprintf(o->out, "pose %d %d %.1f %.3f\n", (int)est.x_mm, (int)est.y_mm, h,
+                    est.reliability_q16 / 65536.0);
+        }
+        if (res != NULL) {
+            res[k].est = est;
+            res[k].obs = used >= 0 ? lr.obs.n : 0;
+            res[k].used = used;
+            res[k].ok = used >= 0;
+        }
+        if (o->pictures != NULL && (k % (o->picture_every > 0 ? o->picture_every : 1) == 0 || k == seq->n - 1))
+            lr_seq_picture(o, &lr, &fr, used >= 0, &est, k);
+        if (have)
+            render_frame_free(&fr);
+    }
+    lr_free(&lr);
+    return skipped;
+}
+
+/* ---- simulated walks ------------------------------------------------------- */
+
+#include <pthread.h>
+#include <time.h>
+#include <unistd.h>
+
+#define LR_GOOD_MM 300.0
+#define LR_GOOD_DEG 15.0
+#define LR_HOLD_S 1.0
+
+typedef struct {
+    double t, pos_err, head_err;
+    int good, flip, excluded;
+} lr_rec_t;
+
+static double lr_now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* First index i >= from such that every record in [t_i, t_i + hold] is
+ * good (and at least hold seconds of run remain); -1 if none. */
+static long lr_first_hold(const lr_rec_t *r, long n, long from, double hold)
+{
+    long i = from;
+    while (i < n) {
+        long j = i;
+        if (!r[i].good) {
+            i++;
+            continue;
+        }
+        while (j < n && r[j].good && r[j].t < r[i].t + hold)
+            j++;
+        if (j < n && r[j].t >= r[i].t + hold)
+            return i;
+        if (j >= n)
+            return -1;
+        i = j + 1;
+    }
+    return -1;
+}
+
+static int lr_kind_group(fl_landmark_kind_t k)
+{
+    if (k == FL_LM_POST)
+        return 1;
+    if (k == FL_LM_CENTRE_CIRCLE)
+        return 2;
+    if (k == FL_LM_BEACON)
+        return 3;
+    return 0; /* crossings and marks */
+}
+
+/* Match one frame's vision observations to the map at the true pose. */
+static void lr_vdiag_frame(lr_vdiag_t *d, const sim_scenario_t *sc, const fl_camera_t *cam,
+                           const sim_step_t *st, const fl_obs_list_t *obs)
+{
+    const fl_field_t *f = sc->field;
+    double h = st->true_heading_rad, ch = cos(h), sh = sin(h);
+    int found[256] = {0};
+    int i, j;
+    for (i = 0; i < obs->n; i++) {
+        const fl_obs_t *o = &obs->obs[i];
+        double b = lr_deg(o->bearing) * (LR_PI / 180.0);
+        double ox = o->range_mm * cos(b), oy = o->range_mm * sin(b);
+        double tol = o->range_mm * 0.2 > 250 ? o->range_mm * 0.2 : 250;
+        double best = 1e30;
+        int bj = -1;
+        lr_vdiag_t *dk;
+        if ((int)o->kind < 0 || o->kind >= FL_LM_KIND_COUNT)
+            continue;
+        dk = &d[o->kind];
+        dk->n_obs++;
+        for (j = 0; j < f->n_landmarks && j < 256; j++) {
+            const fl_landmark_t *lm = &f->landmarks[j];
+            double dx = lm->x_mm - st->true_x_mm, dy = lm->y_mm - st->true_y_mm;
+            double rx = dx * ch + dy * sh, ry = -dx * sh + dy * ch, e;
+            if (lr_kind_group(lm->kind) != lr_kind_group(o->kind))
+                continue;
+            e = hypot(rx - ox, ry - oy);
+            if (e < best) {
+                best = e;
+                bj = j;
+            }
+        }
+        if (bj < 0 || best > tol) {
+            dk->false_pos++;
+            continue;
+        }
+        {
+            const fl_landmark_t *lm = &f->landmarks[bj];
+            double dx = lm->x_mm - st->true_x_mm, dy = lm->y_mm - st->true_y_mm;
+            double rx = dx * ch + dy * sh, ry = -dx * sh + dy * ch;
+            double tr = hypot(rx, ry), tb = atan2(ry, rx) * (180.0 / LR_PI), db;
+            dk->matched++;
+            if (lm->kind != o->kind)
+                dk->wrong_kind++;
+            if (o->kind == FL_LM_POST && o->side != FL_SIDE_UNKNOWN) {
+                dk->side_known++;
+                if (o->side != lm->side)
+                    dk->side_wrong++;
+            }
+            if (tr > 1)
+                dk->sum_abs_range_pct += fabs(o->range_mm - tr) / tr * 100.0;
+            db = fmod(lr_deg(o->bearing) - tb + 540.0, 360.0) - 180.0;
+            dk->sum_abs_bearing_deg += fabs(db);
+            found[bj] = 1;
+        }
+    }
+    for (j = 0; j < f->n_landmarks && j < 256; j++) {
+        const fl_landmark_t *lm = &f->landmarks[j];
+        double dx = lm->x_mm - st->true_x_mm, dy = lm->y_mm - st->true_y_mm;
+        double rx = dx * ch + dy * sh, ry = -dx * sh + dy * ch;
+        fl_point_t gp;
+        int32_t u, v;
+        gp.x_mm = (int32_t)lround(rx);
+        gp.y_mm = (int32_t)lround(ry);
+        if (hypot(rx, ry) > sc->max_range_mm || !fl_camera_ground_to_pixel(cam, gp, &u, &v) ||
+            u < 64 || v < 64 || u > 16 * (cam->model.width_px - 5) ||
+            v > 16 * (cam->model.height_px - 5))
+            continue;
+        d[lm->kind].truth_visible++;
+        if (found[j])
+            d[lm->kind].truth_found++;
+    }
+}
+
+static void lr_record(lr_rec_t *r, double t, int sym, int half_known, double ex, double ey,
+                      double eh, double tx, double ty, double th)
+{
+    double pe, he, mpe, mhe;
+    lr_pose_error(ex, ey, eh, tx, ty, th, &pe, &he, &mpe, &mhe);
+    r->t = t;
+    if (sym && !half_known && mpe < pe) {
+        r->pos_err = mpe;
+        r->head_err = mhe;
+    } else {
+        r->pos_err = pe;
+        r->head_err = he;
+    }
+    r->flip = sym && half_known && mpe < 500.0 && mhe < 30.0 && pe > 1000.0;
+    r->good = r->pos_err < LR_GOOD_MM && r->head_err < LR_GOOD_DEG;
+    r->excluded = 0;
+}
+
+/* One vision step of a batch (frames mode). */
+typedef struct {
+    sim_step_t st;
+    double ax, ay, aa;            /* odometry since the previous vision step
+                                     (after the placement, if any) */
+    int placed;                   /* penalty placement since then */
+    unsigned events;              /* events of the steps since then */
+    int half_known;
+    render_scene_t scene;
+    render_frame_t fr;
+    int rc;
+} lr_job_t;
+
+typedef struct {
+    lr_job_t *job;
+    int n, tid, nthreads;
+} lr_worker_t;
+
+static void *lr_render_worker(void *arg)
+{
+    lr_worker_t *w = arg;
+    int j;
+    for (j = w->tid; j < w->n; j += w->nthreads)
+        w->job[j].rc = render_frame(&w->job[j].scene, &w->job[j].fr);
+    return NULL;
+}
+
+#define LR_BATCH 16
+
+/* Render a batch with up to nthreads threads (the caller is one of them). */
+static void lr_render_batch(lr_job_t *job, int n, int nthreads)
+{
+    pthread_t th[LR_MAX_THREADS];
+    lr_worker_t w[LR_MAX_THREADS];
+    int started[LR_MAX_THREADS] = {0};
+    int t;
+    if (nthreads > n)
+        nthreads = n;
+    if (nthreads < 1)
+        nthreads = 1;
+    for (t = 0; t < nthreads; t++) {
+        w[t].job = job;
+        w[t].n = n;
+        w[t].tid = t;
+        w[t].nthreads = nthreads;
+    }
+    for (t = 1; t < nthreads; t++)
+        started[t] = pthread_create(&th[t], NULL, lr_render_worker, &w[t]) == 0;
+    lr_render_worker(&w[0]);
+    for (t = 1; t < nthreads; t++) {
+        if (started[t])
+            pthread_join(th[t], NULL);
+        else
+            lr_render_worker(&w[t]); /* no thread: do its share here */
+    }
+}
+
+int lr_threads_default(void)
+{
+    const char *e = getenv("FIELDLOC_THREADS");
+    long n = e != NULL && *e != '\0' ? strtol(e, NULL, 10) : sysconf(_SC_NPROCESSORS_ONLN);
+    if (n < 1)
+        n = 1;
+    if (n > LR_MAX_THREADS)
+        n = LR_MAX_THREADS;
+    return (int)n;
+}
+
+int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
+                lr_walk_result_t *res, char *err, int err_len)
+{
+    sim_t *sim;
+    sim_step_t *st;
+    lr_t lr;
+    lr_rec_t *rec;
+    lr_job_t *job = NULL;
+    lr_odo_t acc = {0, 0, 0};
+    long n = 0, cap, i, i_kidnap = -1, i_penalty = -1;
+    int half_known = 1, sym, every = o->every < 1 ? 1 : o->every, placed = 0, done = 0;
+    unsigned events = 0;
+    int nthreads = o->threads > 0 ? o->threads : lr_threads_default();
+    FILE *cache = NULL;
+    int cache_read = 0;
+    double t_kidnap = -1;
+    fl_fuzzy_estimate_t est;
+
+    memset(res, 0, sizeof *res);
+    sim = malloc(sizeof *sim);
+    st = malloc(sizeof *st);
+    if (o->frames)
+        job = calloc(LR_BATCH, sizeof *job);
+    if (sim == NULL || st == NULL || (o->frames && job == NULL)) {
+        free(sim);
+        free(st);
+        free(job);
+        return lr_fail(err, err_len, 0, "out of memory");
+    }
+    if (sim_init(sim, sc) != 0) {
+        free(sim);
+        free(st);
+        free(job);
+        return lr_fail(err, err_len, 0, "invalid scenario");
+    }
+    if (lr_init(&lr, sc->field, sc->camera, o->params, err, err_len) != 0) {
+        free(sim);
+        free(st);
+        free(job);
+        return -1;
+    }
+    fl_fuzzy_set_prior_half(lr.grid, sc->start_x_mm < 0 ? -1 : 1);
+    lr.ignore_post_sides = o->ignore_post_sides;
+    sym = sc->field->symmetric;
+    cap = (long)sim_step_count(sim) + 1;
+    rec = calloc((size_t)cap, sizeof *rec);
+    if (rec == NULL) {
+        lr_free(&lr);
+        free(sim);
+        free(st);
+        free(job);
+        return lr_fail(err, err_len, 0, "out of memory");
+    }
+    res->dt_s = (o->frames ? every : 1) / sc->frame_hz;
+    if (o->frames && o->obs_cache != NULL) {
+        char want[128], have[128];
+        snprintf(want, sizeof want, "fieldloc-obs-cache 1 %s %s %llu %d %u %d\n", sc->name,
+                 sc->field->name, (unsigned long long)sc->seed, every,
+                 (unsigned)sizeof(fl_obs_list_t), (int)(sc->duration_s * 1000));
+        cache = fopen(o->obs_cache, "rb");
+        if (cache != NULL && fgets(have, sizeof have, cache) != NULL && !strcmp(have, want)) {
+            cache_read = 1;
+        } else {
+            if (cache != NULL)
+                fclose(cache);
+            cache = fopen(o->obs_cache, "wb");
+            if (cache != NULL)
+                fputs(want, cache);
+        }
+    }
+    while (!done) {
+        int nb = 0, b;
+        double t0;
+        /* 1. advance the simulator: one step (features) or up to a batch of
+         *    vision steps (frames) */
+        while (!done) {
+            double t;
+            if (n + nb >= cap || (o->max_steps >= 0 && res->steps >= o->max_steps) ||
+                !sim_step(sim, st)) {
+                done = 1;
+                break;
+            }
+            res->steps++;
+            t = st->t_ms / 1000.0;
+            if ((st->events & SIM_EV_KIDNAP) && t_kidnap < 0) {
+                t_kidnap = t;
+                i_kidnap = n + nb;
+            }
+            if (st->events & SIM_EV_KIDNAP)
+                half_known = 0;
+            if (!o->frames) {
+                /* feature mode: predict, placement, update every step */
+                fl_fuzzy_predict(lr.grid, st->odo_dx_mm, st->odo_dy_mm, st->odo_dtheta);
+                if (st->events & SIM_EV_PENALIZED) {
+                    fl_fuzzy_reset_penalty(lr.grid, (int32_t)sc->penalty_x_mm, 300, 2730);
+                    half_known = 1;
+                    if (i_penalty < 0)
+                        i_penalty = n;
+                }
+                fl_fuzzy_update(lr.grid, &st->obs);
+                nb = 1;
+                break;
+            }
+            lr_odo_add(&acc, st->odo_dx, st->odo_dy, st->odo_dtheta_rad);
+            events |= st->events;
+            if (st->events & SIM_EV_PENALIZED) {
+                /* the placement replaces the belief: motion before it is moot */
+                acc.x = acc.y = acc.a = 0;
+                placed = 1;
+                half_known = 1;
+            }
+            if (st->index % (uint32_t)every != 0)
+                continue;
+            job[nb].st = *st;
+            job[nb].ax = acc.x;
+            job[nb].ay = acc.y;
+            job[nb].aa = acc.a;
+            job[nb].placed = placed;
+            if (placed && i_penalty < 0)
+                i_penalty = n + nb;
+            job[nb].half_known = half_known;
+            job[nb].events = events;
+            events = 0;
+            sim_render_scene(sc, st, &job[nb].scene);
+            acc.x = acc.y = acc.a = 0;
+            placed = 0;
+            if (++nb == LR_BATCH)
+                break;
+        }
+        if (o->frames && nb > 0 && !cache_read) {
+            t0 = lr_now_s();
+            lr_render_batch(job, nb, nthreads);
+            res->render_s += lr_now_s() - t0;
+        }
+        /* 2. localize each record of the batch in order */
+        for (b = 0; b < nb; b++) {
+            const sim_step_t *sp = o->frames ? &job[b].st : st;
+            int hk = o->frames ? job[b].half_known : half_known;
+            double t = sp->t_ms / 1000.0;
+            lr_walk_step_t ws;
+            if (o->frames) {
+                if (job[b].rc != 0) {
+                    unsigned long idx = (unsigned long)sp->index;
+                    for (; b < nb; b++)
+                        render_frame_free(&job[b].fr);
+                    free(rec);
+                    lr_free(&lr);
+                    free(sim);
+                    free(st);
+                    free(job);
+                    if (cache != NULL)
+                        fclose(cache);
+                    return lr_fail(err, err_len, 0, "render failed at step %lu", idx);
+                }
+                if (job[b].placed)
+                    fl_fuzzy_reset_penalty(lr.grid, (int32_t)sc->penalty_x_mm, 300, 2730);
+                t0 = lr_now_s();
+                lr_predict(&lr, job[b].ax, job[b].ay, job[b].aa);
+                if (cache_read) {
+                    uint32_t idx = 0;
+                    fl_obs_list_t cached;
+                    if (fread(&idx, sizeof idx, 1, cache) != 1 ||
+                        fread(&cached, sizeof cached, 1, cache) != 1 || idx != sp->index) {
+                        fl_obs_list_clear(&cached);
+                        if (cache_read == 1)
+                            fprintf(stderr, "simulate: observation cache %s ends or differs at "
+                                            "step %lu: no observations from there on\n",
+                                    o->obs_cache, (unsigned long)sp->index);
+                        cache_read = 2;
+                    }
+                    lr_frame_obs(&lr, &sp->head, &cached);
+                } else {
+                    lr_frame(&lr, &job[b].fr.view, &sp->head);
+                    if (cache != NULL) {
+                        uint32_t idx = sp->index;
+                        fwrite(&idx, sizeof idx, 1, cache);
+                        fwrite(&lr.obs, sizeof lr.obs, 1, cache);
+                    }
+                }
+                res->vision_grid_s += lr_now_s() - t0;
+                lr_vdiag_frame(res->vdiag, sc, &lr.cam, sp, &lr.obs);
+            }
+            fl_fuzzy_estimate(lr.grid, &est);
+            lr_record(&rec[n], t, sym, hk, est.x_mm, est.y_mm, lr_deg(est.heading), sp->x_mm,
+                      sp->y_mm, lr_deg(sp->heading));
+            if (o->steps != NULL)
+                fprintf(o->steps,
+                        "step %ld %.3f est %d %d %.1f %.3f truth %d %d %.1f err %.0f %.1f\n",
+                        (long)sp->index, t, (int)est.x_mm, (int)est.y_mm, lr_deg(est.heading),
+                        est.reliability_q16 / 65536.0, (int)sp->x_mm, (int)sp->y_mm,
+                        lr_deg(sp->heading), rec[n].pos_err, rec[n].head_err);
+            if (o->steps != NULL && o->print_obs) {
+                static const char kc[] = "LTXPCGOB";
+                const fl_obs_list_t *ol = o->frames ? &lr.obs : &sp->obs;
+                int q;
+                for (q = 0; q < ol->n; q++) {
+                    const fl_obs_t *ob = &ol->obs[q];
+                    fprintf(o->steps, "#  obs %c range %d bearing %.1f orient %s%.1f side %d "
+                                      "conf %d\n",
+                            (int)ob->kind < FL_LM_KIND_COUNT ? kc[ob->kind] : '?',
+                            (int)ob->range_mm, lr_deg(ob->bearing),
+                            ob->has_orientation ? "" : "-", lr_deg(ob->orientation),
+                            (int)ob->side, (int)ob->confidence);
+                }
+            }
+            if (o->hook != NULL) {
+                ws.sc = sc;
+                ws.st = sp;
+                ws.lr = &lr;
+                ws.est = &est;
+                ws.frame = o->frames && !cache_read ? &job[b].fr : NULL;
+                ws.record = n;
+                ws.t_s = t;
+                ws.pos_err_mm = rec[n].pos_err;
+                ws.head_err_deg = rec[n].head_err;
+                ws.half_known = hk;
+                ws.events = o->frames ? job[b].events : sp->events;
+                o->hook(o->user, &ws);
+            }
+            if (o->frames && !cache_read)
+                render_frame_free(&job[b].fr);
+            res->final_pos_err_mm = rec[n].pos_err;
+            res->final_head_err_deg = rec[n].head_err;
+            n++;
+        }
+    }
+    res->records = n;
+    {
+        long ic = lr_first_hold(rec, n, 0, LR_HOLD_S), ik;
+        double se_p = 0, se_h = 0, se_pa = 0, se_ha = 0;
+        long used_all = 0;
+        res->converge_s = ic >= 0 ? rec[ic].t : INFINITY;
+        res->kidnap_recover_s = NAN;
+        if (i_kidnap >= 0 && i_kidnap < n) {
+            ik = lr_first_hold(rec, n, i_kidnap, LR_HOLD_S);
+            res->kidnap_recover_s = ik >= 0 ? rec[ik].t - t_kidnap : INFINITY;
+            for (i = i_kidnap; i < n && (ik < 0 || i < ik); i++)
+                rec[i].excluded = 1;
+        }
+        res->penalty_recover_s = NAN;
+        if (i_penalty >= 0 && i_penalty < n) {
+            long ip = lr_first_hold(rec, n, i_penalty, LR_HOLD_S);
+            res->penalty_recover_s = ip >= 0 ? rec[ip].t - rec[i_penalty].t : INFINITY;
+            for (i = i_penalty; i < n && (ip < 0 || i < ip); i++)
+                rec[i].excluded = 1;
+        }
+        for (i = 0; i < n; i++) {
+            if (rec[i].flip && (i == 0 || !rec[i - 1].flip))
+                res->flips++;
+            if (ic < 0 || i < ic)
+                continue;
+            se_pa += rec[i].pos_err * rec[i].pos_err;
+            se_ha += rec[i].head_err * rec[i].head_err;
+            used_all++;
+            if (rec[i].excluded)
+                continue;
+            se_p += rec[i].pos_err * rec[i].pos_err;
+            se_h += rec[i].head_err * rec[i].head_err;
+            res->used++;
+        }
+        res->pos_rmse_mm = res->used > 0 ? sqrt(se_p / (double)res->used) : NAN;
+        res->heading_rmse_deg = res->used > 0 ? sqrt(se_h / (double)res->used) : NAN;
+        res->pos_rmse_all_mm = used_all > 0 ? sqrt(se_pa / (double)used_all) : NAN;
+        res->heading_rmse_all_deg = used_all > 0 ? sqrt(se_ha / (double)used_all) : NAN;
+    }
+    res->stats = lr.grid->stats;
+    if (cache != NULL)
+        fclose(cache);
+    free(rec);
+    lr_free(&lr);
+    free(sim);
+    free(st);
+    free(job);
+    return 0;
+}
+
+static void lr_print_val(FILE *f, const char *name, double v, int decimals)
+{
+    if (isnan(v))
+        fprintf(f, "%s nan\n", name);
+    else if (isinf(v))
+        fprintf(f, "%s inf\n", name);
+    else
+        fprintf(f, "%s %.*f\n", name, decimals, v);
+}
+
+void lr_walk_print_summary(FILE *f, const lr_walk_result_t *res)
+{
+    fprintf(f, "# penalty_recover_s %.2f (its window is excluded like the kidnap's)\n",
+            res->penalty_recover_s);
+    fprintf(f, "# every record after convergence, nothing excluded: pos_rmse_mm %.1f "
+               "heading_rmse_deg %.2f\n",
+            res->pos_rmse_all_mm, res->heading_rmse_all_deg);
+    lr_print_val(f, "pos_rmse_mm", res->pos_rmse_mm, 1);
+    lr_print_val(f, "heading_rmse_deg", res->heading_rmse_deg, 2);
+    lr_print_val(f, "converge_s", res->converge_s, 2);
+    lr_print_val(f, "kidnap_recover_s", res->kidnap_recover_s, 2);
+    fprintf(f, "flips %ld\n", res->flips);
+}
+
+void lr_walk_print_vdiag(FILE *f, const lr_walk_result_t *res)
+{
+    static const char *const names[FL_LM_KIND_COUNT] = {
+        "L", "T", "X", "penalty_mark", "centre_mark", "post", "circle", "beacon"};
+    int k;
+    fprintf(f, "# vision vs map at the true pose (per kind): obs matched wrong_kind false | "
+               "visible found | mean |range err| %% mean |bearing err| deg\n");
+    for (k = 0; k < FL_LM_KIND_COUNT; k++) {
+        const lr_vdiag_t *d = &res->vdiag[k];
+        if (d->n_obs == 0 && d->truth_visible == 0)
+            continue;
+        fprintf(f, "# vision %-12s %6u %6u %5u %6u | %6u %6u (%.0f%%) | %5.1f %5.2f\n", names[k],
+                d->n_obs, d->matched, d->wrong_kind, d->false_pos, d->truth_visible,
+                d->truth_found,
+                d->truth_visible ? 100.0 * d->truth_found / d->truth_visible : 0.0,
+                d->matched ? d->sum_abs_range_pct / d->matched : 0.0,
+                d->matched ? d->sum_abs_bearing_deg / d->matched : 0.0);
+        if (d->side_known > 0)
+            fprintf(f, "# vision %-12s side given %u, wrong %u (%.0f%%)\n", names[k],
+                    d->side_known, d->side_wrong, 100.0 * d->side_wrong / d->side_known);
+    }
+}
+
+/* ---- parameters by name ------------------------------------------------------ */
+
+#define LR_PARAMS(X)                                                                   \
+    X(odo_trans_q8) X(odo_turn_mm_per_rad) X(odo_rot_q8) X(odo_rot_per_m)              \
+    X(blur_kappa_min_q8) X(blur_kappa_gain_q8) X(blur_kappa_max_q8) X(blur_step_mm)    \
+    X(wide_core) X(odo_max_mm) X(ring_base_mm) X(ring_core_q8) X(ring_slope_mm)        \
+    X(ring_slope_q8) X(ring_track_q8) X(bearing_core) X(bearing_slope) X(head_min_core) \
+    X(head_min_slope) X(orient_core) X(orient_slope) X(bias_min_q8) X(head_bias_q8)    \
+    X(head_bias_outlier) X(confuse_q8) X(confuse_conf)                                 \
+    X(max_range_mm) X(cross_max_mm) X(min_height_q8) X(mode_radius_mm)                 \
+    X(track_radius_mm) X(switch_q8) X(track_min_q16) X(gate_q8) X(gate_run)            \
+    X(cons_shift) X(kidnap_q16) X(kidnap_rate_q8) X(neg_q8) X(neg_max) X(neg_track)    \
+    X(neg_kidnap) X(neg_margin_mm) X(neg_range_q8) X(neg_bearing) X(neg_head_max) X(neg_min_q8)
+
+/* fl_fuzzy_params_vision (src/loc/fuzzy.c, where its measurements are) for a
+ * NAO camera; lr_init applies fl_fuzzy_params_for_camera. */
+void lr_params_frames(fl_fuzzy_params_t *p)
+{
+    fl_fuzzy_params_vision(p, NULL);
+}
+
+int lr_param_set(fl_fuzzy_params_t *p, const char *assign)
+{
+    const char *eq = assign ? strchr(assign, '=') : NULL;
+    char *end;
+    long v;
+    size_t n;
+    if (p == NULL || eq == NULL)
+        return -1;
+    n = (size_t)(eq - assign);
+    v = strtol(eq + 1, &end, 10);
+    if (*end != '\0' || eq[1] == '\0')
+        return -1;
+#define LR_SET(name)                                                                   \
+    if (n == strlen(#name) && !strncmp(assign, #name, n)) {                            \
+        p->name = (__typeof__(p->name))v;                                              \
+        if ((long)p->name != v)                                                        \
+            return -1;                                                                 \
+        return fl_fuzzy_params_check(p) == FL_OK ? 0 : -1;                             \
+    }
+    LR_PARAMS(LR_SET)
+#undef LR_SET
+    return -1;
+}
+
+void lr_param_print(FILE *f, const fl_fuzzy_params_t *p, const fl_fuzzy_params_t *ref)
+{
+#define LR_PR(name)                                                                    \
+    if (ref == NULL || (long)p->name != (long)ref->name)                               \
+        fprintf(f, " %s=%ld", #name, (long)p->name);
+    LR_PARAMS(LR_PR)
+#undef LR_PR
+}

@@ -1,0 +1,276 @@
+/*
+ * tools/loc/locrun.h - host glue between the vision path (fieldloc/vision.h)
+ * and the fuzzy grid (fieldloc/fuzzy.h), shared by `fieldloc simulate
+ * --frames`, `fieldloc localize`, `fieldloc demo` and the UvA spot
+ * evaluation (`fieldloc localize --uva-spots`); plus the parser of the
+ * `localize` sequence format.  Host only (double, malloc).
+ *
+ * Engine (lr_t), per frame:
+ *     lr_predict(r, dx_mm, dy_mm, dtheta_rad);   odometry since the last
+ *                    call (robot frame at its start, fuzzy.h convention);
+ *                    rounded to integers with the remainders carried to
+ *                    the next call (no drift), split into several predict
+ *                    calls when a component exceeds params.odo_max_mm
+ *     lr_frame(r, &image, &camera_pose);         vision -> r->obs -> update
+ *     lr_estimate(r, &est);
+ *
+ * Sequence format (`fieldloc localize SEQUENCE.txt`), one item per line,
+ * '#' starts a comment, blank lines are skipped, tokens separated by blanks:
+ *     field NAME                 fl_field_find name (required, once)
+ *     camera NAME                fl_camera_model_find name (required, once)
+ *     prior X_MM Y_MM THETA_DEG  optional, before the first frame
+ *     frame IMAGE odo DX_MM DY_MM DTHETA_DEG head PITCH_RAD YAW_RAD
+ * IMAGE is a PPM (or an FLRAW fixture frame) relative to the sequence
+ * file's folder (absolute paths are used as given; no blanks in names).
+ * odo: motion since the previous frame, robot frame at the previous frame
+ * (x forward, y left, mm; dtheta CCW, degrees); the first frame's odometry
+ * is applied before it as well.  head: NAOqi HeadPitch (+ = down) and
+ * HeadYaw (+ = left), radians; the neck height and pitch offset are the
+ * camera model's defaults (default_neck_height_mm, default_pitch_offset).
+ * The parser is strict: an unknown keyword, a wrong number of tokens, a
+ * number that does not parse, is not finite or is out of range (|odo| <=
+ * 20000 mm, |dtheta| <= 3600 deg, |pitch|, |yaw| <= 3.2 rad), a repeated or
+ * late header, a prior after a frame, a missing field or camera, or no
+ * frame at all is an error naming the line.
+ */
+#ifndef FL_TOOLS_LOCRUN_H
+#define FL_TOOLS_LOCRUN_H
+
+#include "eval/detect.h"
+#include "fieldloc/fieldloc.h"
+#include "fieldloc/fuzzy.h"
+#include "fieldloc/vision.h"
+
+#include <stdint.h>
+#include <stdio.h>
+
+/* ---- engine ---------------------------------------------------------------- */
+
+typedef struct {
+    const fl_field_t *field;
+    const fl_camera_model_t *model;
+    det_ctx_t det;              /* color tables and vision workspace */
+    fl_fuzzy_t *grid;           /* malloc'd */
+    fl_obs_list_t obs;          /* the last frame's observations */
+    fl_camera_t cam;            /* the last frame's camera */
+    int32_t obs_used;           /* of the last frame */
+    int ignore_post_sides;      /* 1: post sides from vision are dropped
+                                   (FL_SIDE_UNKNOWN) before the update */
+    fl_obs_view_t view;         /* the last frame's view (negative
+                                   information, fl_fuzzy_update_view;
+                                   obs.h fl_obs_view_vision) */
+    double carry_x, carry_y, carry_a;   /* predict rounding remainders */
+    uint32_t frames;            /* lr_frame calls that ran vision */
+} lr_t;
+
+/* params NULL: fl_fuzzy_params_default.  0 on success, -1 (message in err)
+ * on a NULL field/model, out of memory or a grid that does not fit. */
+int lr_init(lr_t *r, const fl_field_t *field, const fl_camera_model_t *model,
+            const fl_fuzzy_params_t *params, char *err, int err_len);
+void lr_free(lr_t *r);
+
+void lr_predict(lr_t *r, double dx_mm, double dy_mm, double dtheta_rad);
+
+/* Vision on one frame with this camera pose, then the grid update.
+ * Returns the number of observations applied, -1 when the image size does
+ * not match the camera model or the pose is invalid (nothing applied). */
+int lr_frame(lr_t *r, const fl_image_t *img, const fl_camera_pose_t *pose);
+
+/* The same with observations from elsewhere (cache, simulator): camera
+ * set up for the pose (r->cam), r->obs = *obs, update.  -1 on a bad pose. */
+int lr_frame_obs(lr_t *r, const fl_camera_pose_t *pose, const fl_obs_list_t *obs);
+
+void lr_estimate(lr_t *r, fl_fuzzy_estimate_t *est);
+
+/* Camera pose from the model's defaults and NAOqi head angles (rad). */
+void lr_camera_pose(const fl_camera_model_t *m, double head_pitch_rad,
+                    double head_yaw_rad, fl_camera_pose_t *pose);
+
+/* Odometry accumulator: composes per-step motions (robot frame at the
+ * start of each step) into one motion in the robot frame at the start of
+ * the first; lr_odo_take returns it and restarts. */
+typedef struct {
+    double x, y, a;             /* mm, mm, rad */
+} lr_odo_t;
+
+void lr_odo_add(lr_odo_t *o, double dx_mm, double dy_mm, double dtheta_rad);
+
+/* Errors of an estimate against a true pose: position (mm) and heading
+ * (deg, 0..180), and the same against the 180-degree mirror of the truth
+ * (-x, -y, heading + 180). */
+void lr_pose_error(double ex, double ey, double eh_deg, double tx, double ty,
+                   double th_deg, double *pos_mm, double *head_deg,
+                   double *mirror_pos_mm, double *mirror_head_deg);
+
+/* mkdir -p.  0 when the folder exists afterwards. */
+int lr_mkdirs(const char *path);
+
+/* Binary angle -> degrees in [-180, 180). */
+double lr_deg(fl_angle_t a);
+
+/* The localizer parameters used with the vision path (simulate --frames,
+ * localize, demo): the firmware's fl_fuzzy_params_vision (fuzzy.h) for a
+ * NAO camera; lr_init applies fl_fuzzy_params_for_camera, which turns the
+ * tracking rings back to wide and cuts crossings at 2.5 m for cameras
+ * narrower than 320 px (the AIBO's) unless --param changed ring_track_q8. */
+void lr_params_frames(fl_fuzzy_params_t *p);
+
+/* Set one fuzzy parameter by name, "NAME=INTEGER" (field names of
+ * fl_fuzzy_params_t, raw units).  0 on success; -1 for an unknown name, a
+ * value that does not fit the field or params that fail
+ * fl_fuzzy_params_check. */
+int lr_param_set(fl_fuzzy_params_t *p, const char *assign);
+/* " name=value" for every field that differs from ref (all when NULL). */
+void lr_param_print(FILE *f, const fl_fuzzy_params_t *p, const fl_fuzzy_params_t *ref);
+
+/* ---- sequence files ------------------------------------------------------- */
+
+#define LR_PATH_MAX 1024
+
+typedef struct {
+    char image[LR_PATH_MAX];    /* resolved path */
+    int line;                   /* line number in the file, from 1 */
+    double odo_dx_mm, odo_dy_mm, odo_dtheta_deg;
+    double head_pitch_rad, head_yaw_rad;
+} lr_seq_frame_t;
+
+typedef struct {
+    const fl_field_t *field;
+    const fl_camera_model_t *camera;
+    int has_prior;
+    double prior_x_mm, prior_y_mm, prior_theta_deg;
+    lr_seq_frame_t *frame;      /* malloc'd, n entries */
+    int n, cap;
+} lr_seq_t;
+
+/* Parse the text (NUL-terminated); relative image names are joined to
+ * base_dir (NULL or "" = as given).  0 on success; -1 with "line N: ..."
+ * in err (may be NULL) and *out empty otherwise. */
+int lr_seq_parse(const char *text, const char *base_dir, lr_seq_t *out,
+                 char *err, int err_len);
+/* Read and parse a file (images relative to its folder). */
+int lr_seq_load(const char *path, lr_seq_t *out, char *err, int err_len);
+void lr_seq_free(lr_seq_t *s);
+
+/* Running a parsed sequence (what `fieldloc localize` does, documented in
+ * tools/cli/cmd_localize.c): per frame predict(odo) ; image (render_read_frame:
+ * PPM or FLRAW) ; vision ; update ; estimate ; "pose X Y THETA REL" line on
+ * out.  A frame whose image is missing, unreadable or of the wrong size is
+ * skipped with a message on stderr (odometry still applied, pose line still
+ * printed). */
+typedef struct {
+    fl_fuzzy_estimate_t est;
+    int obs, used, ok;           /* observations, applied, image used */
+} lr_frame_result_t;
+
+typedef struct {
+    FILE *out;                   /* pose lines, or NULL */
+    const char *name;            /* sequence name for messages */
+    const char *pictures;        /* folder for pictures, or NULL */
+    const char *picture_prefix;  /* file name prefix ("frame_") */
+    int picture_every;           /* every Nth frame (and the last) */
+    const fl_fuzzy_params_t *params;   /* NULL: defaults */
+    int quiet;                   /* 1: no messages for skipped frames */
+} lr_seq_opts_t;
+
+/* res (may be NULL) gets one entry per frame.  Returns the number of
+ * frames skipped, -1 on a setup error (message on stderr). */
+int lr_seq_run(const lr_seq_t *seq, const lr_seq_opts_t *o, lr_frame_result_t *res);
+
+
+/* ---- simulated walks (`simulate`, `demo`) ----------------------------------- */
+
+#include "world/render.h"
+#include "world/sim.h"
+
+/* Vision against the map, per observation kind (frames mode): every vision
+ * observation is placed on the field at the TRUE pose and matched to the
+ * nearest map landmark of a compatible kind (crossings and marks: any of
+ * L T X penalty/centre mark; posts: posts; circle: circle) within
+ * max(250 mm, 20 % of the range).  truth_visible: landmarks whose ground
+ * point projects at least 4 px inside the image within the scenario's
+ * max_range (the simulator's visibility rule); truth_found: those matched. */
+typedef struct {
+    uint32_t n_obs, matched, wrong_kind, false_pos;
+    uint32_t truth_visible, truth_found;
+    double sum_abs_range_pct, sum_abs_bearing_deg;   /* over matched */
+    uint32_t side_known, side_wrong;   /* posts: matched with a side given,
+                                          and of those, the wrong side */
+} lr_vdiag_t;
+
+struct lr_walk_step;
+
+typedef struct {
+    int frames;                   /* 1: rendered frames -> vision -> grid;
+                                     0: the simulator's observations */
+    int every;                    /* frames mode: vision and update on every
+                                     Nth step (odometry accumulated between) */
+    long max_steps;               /* < 0: the whole walk */
+    int threads;                  /* frames mode: rendering threads (0:
+                                     lr_threads_default) */
+    int ignore_post_sides;        /* lr_t.ignore_post_sides */
+    const char *obs_cache;        /* frames mode, for parameter studies:
+                                     when this file holds the vision
+                                     observations of the same walk (field,
+                                     seed, every), they are read instead of
+                                     rendering (vision does not depend on
+                                     the localizer); otherwise they are
+                                     computed and written to it.  NULL: off */
+    const fl_fuzzy_params_t *params;   /* NULL: defaults */
+    FILE *steps;                  /* per-record "step ..." lines; NULL: none */
+    int print_obs;                /* 1: after each step line, one "#  obs"
+                                     line per observation of the record */
+    /* called after every record (frames mode: every vision step) */
+    void (*hook)(void *user, const struct lr_walk_step *ws);
+    void *user;
+} lr_walk_opts_t;
+
+typedef struct lr_walk_step {
+    const sim_scenario_t *sc;
+    const sim_step_t *st;
+    lr_t *lr;                     /* grid, obs, cam of this record */
+    const fl_fuzzy_estimate_t *est;
+    const render_frame_t *frame;  /* frames mode; NULL otherwise */
+    long record;                  /* record index */
+    double t_s, pos_err_mm, head_err_deg;   /* error used by the metrics */
+    int half_known;
+    unsigned events;              /* SIM_EV_* of the simulator steps since the
+                                     previous record (this one included) */
+} lr_walk_step_t;
+
+typedef struct {
+    long steps, records, used;    /* simulator steps, records, records in
+                                     the RMSE */
+    double dt_s;                  /* seconds per record */
+    double pos_rmse_mm, heading_rmse_deg;   /* NAN when used == 0 */
+    double converge_s;            /* INFINITY if never */
+    double kidnap_recover_s;      /* NAN: no kidnap, INFINITY: never */
+    double penalty_recover_s;     /* the same from the first penalty
+                                     placement (excluded like the kidnap's
+                                     window: the two touchline spots are
+                                     equally likely until a landmark is seen) */
+    double pos_rmse_all_mm, heading_rmse_all_deg;  /* after convergence,
+                                     nothing excluded (information) */
+    long flips;
+    double final_pos_err_mm, final_head_err_deg;
+    fl_fuzzy_stats_t stats;
+    lr_vdiag_t vdiag[FL_LM_KIND_COUNT];
+    double render_s, vision_grid_s;   /* wall time spent */
+} lr_walk_result_t;
+
+/* Rendering threads: $FIELDLOC_THREADS when set, else the online CPUs;
+ * 1..LR_MAX_THREADS.  Results do not depend on it (each frame is rendered
+ * from its own scene, deterministically). */
+#define LR_MAX_THREADS 8
+int lr_threads_default(void);
+
+/* Run the walk (metrics as documented in tools/cli/cmd_simulate.c).  0 on
+ * success, -1 with a message. */
+int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
+                lr_walk_result_t *res, char *err, int err_len);
+/* The summary lines pos_rmse_mm ... flips (exact format). */
+void lr_walk_print_summary(FILE *f, const lr_walk_result_t *res);
+/* "# vision ..." lines of the per-kind diagnosis. */
+void lr_walk_print_vdiag(FILE *f, const lr_walk_result_t *res);
+
+#endif

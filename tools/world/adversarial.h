@@ -1,0 +1,23 @@
+/*
+ * tools/world/adversarial.h - hostile frames for the robustness tests and the
+ * worst-case timing (issue 7): all green, all white, all yellow, black,
+ * saturated, random noise, checkerboards of line-width and single-pixel
+ * squares, stripes; any size, any format, any row padding.
+ */
+#ifndef FL_TOOLS_ADVERSARIAL_H
+#define FL_TOOLS_ADVERSARIAL_H
+
+#include "fieldloc/image.h"
+
+typedef enum { ADV_GREEN, ADV_WHITE, ADV_YELLOW, ADV_BLACK, ADV_SATURATED, ADV_NOISE,
+               ADV_CHECKER_LINE, ADV_CHECKER_PIXEL, ADV_STRIPES, ADV_COUNT } adv_kind_t;
+
+const char *adv_name(adv_kind_t k);
+
+/* Build a frame of kind k, w x h, format f, rows padded by pad bytes
+ * (stride > width); returns the malloc'd buffer (free it) and fills the
+ * view and the status of its validation (odd YUYV widths are rejected). */
+uint8_t *adv_frame(adv_kind_t k, int w, int h, fl_pixel_format_t f, int pad,
+                   fl_image_t *img, fl_status_t *st);
+
+#endif
