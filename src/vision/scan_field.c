@@ -10,18 +10,18 @@
 
 #include <string.h>
 
-/* R, G, B of the column's pixel in row v. */
-static void col_rgb(const col_t *c, int32_t v, uint8_t rgb[3])
+/* R, G, B of the column's pixel at byte offsets oy (Y, or R of RGB888),
+ * ocb, ocr from the column's first row. */
+static void col_rgb(const col_t *c, size_t oy, size_t ocb, size_t ocr, uint8_t rgb[3])
 {
-    size_t vv = (size_t)v;
     if (c->rgb) {
-        const uint8_t *q = c->y + vv * c->sy;
+        const uint8_t *q = c->y + oy;
         rgb[0] = q[0];
         rgb[1] = q[1];
         rgb[2] = q[2];
         return;
     }
-    fl_rgb_from_ycbcr(c->y[vv * c->sy], c->cb[vv * c->scb], c->cr[vv * c->scr], rgb);
+    fl_rgb_from_ycbcr(c->y[oy], c->cb[ocb], c->cr[ocr], rgb);
 }
 
 static int32_t hue_wrap(int32_t h)
@@ -48,13 +48,22 @@ void fl_scan_internal_estimate_field(fl_scan_t *s, const frame_t *f)
     memset(s->hue_hist, 0, sizeof s->hue_hist);
     for (i = 0; i < s->cols; i += ecs) {
         int32_t jf = s->first_row[i];
+        size_t vv, dv, oy, ocb, ocr;
         col_t col;
         col_init(&col, f, i * f->cs);
-        for (j = (jf + ers - 1) / ers * ers; j < s->rows; j += ers) {
+        j = (jf + ers - 1) / ers * ers;
+        /* the sample's byte offsets, stepped from sample to sample */
+        vv = (size_t)j * (size_t)f->rs;
+        dv = (size_t)ers * (size_t)f->rs;
+        oy = vv * col.sy;
+        ocb = vv * col.scb;
+        ocr = vv * col.scr;
+        for (; j < s->rows; j += ers, oy += dv * col.sy, ocb += dv * col.scb,
+             ocr += dv * col.scr) {
             uint8_t rgb[3];
             fl_hsv_t hsv;
             int32_t dh;
-            col_rgb(&col, j * f->rs, rgb);
+            col_rgb(&col, oy, ocb, ocr, rgb);
             hsv = fl_hsv_from_rgb(rgb[0], rgb[1], rgb[2]);
             dh = hsv.h - centre;
             dh = dh > 90 ? dh - 180 : (dh < -90 ? dh + 180 : dh);
