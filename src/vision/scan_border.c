@@ -288,7 +288,7 @@ static bool window_flat(const int16_t *b, const int32_t *wx, int32_t wh, int32_t
 /* The level of a flat window is only needed where a column steps up from
  * it, so the flatness is checked lazily there (same result as checking it
  * at every column: the window does not change in between). */
-void fl_scan_internal_reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns, int32_t dir)
+static void reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns, int32_t dir)
 {
     const int16_t *b = s->first_row;
     int32_t t = ns / 2 > 2 ? ns / 2 : 2, rows = s->rows, cols = s->cols;
@@ -333,6 +333,14 @@ void fl_scan_internal_reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns, i
         if (wn < BUMP_WIN)
             wn++;
     }
+}
+
+/* reject_bumps left to right, then right to left, so that bumps at
+ * either image edge are entered. */
+void fl_scan_internal_reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns)
+{
+    reject_bumps(s, f, ns, 1);
+    reject_bumps(s, f, ns, -1);
 }
 
 /* Columns without a border between columns with one: a field line running

@@ -183,9 +183,8 @@ void fl_scan_internal_band(fl_scan_t *s, const frame_t *f, int32_t w, int32_t j0
 void fl_scan_internal_extend_borders(fl_scan_t *s, const frame_t *f, int32_t ns,
                                      int32_t lo, int32_t max_white);
 /* Phase A' (scan_border.c): green clutter bumps above the flat border
- * rejected, scanning in direction dir (+1 left to right, -1 back). */
-void fl_scan_internal_reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns,
-                                   int32_t dir);
+ * rejected (left to right, then right to left). */
+void fl_scan_internal_reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns);
 /* Phase A' (scan_border.c): columns without a border between columns
  * with one get the top of their lowest stretch of field colors. */
 void fl_scan_internal_repair_borders(fl_scan_t *s, const frame_t *f);
