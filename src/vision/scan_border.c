@@ -10,13 +10,6 @@
  */
 #include "scan_int.h"
 
-/* Pixel layout of a frame for col_class_k: 0 RGB, 1 YUYV (one stride for
- * the three bytes), 2 planar (a stride per plane). */
-static int32_t col_kind(const frame_t *f)
-{
-    return f->fmt == FL_FMT_RGB888 ? 0 : (f->fmt == FL_FMT_YUYV422 ? 1 : 2);
-}
-
 /* Green in the top grid row within 32 px of column i (left or right): a
  * white stretch from the border up to the top of an all-ground image is a
  * line cut by the top when carpet shows beside it there; the floor beyond a

@@ -88,6 +88,13 @@ static FL_INLINE int32_t px_class_ycc(const fl_color_table_t *ct, unsigned y, un
     return ct->pattern[(size_t)ct->chroma[(cb << 8) | cr] + y];
 }
 
+/* Pixel layout of a frame for col_class_k: 0 RGB, 1 YUYV (one stride for
+ * the three bytes), 2 planar (a stride per plane). */
+static inline int32_t col_kind(const frame_t *f)
+{
+    return f->fmt == FL_FMT_RGB888 ? 0 : (f->fmt == FL_FMT_YUYV422 ? 1 : 2);
+}
+
 /* col_class for a walk specialised on kind (a constant where inlined):
  * no test of the layout per sample, one offset for the packed ones. */
 static FL_INLINE int32_t col_class_k(const col_t *c, const fl_color_table_t *ct,

@@ -72,8 +72,10 @@ static inline int32_t trace_walk(fl_scan_t *s, const fl_color_table_t *ct,
 
 /* Column i with its post_top bit set (phase B or the repair saw yellow
  * right above the border): follow the yellow up, keep it, and a foot at
- * the border when it is a post. */
-static void trace_post(fl_scan_t *s, const frame_t *f, int32_t i)
+ * the border when it is a post.  kind: the frame's pixel layout
+ * (col_kind; a constant where inlined, so that neither the two samples
+ * above the border nor the walk test the layout per sample). */
+static FL_INLINE void trace_post(fl_scan_t *s, const frame_t *f, int32_t i, int32_t kind)
 {
     const fl_color_table_t *ct = f->ct;
     int32_t jb = s->first_row[i], jj, n;
@@ -81,30 +83,23 @@ static void trace_post(fl_scan_t *s, const frame_t *f, int32_t i)
     col_t col;
     if (jb >= s->rows)
         return;
-    col_init(&col, f, i * f->cs);
+    col_init_k(&col, f, i * f->cs, kind);
     for (jj = jb - 1; jj >= 0 && jj >= jb - 2; jj--)
-        if (col_class(&col, ct, jj * f->rs) == FL_CLASS_YELLOW) {
+        if (col_class_k(&col, ct, jj * f->rs, kind) == FL_CLASS_YELLOW) {
             yellow = true;
             break;
         }
     if (!yellow)
         return;
-    /* a post is tall: one walk per pixel layout (the branch on it out of
-     * the loop; YUYV and RGB step one offset for all three bytes) */
-    if (col.rgb)
-        n = trace_walk(s, ct, &col, i, jb, 0);
-    else if (col.scb == col.sy && col.scr == col.sy)
-        n = trace_walk(s, ct, &col, i, jb, 1);
-    else
-        n = trace_walk(s, ct, &col, i, jb, 2);
+    n = trace_walk(s, ct, &col, i, jb, kind);
     s->yellow_cols[i] = (uint16_t)(s->yellow_cols[i] + n);
     if (n >= 2)   /* a post, not a yellowish speck at the carpet edge */
         add_foot(s, i, i * f->cs, s->border_v[i]);
 }
 
-/* The columns with a post_top bit, left to right (the highest bit of
- * each word first). */
-void fl_scan_internal_trace_posts(fl_scan_t *s, const frame_t *f)
+/* trace_post for the columns with a post_top bit, left to right (the
+ * highest bit of each word first), for one pixel layout. */
+static FL_INLINE void trace_all(fl_scan_t *s, const frame_t *f, int32_t kind)
 {
     int32_t w;
     for (w = 0; w < s->words; w++) {
@@ -112,7 +107,20 @@ void fl_scan_internal_trace_posts(fl_scan_t *s, const frame_t *f)
         while (x != 0) {
             int32_t b = highest_bit(x);
             x &= ~(1ULL << b);
-            trace_post(s, f, 32 * w + 31 - (b >> 1));
+            trace_post(s, f, 32 * w + 31 - (b >> 1), kind);
         }
     }
+}
+
+/* A post is tall: one loop per pixel layout (the branch on it out of the
+ * walks; YUYV and RGB step one offset for all three bytes). */
+void fl_scan_internal_trace_posts(fl_scan_t *s, const frame_t *f)
+{
+    int32_t kind = col_kind(f);
+    if (kind == 1)
+        trace_all(s, f, 1);
+    else if (kind == 0)
+        trace_all(s, f, 0);
+    else
+        trace_all(s, f, 2);
 }
