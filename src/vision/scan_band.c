@@ -47,7 +47,10 @@ static FL_INLINE int32_t px_luma_k(const frame_t *f, int32_t u, int32_t v, int32
 }
 
 /* ---- word classification (phase B) ----------------------------------------------
- * 32 cells -> 64 bits, cell k at bits 63 - 2k, 62 - 2k. */
+ * 32 cells -> 64 bits, cell k at bits 63 - 2k, 62 - 2k.  Only the word_*
+ * functions classify rows (plus word_generic's per-cell lookups): the
+ * classify_only rows of tools/bench/callgrind.sh collect the functions
+ * named word_*, so the name prefix is part of that measurement. */
 
 /* YUYV at full resolution: 16 pixel pairs from q (an even pixel). */
 static uint64_t word_yuyv_pairs(const uint8_t *q, const uint16_t *chroma,

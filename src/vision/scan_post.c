@@ -1,7 +1,7 @@
 /*
  * src/vision/scan_post.c - phase C of the column scanner (see scan.c for
  * the algorithm, include/fieldloc/scan.h for the outputs): goal posts.
- * Yellow right above a border (phase B, A' and the repair set the
+ * Yellow right above a border (phase A' and the repair set the
  * column's post_top bit) is followed upward into the class map and a foot
  * recorded at the border.  Each marked column is read once, from the
  * border up, one pixel layout per walk.
