@@ -136,7 +136,7 @@ typedef struct {
     uint16_t hue_hist[180];
     /* phase B's border row (gend_row) and the first non-green grid row
      * below it (gend; none when the column's bit in gend_none is set), for
-     * src/vision/scan.c, rerun_column */
+     * src/vision/scan_border.c, rerun_column */
     int16_t gend_row[FL_SCAN_MAX_COLS];
     int16_t gend[FL_SCAN_MAX_COLS];
     uint64_t gend_none[FL_SCAN_WORDS];
