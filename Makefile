@@ -6,7 +6,9 @@ SHELL := /bin/bash
 #   make test       host unit and fixture tests; ends with "N passed, N failed"
 #   make check      firmware rules: strict C99 warnings as errors, no FP
 #                   (-mgeneral-regs-only), no allocator symbols, fl_ prefix,
-#                   no mutable file-scope state, allowed libc headers only
+#                   no mutable file-scope state, allowed libc headers only;
+#                   include layering, private _int.h headers, no include
+#                   circles, no src/ function over 150 lines
 #   make cross-test test suite under qemu-user for i686, mipsel and mips,
 #                   output compared line by line with the host's
 #   make test-exhaustive  the sweeps too long for every run (all uint32 isqrt)

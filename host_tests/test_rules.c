@@ -1,8 +1,12 @@
 /*
  * host_tests/test_rules.c - the firmware-rule checker (tools/build/check_firmware.sh)
  * must catch each kind of violation: fed a tiny source tree that breaks one
- * rule, it fails and names the rule; fed a clean one, it passes.  Needs a
- * shell and the host compiler, so it is skipped under --quick (qemu).
+ * rule, it fails and names the rule; fed a clean one, it passes.  The tree is
+ * laid out like the real one (src/<layer>/, a copy of include/, tools/,
+ * host_tests/, an allow-list of long functions), so the structure rules
+ * (layering, private headers, include circles, function length; in
+ * tools/build/check_layers.py) get planted violations too.  Needs a shell,
+ * python3 and the host compiler, so it is skipped under --quick (qemu).
  */
 #include "test.h"
 
@@ -10,25 +14,49 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int run_checker(const char *name, const char *source, char *log, size_t n)
+/* A planted file: path under the temp tree (src/..., include/fieldloc/...,
+ * tools/..., host_tests/..., or long.txt, the allow-list of long functions). */
+struct planted { const char *path, *text; };
+
+static int write_file(const char *dir, const char *rel, const char *text)
 {
-    char dir[256], path[512], cmd[1024];
+    char path[512], cmd[1024];
     FILE *f;
-    int rc;
-    size_t got;
-    snprintf(dir, sizeof dir, "build/rules/%s", name);
-    snprintf(cmd, sizeof cmd, "rm -rf %s && mkdir -p %s/src", dir, dir);
+    snprintf(path, sizeof path, "%s/%s", dir, rel);
+    snprintf(cmd, sizeof cmd, "mkdir -p \"$(dirname %s)\"", path);
     if (system(cmd) != 0)
         return -1;
-    snprintf(path, sizeof path, "%s/src/t.c", dir);
     f = fopen(path, "w");
     if (!f)
         return -1;
-    fputs(source, f);
+    fputs(text, f);
     fclose(f);
+    return 0;
+}
+
+/* Build build/rules/<name>: a copy of include/, empty tools/ and host_tests/,
+ * an empty long-function list, then the planted files; run the checker on
+ * it.  Returns the shell status, or -1 when the tree cannot be made. */
+static int run_tree(const char *name, const struct planted *files, size_t nfiles,
+                    char *log, size_t n)
+{
+    char dir[256], path[512], cmd[2048];
+    FILE *f;
+    int rc;
+    size_t got, i;
+    snprintf(dir, sizeof dir, "build/rules/%s", name);
     snprintf(cmd, sizeof cmd,
-             "SRC_DIR=%s/src INC_DIR=include BUILD=%s/build CC=${CC:-cc} "
-             "sh tools/build/check_firmware.sh > %s/log 2>&1", dir, dir, dir);
+             "rm -rf %s && mkdir -p %s/src %s/tools %s/host_tests && cp -r include %s/ "
+             "&& : > %s/long.txt", dir, dir, dir, dir, dir, dir);
+    if (system(cmd) != 0)
+        return -1;
+    for (i = 0; i < nfiles; i++)
+        if (write_file(dir, files[i].path, files[i].text) != 0)
+            return -1;
+    snprintf(cmd, sizeof cmd,
+             "SRC_DIR=%s/src INC_DIR=%s/include TOOLS_DIR=%s/tools TESTS_DIR=%s/host_tests "
+             "LONG_FUNCTIONS=%s/long.txt BUILD=%s/build CC=${CC:-cc} "
+             "sh tools/build/check_firmware.sh > %s/log 2>&1", dir, dir, dir, dir, dir, dir, dir);
     rc = system(cmd);
     snprintf(path, sizeof path, "%s/log", dir);
     f = fopen(path, "r");
@@ -37,6 +65,14 @@ static int run_checker(const char *name, const char *source, char *log, size_t n
     if (f)
         fclose(f);
     return rc;
+}
+
+static int run_checker(const char *name, const char *source, char *log, size_t n)
+{
+    struct planted one;
+    one.path = "src/base/t.c";
+    one.text = source;
+    return run_tree(name, &one, 1, log, n);
 }
 
 static const char *clean_src =
@@ -105,6 +141,141 @@ static void test_headers(void)
            "header outside the allowed libc subset");
 }
 
+static void expect_tree(const char *name, const struct planted *files, size_t nfiles,
+                        int should_pass, const char *needle)
+{
+    static char log[16384];
+    int rc = run_tree(name, files, nfiles, log, sizeof log);
+    CHECK(rc != -1);
+    if (should_pass)
+        CHECK(rc == 0);
+    else
+        CHECK(rc != 0);
+    if (needle && !strstr(log, needle))
+        t_fail_msg(__FILE__, __LINE__, "%s: log lacks \"%s\":\n%s", name, needle, log);
+}
+
+#define NPLANTED(a) (sizeof (a) / sizeof (a)[0])
+
+static void test_layer_vision_fuzzy(void)
+{
+    struct planted t[2];
+    t[0].path = "src/base/t.c";
+    t[0].text = clean_src;
+    t[1].path = "src/vision/v.c";
+    t[1].text = "#include \"fieldloc/fuzzy.h\"\nint fl_t_v(void) { return 0; }\n";
+    expect_tree("layer_vision_fuzzy", t, NPLANTED(t), 0,
+                "(vision) includes fieldloc/fuzzy.h (loc)");
+}
+
+static void test_layer_loc_camera(void)
+{
+    struct planted t[2];
+    t[0].path = "src/base/t.c";
+    t[0].text = clean_src;
+    t[1].path = "src/loc/l.c";
+    t[1].text = "#include \"fieldloc/camera.h\"\nint fl_t_l(void) { return 0; }\n";
+    expect_tree("layer_loc_camera", t, NPLANTED(t), 0, "(loc) includes fieldloc/camera.h (model)");
+}
+
+static void test_layer_loc_header_scan(void)
+{
+    struct planted t[2];
+    t[0].path = "src/base/t.c";
+    t[0].text = clean_src;
+    t[1].path = "include/fieldloc/localizer.h";
+    t[1].text = "#ifndef FL_T_LOCALIZER_H\n#define FL_T_LOCALIZER_H\n"
+                "#include \"fieldloc/scan.h\"\n#endif\n";
+    expect_tree("layer_loc_header_scan", t, NPLANTED(t), 0,
+                "localizer.h (loc) includes fieldloc/scan.h (vision)");
+}
+
+static void test_layer_unknown(void)
+{
+    struct planted t[3];
+    t[0].path = "src/base/t.c";
+    t[0].text = clean_src;
+    t[1].path = "include/fieldloc/mystery.h";
+    t[1].text = "#include \"fieldloc/common.h\"\n";
+    expect_tree("layer_unknown_header", t, 2, 0,
+                "assign a layer to mystery.h in tools/build/check_layers.py");
+    t[1].path = "src/extra/e.c";
+    t[1].text = "int fl_t_e(void) { return 0; }\n";
+    expect_tree("layer_unknown_folder", t, 2, 0, "assign a layer to src folder");
+}
+
+static void test_private_headers(void)
+{
+    struct planted t[3];
+    t[0].path = "src/base/t.c";
+    t[0].text = clean_src;
+    t[1].path = "src/vision/scan_int.h";
+    t[1].text = "#include \"fieldloc/scan.h\"\n";
+    t[2].path = "src/vision/scan_fast.c";
+    t[2].text = "#include \"scan_int.h\"\nint fl_t_s(void) { return 0; }\n";
+    expect_tree("private_same_stage", t, 3, 1, "all firmware rules hold");
+    t[2].path = "src/vision/lines_walk.c";
+    expect_tree("private_other_stage", t, 3, 0, "private header scan_int.h included by");
+    t[2].path = "tools/eval/probe.c";
+    t[2].text = "#include \"../../src/vision/scan_int.h\"\n";
+    expect_tree("private_from_tools", t, 3, 0, "private header scan_int.h included by");
+}
+
+static void test_include_circle(void)
+{
+    struct planted t[5];
+    t[0].path = "src/base/t.c";
+    t[0].text = clean_src;
+    t[1].path = "src/base/p.h";
+    t[1].text = "#ifndef FL_T_P_H\n#define FL_T_P_H\n#include \"q.h\"\n#endif\n";
+    t[2].path = "src/base/q.h";
+    t[2].text = "#ifndef FL_T_Q_H\n#define FL_T_Q_H\n#include \"p.h\"\n#endif\n";
+    expect_tree("circle_src_files", t, 3, 0, "include circle in src/include: ");
+    /* tools folders: a -> b is fine, a -> b -> a is a circle (no file circle) */
+    t[1].path = "tools/a/x.c";
+    t[1].text = "#include \"b/y.h\"\n";
+    t[2].path = "tools/b/y.h";
+    t[2].text = "int y(void);\n";
+    t[3].path = "tools/b/z.c";
+    t[3].text = "#include \"a/w.h\"\n";
+    t[4].path = "tools/a/w.h";
+    t[4].text = "int w(void);\n";
+    expect_tree("circle_tools_dag", t, 3, 1, "all firmware rules hold");
+    expect_tree("circle_tools_folders", t, 5, 0, "include circle among tools folders: a -> b -> a");
+}
+
+/* "#include <stdint.h>", a blank line, then a function of exactly `lines'
+ * lines from its signature to its closing brace. */
+static const char *long_function(int lines)
+{
+    static char buf[8192];
+    size_t k;
+    int i;
+    k = (size_t)snprintf(buf, sizeof buf, "#include <stdint.h>\n\nint32_t fl_t_long(int32_t x)\n{\n");
+    for (i = 0; i < lines - 4; i++)
+        k += (size_t)snprintf(buf + k, sizeof buf - k, "    x += 1;\n");
+    snprintf(buf + k, sizeof buf - k, "    return x;\n}\n");
+    return buf;
+}
+
+static void test_function_length(void)
+{
+    struct planted t[3];
+    t[0].path = "src/base/t.c";
+    t[0].text = clean_src;
+    t[1].path = "src/vision/long.c";
+    t[1].text = long_function(150);
+    expect_tree("function_150_lines", t, 2, 1, "all firmware rules hold");
+    t[1].text = long_function(151);
+    expect_tree("function_151_lines", t, 2, 0, "fl_t_long is 151 lines");
+    t[2].path = "long.txt";
+    t[2].text = "# allowed\nvision/long.c:fl_t_long\n";
+    expect_tree("function_151_listed", t, 3, 1, "all firmware rules hold");
+    t[1].text = long_function(150);
+    expect_tree("function_listed_short", t, 3, 0,
+                "vision/long.c:fl_t_long is no longer longer than 150 lines");
+}
+
 void suite_rules(void)
 {
     if (t_quick)
@@ -116,4 +287,11 @@ void suite_rules(void)
     t_run("rules.mutable_state_detected", test_state);
     t_run("rules.prefix_enforced", test_prefix);
     t_run("rules.libc_headers_limited", test_headers);
+    t_run("rules.layer_vision_includes_fuzzy", test_layer_vision_fuzzy);
+    t_run("rules.layer_loc_includes_camera", test_layer_loc_camera);
+    t_run("rules.layer_loc_header_includes_scan", test_layer_loc_header_scan);
+    t_run("rules.layer_unknown_header_or_folder", test_layer_unknown);
+    t_run("rules.private_header_other_stage_or_tools", test_private_headers);
+    t_run("rules.include_circles", test_include_circle);
+    t_run("rules.function_length", test_function_length);
 }

@@ -13,12 +13,24 @@
 #      .data, .bss, .sdata, .sbss or common; const data in .rodata or
 #      .data.rel.ro (relocated, read-only after start-up) is fine;
 #   5. src/ and include/ include only <stdint.h> <stdbool.h> <stddef.h>
-#      <string.h> <limits.h> and fieldloc's own headers.
+#      <string.h> <limits.h> and fieldloc's own headers;
+#  6-9 (tools/build/check_layers.py, which holds the layer table):
+#   6. include layering: each direct #include of a fieldloc header from
+#      include/fieldloc/ or src/<folder>/ follows the layers (base, model, obs,
+#      vision, loc, umbrella) or a listed exception; an unclassified header
+#      or src/ folder fails ("assign a layer to X");
+#   7. private headers: src/<folder>/<stage>_int.h only from that folder's
+#      <stage>*.c; never from another stage, include/, tools/ or host_tests/;
+#   8. no include circles among src/ and include/ files, among tools/ files,
+#      nor among tools/ folders (io <- world <- eval <- loc <- bench <- cli);
+#   9. no src/ function longer than 150 lines, except those listed in
+#      tools/build/long_functions.txt (a listed one that got short fails too).
 set -u
 CC=${CC:-cc}
 BUILD=${BUILD:-build}
 SRC=${SRC_DIR:-src}        # overridable so host_tests/test_rules.c can feed
 INC=${INC_DIR:-include}    # deliberately broken sources to this script
+# TOOLS_DIR, TESTS_DIR and LONG_FUNCTIONS (rules 6-9) are read by check_layers.py
 out="$BUILD/check"
 rm -rf "$out"; mkdir -p "$out"
 fail=0
@@ -95,6 +107,10 @@ for h in $inc; do
   esac
 done
 say "system headers: $(echo $inc | tr '\n' ' ')"
+
+# 6-9. layering, private headers, include circles, function length
+PY=${PYTHON:-python3}
+SRC_DIR="$SRC" INC_DIR="$INC" "$PY" "$(dirname "$0")/check_layers.py" || fail=1
 
 if [ $fail -ne 0 ]; then echo "check: FAILED"; exit 1; fi
 echo "check: all firmware rules hold"
