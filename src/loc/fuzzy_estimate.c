@@ -189,46 +189,39 @@ static void trimmed_sums(const fl_fuzzy_t *g, const win_t *wn, fl_angle_t h,
         }
 }
 
-bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
+/* Step 1: the reference region: the tracked mode, else the prior's (a
+ * pose, or the own half); kind 0 when there is none. */
+static void mode_reference(const fl_fuzzy_t *g, ref_t *ref)
 {
-    const fl_fuzzy_params_t *p;
-    int nx, ny, ix, iy, it, gi = -1, li = -1, ci;
-    uint32_t hg = 0, hl = 0, dl = UINT32_MAX, hp = 0, nmode = 0;
-    int32_t px, py, R;
-    fl_angle_t rh, heading;
-    int64_t sw = 0, sb = 0;
-    int64_t scos = 0, ssin = 0, tcos = 0, tsin = 0, swh = 0, twh = 0;
-    ref_t ref;
-    win_t wn;
-    int32_t bin[HBINS];
-    bool chk;
-    uint32_t rel, area, one_minus_b;
-    if (out != NULL)
-        memset(out, 0, sizeof *out);
-    if (!fz_ready(g) || out == NULL)
-        return false;
-    p = &g->params;
-    nx = g->nx;
-    ny = g->ny;
-    memset(&ref, 0, sizeof ref);
+    memset(ref, 0, sizeof *ref);
     if (g->track_valid) {
-        ref.kind = 2;
-        ref.x = g->track_x_mm;
-        ref.y = g->track_y_mm;
-        ref.h = g->track_heading;
-        ref.r = fz_clamp32(p->track_radius_mm, FZ_CELL, 5000);
-        ref.check_heading = mirror_near(g, ref.x, ref.y, ref.r);
+        ref->kind = 2;
+        ref->x = g->track_x_mm;
+        ref->y = g->track_y_mm;
+        ref->h = g->track_heading;
+        ref->r = fz_clamp32(g->params.track_radius_mm, FZ_CELL, 5000);
+        ref->check_heading = mirror_near(g, ref->x, ref->y, ref->r);
     } else if (g->prior.kind == FL_FUZZY_PRIOR_POSE) {
-        ref.kind = 2;
-        ref.x = g->prior.x_mm;
-        ref.y = g->prior.y_mm;
-        ref.h = g->prior.heading;
-        ref.r = g->prior.radius_mm;
-        ref.check_heading = true;
+        ref->kind = 2;
+        ref->x = g->prior.x_mm;
+        ref->y = g->prior.y_mm;
+        ref->h = g->prior.heading;
+        ref->r = g->prior.radius_mm;
+        ref->check_heading = true;
     } else if (g->prior.kind == FL_FUZZY_PRIOR_HALF) {
-        ref.kind = 1;
-        ref.half = g->prior.half;
+        ref->kind = 1;
+        ref->half = g->prior.half;
     }
+}
+
+/* Step 2: the dominant mode's cell: the global peak, unless the reference
+ * region's peak (ties: the nearest to the reference) is at least
+ * switch_q8 of it (half prior: 1/8).  -1 for an empty grid; *switched when
+ * a tracked mode is given up. */
+static int mode_cell(const fl_fuzzy_t *g, const ref_t *ref, bool *switched)
+{
+    int nx = g->nx, ny = g->ny, ix, iy, gi = -1, li = -1, ci;
+    uint32_t hg = 0, hl = 0, dl = UINT32_MAX;
     for (iy = 0; iy < ny; iy++) {
         for (ix = 0; ix < nx; ix++) {
             int i = iy * nx + ix;
@@ -240,7 +233,7 @@ bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
                 hg = c->height;
                 gi = i;
             }
-            if (ref.kind != 0 && in_ref(g, &ref, ix, iy, c, &d2) &&
+            if (ref->kind != 0 && in_ref(g, ref, ix, iy, c, &d2) &&
                 (c->height > hl || (c->height == hl && d2 < dl))) {
                 hl = c->height;
                 dl = d2;
@@ -249,81 +242,111 @@ bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
         }
     }
     if (gi < 0)                         /* impossible for a valid grid */
-        return false;
+        return -1;
     /* the tracked mode (or a pose prior) is kept while its peak is at least
      * switch_q8 of the global one; the half prior (kick-off, penalty
      * placement: told by the game) while it is at least 1/8 of it */
-    ci = (li >= 0 && hl * 256u >= hg * (ref.kind == 1 ? 32u : p->switch_q8)) ? li : gi;
-    out->switched = g->track_valid && ci != li;
-    px = fz_centre_x(g, ci % nx) + g->cell[ci].off_x_mm;
-    py = fz_centre_y(g, ci / nx) + g->cell[ci].off_y_mm;
-    rh = g->track_valid && !out->switched ? g->track_heading
-                                          : window_heading(g, px, py, g->cell[ci].centre);
-    R = fz_clamp32(p->mode_radius_mm, FZ_CELL, 2000);
-    chk = mirror_near(g, px, py, R);
-    memset(&wn, 0, sizeof wn);
+    ci = (li >= 0 && hl * 256u >= hg * (ref->kind == 1 ? 32u : g->params.switch_q8)) ? li : gi;
+    *switched = g->track_valid && ci != li;
+    return ci;
+}
+
+/* The sums of one mean-shift iteration over the mode window. */
+typedef struct {
+    int64_t sw, sb;                  /* weight, weighted relative bias */
+    int64_t scos, ssin, swh;         /* heading: all cells */
+    int64_t tcos, tsin, twh;         /* heading: within TRIM_ANGLE of rh */
+    int32_t bin[HBINS];              /* heading histogram */
+    uint32_t nmode;                  /* cells in the window */
+} msum_t;
+
+/* Highest cell of the window (within R of its centre; heading agreeing
+ * when the mirror may be inside). */
+static uint32_t window_peak(const fl_fuzzy_t *g, const win_t *wn)
+{
+    int ix, iy;
+    uint32_t hp = 0;
+    for (iy = wn->iy0; iy <= wn->iy1; iy++)
+        for (ix = wn->ix0; ix <= wn->ix1; ix++) {
+            const fl_fuzzy_cell_t *c = &g->cell[iy * g->nx + ix];
+            int32_t ddx = fz_centre_x(g, ix) - wn->px, ddy = fz_centre_y(g, iy) - wn->py;
+            if (c->height > hp && ddx * ddx + ddy * ddy <= wn->R * wn->R &&
+                (!wn->chk || heading_agrees(c, wn->rh)))
+                hp = c->height;
+        }
+    return hp;
+}
+
+/* Step 3: 3 mean-shift iterations from (*px, *py): centre of gravity of
+ * the contents of the window, weighted by height - peak/2; *wn and *s are
+ * the last iteration's window and sums. */
+static void mean_shift(const fl_fuzzy_t *g, int32_t *px, int32_t *py, fl_angle_t rh,
+                       win_t *wn, msum_t *s)
+{
+    int32_t R = fz_clamp32(g->params.mode_radius_mm, FZ_CELL, 2000);
+    bool chk = mirror_near(g, *px, *py, R);
+    int ix, iy, it;
+    memset(wn, 0, sizeof *wn);
+    memset(s, 0, sizeof *s);
     for (it = 0; it < 3; it++) {
         int64_t sx = 0, sy = 0;
-        fz_window(g, px, py, R, &wn.ix0, &wn.ix1, &wn.iy0, &wn.iy1);
-        wn.px = px;
-        wn.py = py;
-        wn.R = R;
-        wn.chk = chk;
-        wn.rh = rh;
-        hp = 0;
-        for (iy = wn.iy0; iy <= wn.iy1; iy++)
-            for (ix = wn.ix0; ix <= wn.ix1; ix++) {
-                const fl_fuzzy_cell_t *c = &g->cell[iy * nx + ix];
-                int32_t ddx = fz_centre_x(g, ix) - px, ddy = fz_centre_y(g, iy) - py;
-                if (c->height > hp && ddx * ddx + ddy * ddy <= R * R &&
-                    (!chk || heading_agrees(c, rh)))
-                    hp = c->height;
-            }
-        wn.hp = hp;
-        sw = sb = scos = ssin = tcos = tsin = swh = twh = 0;
-        memset(bin, 0, sizeof bin);
-        nmode = 0;
-        for (iy = wn.iy0; iy <= wn.iy1; iy++)
-            for (ix = wn.ix0; ix <= wn.ix1; ix++) {
-                const fl_fuzzy_cell_t *c = &g->cell[iy * nx + ix];
+        fz_window(g, *px, *py, R, &wn->ix0, &wn->ix1, &wn->iy0, &wn->iy1);
+        wn->px = *px;
+        wn->py = *py;
+        wn->R = R;
+        wn->chk = chk;
+        wn->rh = rh;
+        wn->hp = window_peak(g, wn);
+        memset(s, 0, sizeof *s);
+        for (iy = wn->iy0; iy <= wn->iy1; iy++)
+            for (ix = wn->ix0; ix <= wn->ix1; ix++) {
+                const fl_fuzzy_cell_t *c = &g->cell[iy * g->nx + ix];
                 int32_t cx = fz_centre_x(g, ix), cy = fz_centre_y(g, iy);
                 int32_t w, wh;
-                if (!in_window(g, &wn, ix, iy, c))
+                if (!in_window(g, wn, ix, iy, c))
                     continue;
-                nmode++;
-                w = (int32_t)c->height - (int32_t)(hp / 2u);
+                s->nmode++;
+                w = (int32_t)c->height - (int32_t)(wn->hp / 2u);
                 if (w <= 0)
                     continue;
-                sw += w;
+                s->sw += w;
                 sx += (int64_t)w * (cx + c->off_x_mm);
                 sy += (int64_t)w * (cy + c->off_y_mm);
-                sb += (int64_t)w * ((c->bias * 255u) / c->height);
+                s->sb += (int64_t)w * ((c->bias * 255u) / c->height);
                 wh = heading_weight(c, w);
                 if (wh > 0) {
                     int32_t dh = fl_angle_sub(c->centre, rh);
-                    scos += (int64_t)wh * fl_cos_q15(c->centre);
-                    ssin += (int64_t)wh * fl_sin_q15(c->centre);
-                    swh += wh;
-                    bin[(uint16_t)c->centre >> (16 - HBIN_BITS)] += wh;
+                    s->scos += (int64_t)wh * fl_cos_q15(c->centre);
+                    s->ssin += (int64_t)wh * fl_sin_q15(c->centre);
+                    s->swh += wh;
+                    s->bin[(uint16_t)c->centre >> (16 - HBIN_BITS)] += wh;
                     if (dh <= TRIM_ANGLE && dh >= -TRIM_ANGLE) {
-                        tcos += (int64_t)wh * fl_cos_q15(c->centre);
-                        tsin += (int64_t)wh * fl_sin_q15(c->centre);
-                        twh += wh;
+                        s->tcos += (int64_t)wh * fl_cos_q15(c->centre);
+                        s->tsin += (int64_t)wh * fl_sin_q15(c->centre);
+                        s->twh += wh;
                     }
                 }
             }
-        if (sw == 0)
+        if (s->sw == 0)
             break;
-        px = (int32_t)(sx / sw);
-        py = (int32_t)(sy / sw);
+        *px = (int32_t)(sx / s->sw);
+        *py = (int32_t)(sy / s->sw);
     }
-    if (HOLD_DEN * twh >= swh && (tcos != 0 || tsin != 0)) {
+}
+
+/* Step 4: the heading: trimmed mean around the reference rh, else around
+ * the dominant heading cluster; rh when no cell has heading information. */
+static fl_angle_t mode_heading(const fl_fuzzy_t *g, const win_t *wn, const msum_t *s,
+                               fl_angle_t rh)
+{
+    int64_t scos = s->scos, ssin = s->ssin;
+    if (HOLD_DEN * s->twh >= s->swh && (s->tcos != 0 || s->tsin != 0)) {
         /* trimmed mean: cells within TRIM_ANGLE of the reference (the
          * tracked heading) carry at least 1/HOLD_DEN of the weight; cells
          * whose heading an outlier replaced do not pull the estimate */
-        scos = tcos;
-        ssin = tsin;
-    } else if (swh > 0) {
+        scos = s->tcos;
+        ssin = s->tsin;
+    } else if (s->swh > 0) {
         /* otherwise the dominant heading cluster: the 3 adjacent bins
          * (67.5 deg) with the most weight, then the trimmed mean around
          * the middle bin's centre.  Never the mean of two opposite
@@ -331,47 +354,78 @@ bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
         int k, kb = 0;
         int32_t best = -1;
         for (k = 0; k < HBINS; k++) {
-            int32_t v = bin[(k + HBINS - 1) % HBINS] + bin[k] + bin[(k + 1) % HBINS];
+            int32_t v = s->bin[(k + HBINS - 1) % HBINS] + s->bin[k] + s->bin[(k + 1) % HBINS];
             if (v > best) {
                 best = v;
                 kb = k;
             }
         }
-        trimmed_sums(g, &wn, (fl_angle_t)(int32_t)((kb << (16 - HBIN_BITS)) +
-                                                   (1 << (15 - HBIN_BITS)) - 65536 * (kb >= HBINS / 2)),
+        trimmed_sums(g, wn, (fl_angle_t)(int32_t)((kb << (16 - HBIN_BITS)) +
+                                                  (1 << (15 - HBIN_BITS)) - 65536 * (kb >= HBINS / 2)),
                      &scos, &ssin);
     }
-    if (scos != 0 || ssin != 0) {
-        /* reduce to 31 bits keeping the ratio (window up to 41 x 41 cells) */
-        while (scos > (1 << 30) || scos < -(1 << 30) || ssin > (1 << 30) || ssin < -(1 << 30)) {
-            scos /= 2;
-            ssin /= 2;
-        }
-        heading = fl_atan2((int32_t)ssin, (int32_t)scos);
-    } else {
-        heading = rh;
+    if (scos == 0 && ssin == 0)
+        return rh;
+    /* reduce to 31 bits keeping the ratio (window up to 41 x 41 cells) */
+    while (scos > (1 << 30) || scos < -(1 << 30) || ssin > (1 << 30) || ssin < -(1 << 30)) {
+        scos /= 2;
+        ssin /= 2;
     }
-    px = fz_clamp32(px, -g->half_x_mm, g->half_x_mm);
-    py = fz_clamp32(py, -g->half_y_mm, g->half_y_mm);
-    /* reliability: consistency x compactness x (1 - bias), Q16 */
-    area = nmode <= 9 ? 65536u : (9u * 65536u) / nmode;
-    one_minus_b = sw > 0 ? (uint32_t)(65536 - (sb * 65536) / (sw * 255)) : 0;
+    return fl_atan2((int32_t)ssin, (int32_t)scos);
+}
+
+/* Step 5: reliability, Q16: consistency x compactness x (1 - bias) x
+ * uniqueness. */
+static uint32_t reliability(const fl_fuzzy_t *g, const msum_t *s, int32_t px, int32_t py,
+                            uint32_t hp)
+{
+    uint32_t rel, area, one_minus_b;
+    area = s->nmode <= 9 ? 65536u : (9u * 65536u) / s->nmode;
+    one_minus_b = s->sw > 0 ? (uint32_t)(65536 - (s->sb * 65536) / (s->sw * 255)) : 0;
     if (one_minus_b > 65536u)
         one_minus_b = 0;
     rel = (uint32_t)(((uint64_t)g->consistency_q16 * area) >> 16);
     rel = (uint32_t)(((uint64_t)rel * one_minus_b) >> 16);
     rel = (uint32_t)(((uint64_t)rel * uniqueness(g, px, py, hp)) >> 16);
-    if (rel > 65535u)
-        rel = 65535u;
+    return rel > 65535u ? 65535u : rel;
+}
+
+bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
+{
+    int ci;
+    int32_t px, py;
+    fl_angle_t rh, heading;
+    ref_t ref;
+    win_t wn;
+    msum_t s;
+    uint32_t rel;
+    if (out != NULL)
+        memset(out, 0, sizeof *out);
+    if (!fz_ready(g) || out == NULL)
+        return false;
+    mode_reference(g, &ref);
+    ci = mode_cell(g, &ref, &out->switched);
+    if (ci < 0)
+        return false;
+    px = fz_centre_x(g, ci % g->nx) + g->cell[ci].off_x_mm;
+    py = fz_centre_y(g, ci / g->nx) + g->cell[ci].off_y_mm;
+    rh = g->track_valid && !out->switched ? g->track_heading
+                                          : window_heading(g, px, py, g->cell[ci].centre);
+    mean_shift(g, &px, &py, rh, &wn, &s);
+    heading = mode_heading(g, &wn, &s, rh);
+    px = fz_clamp32(px, -g->half_x_mm, g->half_x_mm);
+    py = fz_clamp32(py, -g->half_y_mm, g->half_y_mm);
+    rel = reliability(g, &s, px, py, wn.hp);
+    /* step 6: the output, and the track */
     out->x_mm = px;
     out->y_mm = py;
     out->heading = heading;
     out->reliability_q16 = (uint16_t)rel;
-    out->peak_q8 = (uint8_t)hp;
-    out->mode_cells = (uint16_t)(nmode > 65535u ? 65535u : nmode);
+    out->peak_q8 = (uint8_t)wn.hp;
+    out->mode_cells = (uint16_t)(s.nmode > 65535u ? 65535u : s.nmode);
     if (out->switched)
         g->stats.mode_switches = fz_sat_inc(g->stats.mode_switches);
-    if (g->track_valid || rel >= p->track_min_q16) {
+    if (g->track_valid || rel >= g->params.track_min_q16) {
         g->track_valid = true;
         g->track_x_mm = px;
         g->track_y_mm = py;
