@@ -97,72 +97,38 @@ fl_status_t fl_fuzzy_params_check(const fl_fuzzy_params_t *p)
 }
 
 /*
- * fl_fuzzy_params_vision (moved here from tools/loc/locrun.c, where it was
- * measured).  The defaults above were tuned on the simulator's feature-level
- * observations (range noise 8 %, bearing 1.5 deg at 30 Hz).  Through the
- * vision path the rendered frames give ranges within about 1 % and
- * bearings within 0.2 deg (simulate --frames, "# vision" lines), at 10 Hz,
- * with L/T confusions instead: narrower rings (core 3 % of the range
- * instead of 6 %, slope 9 % instead of 18 %) and more heading uncertainty
- * per metre walked (9 deg instead of 6: the walk's drift is 3 deg/m plus
- * 2 deg/m random, now corrected 3x less often).  Measured with simulate
- * --frames (every 3, seeds 1-3, spl2013 / uva2013): position RMSE
- * 102-110 -> 64-72 mm / 58-94 -> 45-52 mm, heading 3.0-4.4 -> 2.4-2.8 deg
- * / 1.7-2.8 -> 1.4-2.3 deg, and the one symmetric flip (uva2013 seed 1,
- * a run of wrong post sides) gone.  On the real UvA spots (localize
- * --uva-spots) heading RMSE 35 -> 6 deg (the centre spot's 90-degree
- * error goes), position about the same (309 -> 329 mm).
- * Vision's false positives (penalty marks at 5 m, confidence about 185,
- * several a second) are real outliers: head_bias_outlier = 1 with
- * head_bias 0 makes an observation's heading trapezoid "the outlier bias
- * bP, or the ring with its heading" (fuzzy_update.c rho_head), so a false
- * ring through the mode no longer flattens the cells' headings (the
- * single-frame 70-80 degree errors at 64 s of the spl2013 walks).
- * simulate --frames (obs-cached), before -> after, position mm / heading
- * deg: spl2013 seeds 1-3 63.7/2.81, 70.2/2.47, 71.8/2.44 -> 54.8/1.42,
- * 61.6/1.36, 59.5/1.32; the demo (seed 2013) 83.0/3.55 -> 67.7/1.89;
- * uva2013 seeds 1-3 45.3/1.40, 52.4/2.27, 46.3/1.50 -> 46.7/1.37,
- * 50.6/1.69, 40.1/1.46; convergence, kidnap recovery (3.3 / 0.2 s) and
- * flips (0) unchanged.  Real UvA spots: heading 6.4 -> 4.9 deg, position
- * 329 -> 339 mm.  (The feature-level simulator's confidences are not
- * outlier odds: with it, the defaults stay.)
- * With the vision of the luma points and connectors (precision 0.88-0.96,
- * more far crossings) spl2013 had fallen to 90.5/78.3/96.2 mm; its error
- * episodes (e.g. 28-31 s of seed 1, 200-370 mm) came with correct
- * observations (posts at 4.5-5.2 m, an L at 4.5 m, ranges 0.2-1.5 % off)
- * whose ring core (60 mm + 3 % of 4.5 m = 200 mm half-width) was flat
- * over the whole error: precise rings while a mode is tracked
- * (ring_track_q8 = 96/256, 0.38; the gate and updates from ignorance keep
- * the wide ones; scaling every ring instead was fragile: false kidnaps
- * followed by mirror flips on 1 seed in 3) give spl2013 seeds 1-3 (and
- * 4-6) 74.3/61.6/61.8 (54.8/75.5/63.4, before 82.5/96.9/89.0) mm, uva2013
- * 53.8/46.1/48.6 -> 42.1/33.4/36.1 mm, 0 flips.  kidnap_rate_q8 128
- * instead of 192 detects the spl2013 kidnap 0.2 s sooner and the frames
- * after it converge better: spl2013 53.4/60.0/56.2 mm (seeds 4-6
- * 51.6/73.2/57.9), kidnap recovery 3.3/3.0/3.2 s, one kidnap detected per
- * walk as before (cons_shift 2 or kidnap_q16 >= 33000 bring false kidnaps
- * and mirror flips).  aibo2004 unchanged (wide rings, fl_fuzzy_params_for_camera).
- * Then (fuzzy.h, fl_fuzzy_update_view): after the spl2013 kidnap the head
- * looks at a touchline and vision sees nothing for 2.2 s; the tracked
- * pose expected 2-4 landmarks in those frames: neg_kidnap 2 counts such
- * frames as contradictions (kidnap detected at 55.8 instead of 57.9 s on
- * seed 3), and neg_q8 0.39 lowers, without a track, the candidate poses
- * of the first T (one per T of the map) that should see something else.
- * The first converged frames after that are less precise (one far T):
- * track_min_q16 0.2 instead of 0.3 starts tracking (precise rings,
- * gate) sooner.  Vision's crossings of confidence <= 160 are of the
- * other kind (L <-> T) 50-74 % of the time (confidence >= 200: 1-9 %;
- * spl2013 seed 1, aibo2004 seed 3): confuse_q8 0.39 rising to 1 at
- * confidence 160.  aibo2004: crossings beyond 2.5 m ignored (fl_fuzzy_params_for_camera).
- * neg_min_q8 1/2 (cells below do not compete for the estimate): the
- * negative pass after ignorance + 5 updates 0.11 -> 0.03 ms (bench),
- * results the same but uva2013 seeds 2/3 33.4/37.3 -> 33.5/35.4 mm.
- * simulate --frames (obs-cached), seeds 1-3, before -> after: spl2013
- * 51.0/58.3/47.0 -> 41.4/44.4/41.1 mm, 1.39/1.50/1.25 -> 1.48/1.42/1.33
- * deg, kidnap recovery 3.3/3.0/3.2 -> 2.7/2.5/2.5 s; aibo2004
- * 60.0/58.1/120.4 -> 58.6/51.0/69.0 mm, 2.71/2.65/2.89 -> 2.78/2.85/2.67
- * deg; uva2013 37.4/35.1/35.3 -> 37.4/33.4/37.3 mm, 1.09/1.46/1.03 ->
- * 1.16/1.09/1.43 deg; one kidnap detected per walk, 0 flips.
+ * fl_fuzzy_params_vision: the defaults above suit the simulator's
+ * feature-level observations (noisy ranges and bearings, many per second);
+ * observations through the vision path are more precise but fewer, with
+ * L/T confusions and false positives instead.  What each change trades:
+ *  - ring_core_q8 / ring_slope_q8 halved: precise ranges give narrow rings
+ *    (too narrow: a range error puts the mode outside its ring);
+ *  - odo_rot_per_m up: heading uncertainty must cover the walk's drift
+ *    between the rarer corrections (too much: headings flatten);
+ *  - head_bias 0 with head_bias_outlier 1: an observation's heading
+ *    trapezoid is "the outlier bias, or the ring with its heading"
+ *    (fuzzy_update.c rho_head), so a false ring through the mode does not
+ *    flatten the cells' headings;
+ *  - ring_track_q8 (precise rings while tracking; the gate and updates
+ *    from ignorance keep the wide ones): precision while tracked against
+ *    robustness to a wrong track (scaling every ring instead brings false
+ *    kidnaps and mirror flips);
+ *  - kidnap_rate_q8 lower: a kidnap is detected sooner, against false
+ *    kidnaps (with cons_shift or kidnap_q16 too aggressive, mirror flips);
+ *  - neg_kidnap / neg_q8 (fl_fuzzy_update_view): frames in which the
+ *    tracked pose expects landmarks and sees none count as contradictions;
+ *    without a track, poses that should see something else are lowered;
+ *  - neg_min_q8: cells below it do not compete for the estimate, so the
+ *    negative pass skips them (cost against a marginal accuracy change);
+ *  - track_min_q16 lower: tracking (precise rings, gate) starts sooner
+ *    after convergence, against tracking a less certain mode;
+ *  - confuse_q8 / confuse_conf: low-confidence crossings of vision are
+ *    often of the other kind (L <-> T); their regions keep such poses
+ *    possible.
+ * Measured with `build/fieldloc simulate --field F --localizer fuzzy
+ * --seed N --frames` (position and heading error, kidnap recovery, mirror
+ * flips per field and seed) and `build/fieldloc localize` on the real
+ * sequences; cost with `make bench` (rows fuzzy_*).
  */
 void fl_fuzzy_params_vision(fl_fuzzy_params_t *p, const fl_camera_model_t *model)
 {
@@ -185,12 +151,12 @@ void fl_fuzzy_params_vision(fl_fuzzy_params_t *p, const fl_camera_model_t *model
     fl_fuzzy_params_for_camera(p, model);
 }
 
-/* The AIBO's 208 x 160 camera measures ranges 1-3 % off (the NAO cameras
- * 0.3-0.4 % in the spl2013/uva2013 walks) and loses accuracy with the
- * precise tracking rings (aibo2004 seeds 1-3: 122/54/163 mm -> 165/97/164
- * at 96): it keeps the wide rings.  Its crossings beyond 2.5 m are 5-15 %
- * short and often of the wrong kind (aibo2004 seed 3, --frames: rms range
- * error 114 mm at 2-2.5 m, 576 mm at 3.5-4 m): ignored. */
+/* Low-resolution cameras (the AIBO's 208 x 160) measure ranges several
+ * times less precisely than the NAO's: they keep the wide rings while
+ * tracking (precise rings lose the mode), and their far crossings are
+ * short and often of the wrong kind: ignored beyond cross_max_mm.
+ * Measured with `build/fieldloc simulate --field aibo2004 --localizer
+ * fuzzy --seed N --frames`. */
 void fl_fuzzy_params_for_camera(fl_fuzzy_params_t *p, const fl_camera_model_t *model)
 {
     if (p == NULL || model == NULL || model->width_px >= 320 ||

@@ -63,8 +63,8 @@
  * is exactly symmetric.  Then passes over the grid: product,
  * symmetry, normalization: O(cells + cells in the rings), bounded by
  * O(cells x landmarks of the kind x orientation candidates).  The gate adds
- * the rows of the tracked window.  Measured (tools/bench/bench_fuzzy.c): see the
- * report in fuzzy.h.  Memory: the row accumulator and the region list live
+ * the rows of the tracked window.  Measured by `make bench` (rows
+ * fuzzy_*).  Memory: the row accumulator and the region list live
  * in g->scratch; stack < 400 B.
  *
  * Kind confusion (params.confuse_q8, build_regions): an L observation is
