@@ -10,9 +10,8 @@
  *
  * Invariant (fl_fuzzy_check): at least one cell at 255, bias <= height,
  * offsets in [-CELL/2, CELL/2), the estimate on the carpet.
- * Cost: predict O(cells) per sub-step (one sin/cos table read per live
- * cell) + O(cells) per dilation; estimate O(cells) (peak, uniqueness) +
- * O(window); resets O(cells).  Stack < 600 B per call (make stack).
+ * Cost: init, resets, normalization, symmetry, check O(cells); the rest
+ * O(1).  Stack < 600 B per call (make stack).
  */
 #include "fieldloc/fuzzy.h"
 #include "fuzzy_int.h"

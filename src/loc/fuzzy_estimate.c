@@ -17,13 +17,15 @@
  * heading) when that keeps 1/16 of the weight; otherwise the trimmed mean
  * around the dominant heading cluster (16-bin histogram of the same
  * weights, best 3 adjacent bins), never the mean of two opposite clusters
- * (a heading no cell holds: the single-frame jumps of the frames-mode
- * demo).  Reliability (Q0.16):
+ * (a heading no cell holds: the estimate would jump to it for single
+ * frames).  Reliability (Q0.16):
  * consistency x compactness min(1, 9 cells / cells >= peak/2) x (1 - mean
  * relative bias of the mode) x uniqueness (1 - the highest cell elsewhere
  * / the peak; the mirror of a symmetric field is not "elsewhere").  The
  * estimate becomes the tracked mode once the reliability reaches
  * track_min_q16; predict moves the track by the odometry.
+ * Cost: O(cells) (peak, uniqueness) + O(window) per mean-shift
+ * iteration.
  */
 #include "fieldloc/fuzzy.h"
 #include "fuzzy_int.h"

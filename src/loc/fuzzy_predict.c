@@ -28,6 +28,8 @@
  * before it is consumed.  Memory: 3 x FL_FUZZY_MAX_NX x 8 B = 2,496 B for
  * the SPL grid, instead of a 61,568 B double buffer.  The dilation uses two
  * of those rows (the originals of the previous and the current row).
+ * Cost: O(cells) per sub-step (one sin/cos table read per live cell) +
+ * O(cells) per dilation.
  */
 #include "fieldloc/fuzzy.h"
 #include "fuzzy_int.h"

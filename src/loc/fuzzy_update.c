@@ -143,12 +143,12 @@ static uint32_t rho(const obsp_t *q, uint32_t r_q16)
  * "real, but its heading is not" rho(r) x head_bias; with
  * params.head_bias_outlier the union with "the observation is an outlier"
  * (bP, any pose): max(bP, rho(r) hb), so a pose on the ring with another
- * heading is never less possible than a pose off every ring.  (With rho hb
- * alone, a low-confidence false positive (bP > rho hb) made the cell's own
- * heading less possible than no ring at all and, the cell's relative bias
- * being about hb too, tied the two plateaus of the product: the envelope
- * flattened the cell and the next false ring imposed its heading, the
- * 70-degree single-frame errors of the spl2013 vision walks at 64 s.)
+ * heading is never less possible than a pose off every ring.  (With rho
+ * hb alone, a low-confidence false positive (bP > rho hb) would make the
+ * cell's own heading less possible than no ring at all and, the cell's
+ * relative bias being about hb too, tie the two plateaus of the product:
+ * the envelope would flatten the cell and the next false ring impose its
+ * heading, a large single-frame heading error.)
  * Scaling: rho hb < 2^33 in uint64, result <= rho(r). */
 static uint32_t rho_head(const fl_fuzzy_t *g, const obsp_t *q, uint32_t r_q16)
 {
