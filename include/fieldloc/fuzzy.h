@@ -276,7 +276,7 @@ typedef struct {
     int32_t x_mm, y_mm;          /* field frame, always on the carpet */
     fl_angle_t heading;
     uint16_t reliability_q16;    /* Q0.16 in [0, 65535] ~ [0, 1]: consistency
-                                    x compactness x (1 - bias); see fuzzy.c */
+                                    x compactness x (1 - bias); see fuzzy_estimate.c */
     uint8_t peak_q8;             /* height of the chosen mode's peak */
     uint16_t mode_cells;         /* cells of the mode with height >= peak/2 */
     bool switched;               /* the estimate left the tracked mode */
@@ -449,7 +449,7 @@ uint16_t fl_fuzzy_update(fl_fuzzy_t *g, const fl_obs_list_t *obs);
  * tracked, with neg_kidnap, the tracked pose is tested the same way
  * (heading known exactly): neg_kidnap or more expected landmarks and none
  * explained counts as a contradiction (consistency and kidnap detection,
- * fuzzy_update.c).  neg_q8 = 0 and neg_kidnap = 0: exactly
+ * fuzzy_negative.c).  neg_q8 = 0 and neg_kidnap = 0: exactly
  * fl_fuzzy_update.  Returns how many observations were applied. */
 uint16_t fl_fuzzy_update_view(fl_fuzzy_t *g, const fl_obs_list_t *obs,
                               const fl_obs_view_t *view);
