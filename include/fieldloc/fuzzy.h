@@ -40,18 +40,16 @@
  *     sizeof(fl_fuzzy_t) = 64,720 B on x86-64, < 64 KiB (printed by the
  *     fuzzy suite).
  *     No heap; stack at most about 1 KB per call (make stack).
- * Cost (tools/bench/bench_fuzzy.c, x86-64 host, gcc -O2): one predict + 5
- * observation updates on the SPL grid: about 0.14 ms (2.2 M instructions)
- * with a tracked mode, about 0.47 ms (8.1 M instructions) from total
- * ignorance (every cell possible: the worst case, for a fraction of a
- * second after a reset; goal 0.5 ms); on a symmetric field (SPL 2013)
- * the update works on half the grid (fuzzy_update.c).  The negative
- * information pass of fl_fuzzy_update_view (only without a track; with
- * neg_min_q8 1/2): about 0.03 ms after ignorance and 5 updates, about
- * 0.65 ms when every cell is at the peak with a narrow heading (bench rows
- * fuzzy_negative_*).  callgrind: about 2.0 M
- * instructions per 30 Hz frame of the spl2013 walk once tracked (predict,
- * the frame's ~3 observations, estimate).
+ * Cost: predict O(cells) per sub-step and per dilation; an observation
+ * update O(live cells in the rings of the matching landmarks) plus a few
+ * passes over the grid, on half the grid on a symmetric field (SPL 2013;
+ * fuzzy_update.c).  Worst case: total ignorance (every cell possible), for
+ * a fraction of a second after a reset; with a tracked mode most cells are
+ * 0 and the cost falls several-fold.  The negative information pass of
+ * fl_fuzzy_update_view (only without a track) scales with the live cells
+ * at least neg_min_q8 high with a narrow heading x the map's landmarks;
+ * its worst case is every cell at the peak with a narrow heading.
+ * Measured by `make bench` (rows fuzzy_*, fuzzy_negative_*).
  */
 #ifndef FIELDLOC_FUZZY_H
 #define FIELDLOC_FUZZY_H
@@ -278,7 +276,7 @@ typedef struct {
     int32_t x_mm, y_mm;          /* field frame, always on the carpet */
     fl_angle_t heading;
     uint16_t reliability_q16;    /* Q0.16 in [0, 65535] ~ [0, 1]: consistency
-                                    x compactness x (1 - bias); see fuzzy.c */
+                                    x compactness x (1 - bias); see fuzzy_estimate.c */
     uint8_t peak_q8;             /* height of the chosen mode's peak */
     uint16_t mode_cells;         /* cells of the mode with height >= peak/2 */
     bool switched;               /* the estimate left the tracked mode */
@@ -356,11 +354,10 @@ fl_status_t fl_fuzzy_params_check(const fl_fuzzy_params_t *p);
 
 /* The parameters for observations from fl_vision_frame (vision.h), with
  * the frame's view given to fl_fuzzy_update_view (obs.h,
- * fl_obs_view_vision): the defaults above were tuned on feature-level
- * observations with 8 % range noise; vision's ranges are within about 1 %,
- * its bearings within 0.2 deg, at 10 Hz, with L/T confusions and far false
- * marks instead.  Changes (measured in the frames-mode simulations, README
- * "Localization"; the reasoning and the numbers of each in src/loc/fuzzy.c):
+ * fl_obs_view_vision): the defaults above suit noisy feature-level
+ * observations; vision's are more precise but fewer, with L/T confusions
+ * and far false marks instead.  Changes (what each trades in
+ * src/loc/fuzzy.c; measured by `build/fieldloc simulate ... --frames`):
  * narrower rings (core 3 % and slope 9 % of the range), precise rings
  * while tracked (ring_track_q8 FL_FUZZY_RING_TRACK_VISION), 9 deg heading
  * uncertainty per metre walked, outlier heading bias, kidnap rate 0.5,
@@ -375,8 +372,8 @@ void fl_fuzzy_params_vision(fl_fuzzy_params_t *p, const fl_camera_model_t *model
 /* The camera-dependent part of fl_fuzzy_params_vision, applied only while
  * ring_track_q8 still has its vision value (an explicit other value is the
  * caller's choice): for a model narrower than 320 px, ring_track_q8 256
- * (its ranges are 1-3 % off: precise rings cost accuracy) and, when
- * cross_max_mm is 0, 2500 (its crossings beyond 2.5 m read 5-15 % short).
+ * (its ranges are less precise: precise rings cost accuracy) and, when
+ * cross_max_mm is 0, 2500 (its far crossings read short).
  * No-op for NULL or a wider model. */
 void fl_fuzzy_params_for_camera(fl_fuzzy_params_t *p, const fl_camera_model_t *model);
 
@@ -452,7 +449,7 @@ uint16_t fl_fuzzy_update(fl_fuzzy_t *g, const fl_obs_list_t *obs);
  * tracked, with neg_kidnap, the tracked pose is tested the same way
  * (heading known exactly): neg_kidnap or more expected landmarks and none
  * explained counts as a contradiction (consistency and kidnap detection,
- * fuzzy_update.c).  neg_q8 = 0 and neg_kidnap = 0: exactly
+ * fuzzy_negative.c).  neg_q8 = 0 and neg_kidnap = 0: exactly
  * fl_fuzzy_update.  Returns how many observations were applied. */
 uint16_t fl_fuzzy_update_view(fl_fuzzy_t *g, const fl_obs_list_t *obs,
                               const fl_obs_view_t *view);

@@ -63,25 +63,14 @@
  * is exactly symmetric.  Then passes over the grid: product,
  * symmetry, normalization: O(cells + cells in the rings), bounded by
  * O(cells x landmarks of the kind x orientation candidates).  The gate adds
- * the rows of the tracked window.  Measured (tools/bench/bench_fuzzy.c): see the
- * report in fuzzy.h.  Memory: the row accumulator and the region list live
+ * the rows of the tracked window.  Measured by `make bench` (rows
+ * fuzzy_*).  Memory: the row accumulator and the region list live
  * in g->scratch; stack < 400 B.
  *
  * Kind confusion (params.confuse_q8, build_regions): an L observation is
  * also a T seen as an L and a T an L seen as a T, their regions scaled by
  * a possibility that rises to 1 at low confidence; without a track those
  * regions only keep a cell possible (r3), never give it a heading.
- *
- * Negative information (fl_fuzzy_update_view, after the observations):
- * the frame's view (obs.h) is a ground sector in which every landmark
- * would have been seen.  Without a track, every live cell at least
- * neg_min_q8 high with a narrow heading loses neg_q8 of its height per
- * map landmark its pose puts in the sector that no observation explains
- * (at most neg_max, never below its bias: the other headings keep their
- * possibility); while tracked, the tracked pose is tested and a frame
- * that explains none of its neg_kidnap or more expected landmarks counts
- * as a contradiction.  Cost: live cells x landmarks (integer tests, no
- * root or atan2 unless observations may explain a landmark).
  *
  * Invariant: the grid is valid after every call (never empty, bias <=
  * height); ignored and deferred observations leave the cells untouched.
@@ -91,7 +80,7 @@
 
 #include <string.h>
 
-#define HT 32768
+#define FZ_HT 32768
 /* The sector pre-test and the sector boxes of oriented regions use the
  * orientation tolerance plus this margin (1 deg): far more than the
  * 0.02-degree atan2 error and the Q15 rounding of the unit vectors, so
@@ -99,35 +88,6 @@
  * results are those of the full evaluation, bit for bit). */
 #define SECTOR_MARGIN 182
 
-static bool ready(const fl_fuzzy_t *g)
-{
-    return g != NULL && g->field != NULL && g->nx > 0 && g->ny > 0;
-}
-
-static int32_t iabs(int32_t v)
-{
-    return v < 0 ? -v : v;   /* callers: |v| <= 2^20 */
-}
-
-static int32_t clamp32(int32_t v, int32_t lo, int32_t hi)
-{
-    return v < lo ? lo : v > hi ? hi : v;
-}
-
-/* fl_angle_wrap / fl_angle_sub of fixed.c, inlined for the per-cell loops
- * (same arithmetic, same results). */
-static fl_angle_t wrap16(int32_t a)
-{
-    uint32_t u = (uint32_t)a & 0xFFFFu;
-    return (fl_angle_t)(u >= 0x8000u ? (int32_t)u - 65536 : (int32_t)u);
-}
-
-static fl_angle_t asub(fl_angle_t a, fl_angle_t b)
-{
-    return wrap16((int32_t)a - (int32_t)b);
-}
-
-/* Period of the orientation of a kind, binary angle units (0: none). */
 static int32_t orientation_period(fl_landmark_kind_t k)
 {
     switch (k) {
@@ -183,12 +143,12 @@ static uint32_t rho(const obsp_t *q, uint32_t r_q16)
  * "real, but its heading is not" rho(r) x head_bias; with
  * params.head_bias_outlier the union with "the observation is an outlier"
  * (bP, any pose): max(bP, rho(r) hb), so a pose on the ring with another
- * heading is never less possible than a pose off every ring.  (With rho hb
- * alone, a low-confidence false positive (bP > rho hb) made the cell's own
- * heading less possible than no ring at all and, the cell's relative bias
- * being about hb too, tied the two plateaus of the product: the envelope
- * flattened the cell and the next false ring imposed its heading, the
- * 70-degree single-frame errors of the spl2013 vision walks at 64 s.)
+ * heading is never less possible than a pose off every ring.  (With rho
+ * hb alone, a low-confidence false positive (bP > rho hb) would make the
+ * cell's own heading less possible than no ring at all and, the cell's
+ * relative bias being about hb too, tie the two plateaus of the product:
+ * the envelope would flatten the cell and the next false ring impose its
+ * heading, a large single-frame heading error.)
  * Scaling: rho hb < 2^33 in uint64, result <= rho(r). */
 static uint32_t rho_head(const fl_fuzzy_t *g, const obsp_t *q, uint32_t r_q16)
 {
@@ -254,7 +214,7 @@ static void sector_box(fl_fuzzy_region_t *rg, fl_angle_t phi, const obsp_t *q)
     /* the outer arc's extreme points along the axes inside the sector */
     for (k = 0; k < 4; k++) {
         fl_angle_t a = fl_angle_wrap(k * 16384);
-        int32_t dd = iabs(fl_angle_sub(a, phi));
+        int32_t dd = fz_iabs(fl_angle_sub(a, phi));
         if (dd > q->sector_half)
             continue;
         if (k == 0)
@@ -307,8 +267,8 @@ static void landmark_regions(fl_fuzzy_t *g, const fl_landmark_t *lm, const obsp_
         int32_t j, nj = 65536 / period;
         int32_t tol = q->ocore + q->oslope;
         int32_t arc;
-        if (tol > HT)
-            tol = HT;
+        if (tol > FZ_HT)
+            tol = FZ_HT;
         arc = (int32_t)(((int64_t)2 * (q->r + q->rw) * fl_sin_q15(fl_angle_wrap(tol / 2)) + 32767) >> 15);
         arc += q->rw + FZ_CELL;
         for (j = 0; j < nj; j++) {
@@ -465,7 +425,7 @@ static void eval_cells(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
         if (s2 >= s_out || s2 < s_in)
             continue;
         d = (int32_t)fl_isqrt32(s2);
-        delta = iabs(d - q->r);
+        delta = fz_iabs(d - q->r);
         if (delta >= q->rw)
             continue;
         m = delta <= q->rc ? 65535u : ((uint32_t)(q->rw - delta) * q->inv_rs) >> 16;
@@ -475,9 +435,9 @@ static void eval_cells(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
                    -ddx * (int32_t)reg->ux_q15 - ddy * (int32_t)reg->uy_q15 < d * q->sector_cos_q15) {
             continue;                 /* outside the sector: agreement 0 */
         } else {
-            head = asub(fl_atan2(ddy, ddx), q->bearing);
+            head = fz_asub(fl_atan2(ddy, ddx), q->bearing);
             if (reg->oriented) {
-                uint32_t agree = tpos(iabs(asub(head, reg->head_o)), q->ocore, q->oslope);
+                uint32_t agree = tpos(fz_iabs(fz_asub(head, reg->head_o)), q->ocore, q->oslope);
                 m = (uint32_t)(((uint64_t)m * agree) >> 16);
             }
         }
@@ -500,12 +460,12 @@ static void eval_cells(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
         if (a->r1_q16 == 0) {
             a->r1_q16 = (uint16_t)m;
             a->head1 = head;
-        } else if (iabs(asub(head, a->head1)) <= q->hcore) {
+        } else if (fz_iabs(fz_asub(head, a->head1)) <= q->hcore) {
             if (m > a->r1_q16) {      /* the same heading: no competitor */
                 a->r1_q16 = (uint16_t)m;
                 a->head1 = head;
             }
-        } else if (a->r2_q16 != 0 && iabs(asub(head, a->head2)) <= q->hcore) {
+        } else if (a->r2_q16 != 0 && fz_iabs(fz_asub(head, a->head2)) <= q->hcore) {
             if (m > a->r2_q16) {
                 a->r2_q16 = (uint16_t)m;
                 a->head2 = head;
@@ -563,7 +523,7 @@ static void visit_row(fl_fuzzy_t *g, const fl_fuzzy_region_t *reg,
     int32_t ady, dyo, dyi, xo, xi, bx0, bx1;
     if (cy + m < reg->y0_mm || cy - m > reg->y1_mm)
         return;
-    ady = iabs(cy - reg->ly_mm);
+    ady = fz_iabs(cy - reg->ly_mm);
     if (ady > q->rout + m)
         return;
     dyo = ady > m ? ady - m : 0;
@@ -597,9 +557,9 @@ static void obs_params(const fl_fuzzy_t *g, const fl_obs_t *o, obsp_t *q, uint32
     int32_t dmin, cell_ang;
     uint32_t conf = o->confidence, bmin = p->bias_min_q8;
     q->r = o->range_mm;
-    q->rc = clamp32(p->ring_base_mm, 0, 5000) +
+    q->rc = fz_clamp32(p->ring_base_mm, 0, 5000) +
             (int32_t)(((uint32_t)q->r * (p->ring_core_q8 > 256 ? 256u : p->ring_core_q8)) >> 8);
-    q->rs = clamp32(p->ring_slope_mm, 1, 5000) +
+    q->rs = fz_clamp32(p->ring_slope_mm, 1, 5000) +
             (int32_t)(((uint32_t)q->r * (p->ring_slope_q8 > 256 ? 256u : p->ring_slope_q8)) >> 8);
     /* tracked: precise rings (rounded, the slope at least 1 mm) */
     q->rc = (int32_t)(((uint32_t)q->rc * tq + 128u) >> 8);
@@ -613,10 +573,10 @@ static void obs_params(const fl_fuzzy_t *g, const fl_obs_t *o, obsp_t *q, uint32
     q->bearing = o->bearing;
     dmin = q->rin > FZ_CELL ? q->rin : FZ_CELL;
     cell_ang = fl_atan2(FZ_HALF, dmin);
-    q->hcore = clamp32((int32_t)p->bearing_core + cell_ang, 0, HT);
-    q->hslope = clamp32((int32_t)p->bearing_slope + cell_ang, 0, HT);
-    q->ocore = clamp32(p->orient_core, 0, HT);
-    q->oslope = clamp32(p->orient_slope, 1, HT);
+    q->hcore = fz_clamp32((int32_t)p->bearing_core + cell_ang, 0, FZ_HT);
+    q->hslope = fz_clamp32((int32_t)p->bearing_slope + cell_ang, 0, FZ_HT);
+    q->ocore = fz_clamp32(p->orient_core, 0, FZ_HT);
+    q->oslope = fz_clamp32(p->orient_slope, 1, FZ_HT);
     q->no_bearing_heading = q->rin < FZ_CELL;
     {
         int32_t tol = q->ocore + q->oslope + SECTOR_MARGIN;
@@ -626,100 +586,6 @@ static void obs_params(const fl_fuzzy_t *g, const fl_obs_t *o, obsp_t *q, uint32
     q->bias_q8 = (uint8_t)(255u - (conf * (255u - bmin)) / 255u);
     q->bias_q16 = (uint32_t)q->bias_q8 * 257u + (uint32_t)(q->bias_q8 >> 7);
     q->head_bias_q16 = (uint32_t)p->head_bias_q8 * 257u + (uint32_t)(p->head_bias_q8 >> 7);
-}
-
-/* Symmetric field (fl_field_t.symmetric): nothing an observation says can
- * tell a pose from its 180-degree mirror (-x, -y, h + 180), so the belief
- * is made exactly symmetric (each cell and its mirror get their union):
- * without this, rounding lets the two modes' ratio drift as a random walk
- * until one dies.  The prior or the tracked mode picks one (estimate).
- * Mirror of cell (ix, iy) is (nx-1-ix, ny-1-iy) (the grid is centred);
- * offsets negate (clamped into [-CELL/2, CELL/2)).  (The centre cell of a
- * grid with odd nx and ny maps onto itself and is left alone.) */
-static int8_t mirror_off(int8_t o)
-{
-    return (int8_t)(o <= -FZ_HALF ? FZ_HALF - 1 : -o);
-}
-
-static void mirror_cell(const fl_fuzzy_cell_t *c, fl_fuzzy_cell_t *m)
-{
-    m->centre = wrap16((int32_t)c->centre + FL_ANGLE_180);
-    m->height = c->height;
-    m->bias = c->bias;
-    m->core = c->core;
-    m->slope = c->slope;
-    m->off_x_mm = mirror_off(c->off_x_mm);
-    m->off_y_mm = mirror_off(c->off_y_mm);
-}
-
-static void sym_merge(fl_fuzzy_cell_t *dst, const fl_fuzzy_cell_t *src)
-{
-    fl_fuzzy_trap_t a, b, u;
-    int8_t ox = dst->off_x_mm, oy = dst->off_y_mm;
-    if (src->height == 0)
-        return;
-    if (dst->height == 0 || (src->height == dst->height && src->bias == dst->bias &&
-                             src->centre == dst->centre && src->core == dst->core &&
-                             src->slope == dst->slope)) {
-        *dst = *src;
-        return;
-    }
-    if (src->height > dst->height) {
-        ox = src->off_x_mm;
-        oy = src->off_y_mm;
-    }
-    fl_fuzzy_trap_from_cell(dst, &a);
-    fl_fuzzy_trap_from_cell(src, &b);
-    fl_fuzzy_trap_union(&a, &b, &u);
-    fl_fuzzy_trap_to_cell(&u, dst);
-    dst->off_x_mm = ox;
-    dst->off_y_mm = oy;
-}
-
-static void symmetrize(fl_fuzzy_t *g)
-{
-    size_t n = (size_t)g->nx * g->ny, i;
-    for (i = 0; i < n / 2; i++) {
-        fl_fuzzy_cell_t *a = &g->cell[i], *b = &g->cell[n - 1 - i];
-        size_t iy = i / g->nx, my = (size_t)g->ny - 1 - iy;
-        if (i % g->nx == 0 && g->row_lo[iy] > g->row_hi[iy] && g->row_lo[my] > g->row_hi[my]) {
-            i += (size_t)g->nx - 1;    /* both rows dead: skip the row */
-            continue;
-        }
-        if (a->height == 0 && b->height == 0)
-            continue;
-        if (b->height != 0) {
-            if (a->height == 0 ||
-                (b->height == a->height && b->bias == a->bias && b->core == a->core &&
-                 b->slope == a->slope && wrap16((int32_t)b->centre + FL_ANGLE_180) == a->centre)) {
-                mirror_cell(b, a);     /* sym_merge's copy case, in place */
-            } else {
-                fl_fuzzy_cell_t mb;
-                mirror_cell(b, &mb);
-                sym_merge(a, &mb);
-            }
-        }
-        mirror_cell(a, b);
-    }
-}
-
-void fl_fuzzy_internal_mirror_copy(fl_fuzzy_t *g)
-{
-    size_t n = (size_t)g->nx * g->ny, i;
-    for (i = 0; i < n / 2; i++) {
-        fl_fuzzy_cell_t *a = &g->cell[i], *b = &g->cell[n - 1 - i];
-        size_t iy = i / g->nx, my = (size_t)g->ny - 1 - iy;
-        if (i % g->nx == 0 && g->row_lo[iy] > g->row_hi[iy] && g->row_lo[my] > g->row_hi[my]) {
-            i += (size_t)g->nx - 1;    /* both rows dead: skip the row */
-            continue;
-        }
-        if (a->height == 0) {
-            if (b->height != 0)
-                memset(b, 0, sizeof *b);
-            continue;
-        }
-        mirror_cell(a, b);
-    }
 }
 
 /* The observation applied to one live cell c (acc: what the rings said
@@ -741,8 +607,8 @@ static void cell_product(const prodctx_t *x, const fl_fuzzy_acc_t *a,
     bool any_oriented = x->any_oriented;
     fl_fuzzy_trap_t ct, st, et;
     int8_t ox = c->off_x_mm, oy = c->off_y_mm;
-    int32_t hmin_core = clamp32(g->params.head_min_core, 0, HT);
-    int32_t hmin_slope = clamp32(g->params.head_min_slope, 0, HT);
+    int32_t hmin_core = fz_clamp32(g->params.head_min_core, 0, FZ_HT);
+    int32_t hmin_slope = fz_clamp32(g->params.head_min_slope, 0, FZ_HT);
     if (a->r1_q16 == 0) {
         /* off every ring: x bP; only the other kind's ring (confuse_q8):
          * x rho(r3) >= bP, the cell's shape kept */
@@ -757,7 +623,7 @@ static void cell_product(const prodctx_t *x, const fl_fuzzy_acc_t *a,
     fl_fuzzy_trap_from_cell(c, &ct);
     st.centre = a->head1;
     if (q->no_bearing_heading) {
-        st.core = any_oriented ? q->ocore : HT;
+        st.core = any_oriented ? q->ocore : FZ_HT;
         st.slope = any_oriented ? q->oslope : 0;
     } else {
         st.core = q->hcore;
@@ -797,36 +663,6 @@ static void cell_product(const prodctx_t *x, const fl_fuzzy_acc_t *a,
     out->off_y_mm = oy;
 }
 
-/* Consistency: low-pass of how well observations fit (Q8 fit in, Q16
- * state): while tracking, the fit on the tracked mode (mode_fit), else the
- * peak the observation left before normalization.  Collapsing while a mode
- * is tracked, with contradictions arriving at kidnap_rate_q8 or more per
- * frame (predict call, low-passed over about 8 frames: false positives, a
- * fraction per frame while the robot sees nothing real, must not do it;
- * real observations after a kidnap come several per frame), means the
- * robot is not where the belief says (kidnap): reset to ignorance and drop
- * the prior, counted. */
-static void update_consistency(fl_fuzzy_t *g, uint32_t fit_q8)
-{
-    const fl_fuzzy_params_t *p = &g->params;
-    int32_t cons = (int32_t)g->consistency_q16;
-    cons += ((int32_t)(fit_q8 * 257u) - cons) >> (p->cons_shift > 8 ? 8 : p->cons_shift);
-    g->consistency_q16 = (uint16_t)clamp32(cons, 0, 65535);
-}
-
-static bool kidnapped(fl_fuzzy_t *g)
-{
-    if (g->track_valid && g->consistency_q16 < g->params.kidnap_q16 &&
-        g->contra_rate_q8 >= g->params.kidnap_rate_q8) {
-        /* lost: the belief and the prior no longer hold */
-        g->stats.kidnaps = fz_sat_inc(g->stats.kidnaps);
-        fl_fuzzy_internal_ignorance(g);
-        g->prior.kind = FL_FUZZY_PRIOR_NONE;
-        return true;
-    }
-    return false;
-}
-
 /* Gating (robustness to false positives and confusions, which arrive at
  * several per second): while a mode is tracked, the observation is first
  * evaluated on the core of the tracked mode only (cells within mode_radius
@@ -836,7 +672,7 @@ static bool kidnapped(fl_fuzzy_t *g)
 static uint32_t mode_fit(fl_fuzzy_t *g, const obsp_t *q, int nreg, bool any_oriented)
 {
     const fl_fuzzy_params_t *p = &g->params;
-    int32_t R = clamp32(p->mode_radius_mm, FZ_CELL, 2000);
+    int32_t R = fz_clamp32(p->mode_radius_mm, FZ_CELL, 2000);
     int ix0, ix1, iy0, iy1, ix, iy, ir;
     uint32_t best = 0, top = 0;
     prodctx_t x;
@@ -880,12 +716,12 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
     uint32_t maxh = 0, fit;
     bool any_oriented = false;
     prodctx_t x;
-    if (!ready(g))
+    if (!fz_ready(g))
         return false;
     p = &g->params;
     g->stats.updates = fz_sat_inc(g->stats.updates);
     if (o == NULL || o->confidence == 0 || (unsigned)o->kind >= (unsigned)FL_LM_KIND_COUNT ||
-        o->range_mm < 0 || o->range_mm > clamp32(p->max_range_mm, 100, 30000) ||
+        o->range_mm < 0 || o->range_mm > fz_clamp32(p->max_range_mm, 100, 30000) ||
         (p->cross_max_mm > 0 && o->range_mm > p->cross_max_mm && o->kind != FL_LM_POST &&
          o->kind != FL_LM_BEACON && o->kind != FL_LM_CENTRE_CIRCLE) ||
         fl_field_count_kind(g->field, o->kind) == 0) {
@@ -909,13 +745,13 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
      * contradictions: persistent contradiction is how a kidnap shows */
     fit = mode_fit(g, &q, nreg, any_oriented);
     if (g->track_valid) {
-        update_consistency(g, fit);
+        fz_update_consistency(g, fit);
         if (fit < p->gate_q8) {
             if (g->contra_run < UINT8_MAX)
                 g->contra_run++;
             if (g->contra_rate_q8 < UINT16_MAX - 32u)
                 g->contra_rate_q8 = (uint16_t)(g->contra_rate_q8 + 32u);
-            if (kidnapped(g))
+            if (fz_kidnapped(g))
                 return false;
             if (g->contra_run % ((uint32_t)p->gate_run + 1u) != 0) {
                 g->stats.obs_gated = fz_sat_inc(g->stats.obs_gated);
@@ -930,7 +766,7 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
      * the wide rings so that deferral and kidnap detection do not depend
      * on it) */
     if (g->track_valid && p->ring_track_q8 < 256)
-        obs_params(g, o, &q, (uint32_t)clamp32(p->ring_track_q8, 1, 256));
+        obs_params(g, o, &q, (uint32_t)fz_clamp32(p->ring_track_q8, 1, 256));
     /* an exactly symmetric belief on a symmetric field: the first half of
      * the rows (and the middle row of an odd grid) is updated, the rest is
      * its mirror (symmetrize below would make it so anyway) */
@@ -956,12 +792,12 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
     if (g->sym_exact) {
         fl_fuzzy_internal_mirror_copy(g);
     } else if (g->field->symmetric) {
-        symmetrize(g);
+        fl_fuzzy_internal_symmetrize(g);
         g->sym_exact = true;
     }
     g->stats.obs_used = fz_sat_inc(g->stats.obs_used);
     if (!g->track_valid)
-        update_consistency(g, maxh);
+        fz_update_consistency(g, maxh);
     fl_fuzzy_internal_normalize(g, maxh);
     return true;
 }
@@ -969,7 +805,7 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
 uint16_t fl_fuzzy_update(fl_fuzzy_t *g, const fl_obs_list_t *obs)
 {
     uint16_t i, n, used = 0;
-    if (!ready(g))
+    if (!fz_ready(g))
         return 0;
     if (obs == NULL) {
         g->stats.obs_ignored = fz_sat_inc(g->stats.obs_ignored);
@@ -979,238 +815,5 @@ uint16_t fl_fuzzy_update(fl_fuzzy_t *g, const fl_obs_list_t *obs)
     for (i = 0; i < n; i++)
         if (fl_fuzzy_update_one(g, &obs->obs[i]))
             used++;
-    return used;
-}
-
-/* ---- negative information (fl_fuzzy_update_view) ---------------------- */
-
-typedef struct {
-    const fl_obs_list_t *obs;    /* the frame's observations (may be NULL) */
-    int32_t near_mm, far_mm;     /* the view's range interval */
-    fl_angle_t mid;              /* the view's centre bearing */
-    int32_t half;                /* its half width (binary angle, < 90 deg) */
-    int32_t r_hi;                /* distances d with near + mr(d) <= d <= */
-    uint32_t s_lo, s_hi;         /* far - mr(d), mr(d) = margin + neg_range
-                                    x d: r_lo^2 <= d^2 <= r_hi^2 */
-} negctx_t;
-
-/* Posts and beacons are told apart from line features; within each group
- * any kind explains any (vision confuses L, T and X). */
-static bool neg_line_kind(fl_landmark_kind_t k)
-{
-    return k != FL_LM_POST && k != FL_LM_BEACON;
-}
-
-/* At most this many expected landmarks of one pose are matched against
- * the observations (more are not counted; the maps have at most 25). */
-#define NEG_MAX_EXPECTED 32
-
-/* Landmarks of the map that pose (px, py, h) puts inside the view (range
- * margin neg_margin + neg_range x distance, bearing margin neg_bearing +
- * tol) in *expected, and how many of them no observation explains
- * (returned, at most cap; without observations the search stops at cap
- * expected landmarks, *expected then counts only those).  Each
- * observation explains at most one of
- * them, the nearest in bearing within its tolerances (kind group, range
- * within the range margin, bearing within the bearing margin), so that a
- * T seen explains the T a hypothesis put it on, not also the L 9 degrees
- * beside it.  The view tests avoid roots and atan2: the distance by its
- * square against the frame's bounds (negctx_t), the bearing by the
- * landmark vector turned into the view's centre direction (x' > 0 and
- * |y'| cos A <= x' sin A, A = half - margin); root and atan2 only for
- * expected landmarks when there are observations.  Scaling: |dx|, |dy|
- * <= r_hi <= 20000 before squaring, so dx^2 + dy^2 < 2^30; x', y' (Q15)
- * < 2^31 in int64, times a Q15 sine < 2^46.  Stack: NEG_MAX_EXPECTED x
- * 12 B. */
-typedef struct {
-    int32_t x_mm, y_mm;          /* the pose */
-    fl_angle_t h;
-    int32_t tol;                 /* its heading uncertainty */
-    int cap;
-} negpose_t;
-
-static int neg_count(const fl_fuzzy_t *g, const negctx_t *x, const negpose_t *ps, int *expected)
-{
-    int32_t px = ps->x_mm, py = ps->y_mm, tol = ps->tol;
-    fl_angle_t h = ps->h;
-    int cap = ps->cap;
-    const fl_field_t *f = g->field;
-    const fl_fuzzy_params_t *p = &g->params;
-    int32_t bt = clamp32(p->neg_bearing, 0, HT) + tol;
-    int64_t c, sn, ca, sa;
-    fl_angle_t dir;
-    struct {
-        int32_t d, mr;
-        fl_angle_t b;
-        bool line, explained;
-    } ex[NEG_MAX_EXPECTED];
-    uint16_t i, k, nobs = 0;
-    int n = 0, e = 0, j;
-    *expected = 0;
-    if (x->obs != NULL)
-        nobs = x->obs->n > FL_OBS_MAX ? (uint16_t)FL_OBS_MAX : x->obs->n;
-    if (bt >= x->half || x->s_lo > x->s_hi)
-        return 0;                      /* nothing lies surely inside */
-    dir = fl_angle_add(h, x->mid);     /* the view's centre, field frame */
-    c = fl_cos_q15(dir);
-    sn = fl_sin_q15(dir);
-    ca = fl_cos_q15((fl_angle_t)(x->half - bt));
-    sa = fl_sin_q15((fl_angle_t)(x->half - bt));
-    for (i = 0; i < f->n_landmarks && e < NEG_MAX_EXPECTED && (nobs > 0 || e < cap); i++) {
-        const fl_landmark_t *lm = &f->landmarks[i];
-        int32_t dx = lm->x_mm - px, dy = lm->y_mm - py;
-        int64_t xr, yr;
-        uint32_t s2;
-        if (iabs(dx) > x->r_hi || iabs(dy) > x->r_hi)
-            continue;
-        s2 = (uint32_t)(dx * dx) + (uint32_t)(dy * dy);
-        if (s2 < x->s_lo || s2 > x->s_hi)
-            continue;
-        xr = dx * c + dy * sn;
-        yr = dy * c - dx * sn;
-        if (xr <= 0 || (yr < 0 ? -yr : yr) * ca > xr * sa)
-            continue;
-        ex[e].explained = false;
-        if (nobs > 0) {
-            ex[e].d = (int32_t)fl_isqrt32(s2);
-            ex[e].mr = clamp32(p->neg_margin_mm, 0, 5000) +
-                       (int32_t)(((uint32_t)ex[e].d *
-                                  (p->neg_range_q8 > 256 ? 256u : p->neg_range_q8)) >> 8);
-            ex[e].b = asub(fl_atan2(dy, dx), h);
-            ex[e].line = neg_line_kind(lm->kind);
-        }
-        e++;
-    }
-    for (k = 0; k < nobs; k++) {
-        const fl_obs_t *o = &x->obs->obs[k];
-        int32_t best = bt + 1;
-        int jb = -1;
-        if (o->confidence == 0 || (unsigned)o->kind >= (unsigned)FL_LM_KIND_COUNT ||
-            o->range_mm < 0 || o->range_mm > 2 * FL_CAMERA_MAX_RANGE_MM)
-            continue;
-        for (j = 0; j < e; j++) {
-            int32_t db = iabs(asub(o->bearing, ex[j].b));
-            if (ex[j].line == neg_line_kind(o->kind) && db < best &&
-                iabs(o->range_mm - ex[j].d) <= ex[j].mr) {
-                best = db;
-                jb = j;
-            }
-        }
-        if (jb >= 0)
-            ex[jb].explained = true;
-    }
-    for (j = 0; j < e && n < cap; j++)
-        n += !ex[j].explained;
-    *expected = e;
-    return n;
-}
-
-/* Every live cell with a known heading: height x (1 - neg_q8)^n, at least
- * the bias (n unexplained landmarks, at most neg_max); then normalized.
- * On an exactly symmetric belief the first half of the rows is done and
- * mirrored (the map is symmetric, so the mirror pose expects the mirrored
- * landmarks).  Cost: live cells with a narrow heading x landmarks within
- * the view's range (one isqrt and one atan2 each) x observations. */
-static void neg_apply(fl_fuzzy_t *g, const negctx_t *x)
-{
-    const fl_fuzzy_params_t *p = &g->params;
-    int32_t hmax = clamp32(p->neg_head_max, 0, HT);
-    uint32_t keep = 256u - p->neg_q8, maxh = 0;
-    int iy, ix, ny_upd = g->sym_exact ? (g->ny + 1) / 2 : g->ny;
-    int cap = p->neg_max;
-    for (iy = 0; iy < ny_upd; iy++) {
-        fl_fuzzy_cell_t *row = &g->cell[(size_t)iy * g->nx];
-        int32_t cy = g->y0_mm + iy * FZ_CELL + FZ_HALF;
-        for (ix = g->row_lo[iy]; ix <= g->row_hi[iy]; ix++) {
-            fl_fuzzy_cell_t *c = &row[ix];
-            int32_t tol;
-            int e, n, k;
-            uint32_t hh;
-            if (c->height == 0)
-                continue;
-            /* the heading is within the core, or not far into the slope */
-            tol = (int32_t)(c->core >= FL_FUZZY_WFULL || c->slope >= FL_FUZZY_WFULL
-                                ? HT : ((int32_t)c->core + (int32_t)c->slope / 2) * FL_FUZZY_AUNIT);
-            if (c->height > c->bias && c->height >= p->neg_min_q8 && tol <= hmax && cap > 0) {
-                negpose_t ps;
-                ps.x_mm = g->x0_mm + ix * FZ_CELL + FZ_HALF + c->off_x_mm;
-                ps.y_mm = cy + c->off_y_mm;
-                ps.h = c->centre;
-                ps.tol = tol;
-                ps.cap = cap;
-                n = neg_count(g, x, &ps, &e);
-                hh = c->height;
-                for (k = 0; k < n; k++)
-                    hh = (hh * keep) >> 8;
-                c->height = (uint8_t)(hh > c->bias ? hh : c->bias);
-            }
-            if (c->height > maxh)
-                maxh = c->height;
-        }
-    }
-    if (g->sym_exact)
-        fl_fuzzy_internal_mirror_copy(g);
-    fl_fuzzy_internal_normalize(g, maxh);
-}
-
-uint16_t fl_fuzzy_update_view(fl_fuzzy_t *g, const fl_obs_list_t *obs,
-                              const fl_obs_view_t *view)
-{
-    const fl_fuzzy_params_t *p;
-    uint16_t used = fl_fuzzy_update(g, obs);
-    negctx_t x;
-    int32_t width;
-    if (!ready(g) || view == NULL || !view->valid)
-        return used;
-    p = &g->params;
-    width = fl_angle_sub(view->bearing_left, view->bearing_right);
-    if (width <= 0 || view->near_mm < 0 || view->far_mm <= view->near_mm ||
-        view->far_mm > FL_CAMERA_MAX_RANGE_MM)
-        return used;                   /* not a view: ignored */
-    x.obs = obs;
-    x.near_mm = view->near_mm;
-    x.far_mm = view->far_mm;
-    x.half = width / 2;
-    x.mid = fl_angle_add(view->bearing_right, (fl_angle_t)x.half);
-    {
-        /* d >= near + m + rq d  <=>  d >= (near + m) / (1 - rq);
-         * d <= far - m - rq d   <=>  d <= (far - m) / (1 + rq) (Q8) */
-        uint32_t rq = p->neg_range_q8 > 255 ? 255u : p->neg_range_q8;
-        int32_t m = clamp32(p->neg_margin_mm, 0, 5000);
-        int32_t lo = (int32_t)((((uint32_t)(view->near_mm + m) << 8) + (255u - rq)) / (256u - rq));
-        int32_t hi = view->far_mm - m < 0
-                         ? -1 : (int32_t)(((uint32_t)(view->far_mm - m) << 8) / (256u + rq));
-        if (lo > 30000)                /* (rq near 1): nothing; no wrap */
-            lo = 30000;
-        x.r_hi = hi;
-        x.s_lo = (uint32_t)lo * (uint32_t)lo;
-        x.s_hi = hi < 0 ? 0u : (uint32_t)hi * (uint32_t)hi;
-        if (hi < lo) {
-            x.s_lo = 1u;
-            x.s_hi = 0u;
-        }
-    }
-    if (g->track_valid && p->neg_kidnap > 0) {
-        int e = 0, n;
-        negpose_t ps;
-        ps.x_mm = g->track_x_mm;
-        ps.y_mm = g->track_y_mm;
-        ps.h = g->track_heading;
-        ps.tol = 0;
-        ps.cap = 255;
-        n = neg_count(g, &x, &ps, &e);
-        if (e >= p->neg_kidnap && n == e) {
-            /* the tracked pose should see landmarks and the frame shows
-             * none of them: a contradiction, as a deferred observation */
-            update_consistency(g, 0);
-            if (g->contra_run < UINT8_MAX)
-                g->contra_run++;
-            if (g->contra_rate_q8 < UINT16_MAX - 32u)
-                g->contra_rate_q8 = (uint16_t)(g->contra_rate_q8 + 32u);
-            (void)kidnapped(g);
-        }
-    }
-    if (p->neg_q8 > 0 && (!g->track_valid || p->neg_track))
-        neg_apply(g, &x);
     return used;
 }
