@@ -43,7 +43,7 @@ static void loc_frame(robot_loc_t *r, int32_t odo_dx_mm, int32_t odo_dy_mm, fl_a
     fl_obs_view_t view;
     fl_camera_init(&cam, m, &pose);
     fl_vision_frame(&r->vision, &r->colors, img, &cam, r->grid.field, &obs);  /* -> observations */
-    fl_obs_view_vision(&cam, &view);   /* where landmarks would surely have been seen */
+    fl_vision_view(&cam, &view);   /* where landmarks would surely have been seen */
     fl_fuzzy_predict(&r->grid, odo_dx_mm, odo_dy_mm, odo_dtheta);
     fl_fuzzy_update_view(&r->grid, &obs, &view);   /* observations + negative information */
     fl_fuzzy_estimate(&r->grid, est);   /* x_mm, y_mm, heading, reliability_q16 */

@@ -147,7 +147,7 @@ int lr_frame(lr_t *r, const fl_image_t *img, const fl_camera_pose_t *pose)
     fl_vision_frame(r->det.vis, r->det.colors, img, &r->cam, r->field, &r->obs);
     r->frames++;
     lr_filter(r);
-    fl_obs_view_vision(&r->cam, &r->view);
+    fl_vision_view(&r->cam, &r->view);
     r->obs_used = fl_fuzzy_update_view(r->grid, &r->obs, &r->view);
     return r->obs_used;
 }
@@ -161,7 +161,7 @@ int lr_frame_obs(lr_t *r, const fl_camera_pose_t *pose, const fl_obs_list_t *obs
     r->obs = *obs;
     r->frames++;
     lr_filter(r);
-    fl_obs_view_vision(&r->cam, &r->view);
+    fl_vision_view(&r->cam, &r->view);
     r->obs_used = fl_fuzzy_update_view(r->grid, &r->obs, &r->view);
     return r->obs_used;
 }

@@ -58,7 +58,7 @@ typedef struct {
                                    (FL_SIDE_UNKNOWN) before the update */
     fl_obs_view_t view;         /* the last frame's view (negative
                                    information, fl_fuzzy_update_view;
-                                   obs.h fl_obs_view_vision) */
+                                   obs.h fl_vision_view) */
     double carry_x, carry_y, carry_a;   /* predict rounding remainders */
     uint32_t frames;            /* lr_frame calls that ran vision */
 } lr_t;
