@@ -77,6 +77,22 @@ typedef struct {
     int32_t min, max;
 } fl_loc_param_t;
 
+/* A localizer whose belief lives on a grid shows it cell by cell (belief
+ * pictures): nx x ny cells of cell_mm, cell (ix, iy) centred at
+ * (x0 + ix * cell + cell / 2, y0 + iy * cell + cell / 2). */
+typedef struct {
+    uint16_t nx, ny;
+    int32_t x0_mm, y0_mm;
+    int32_t cell_mm;
+} fl_loc_grid_t;
+
+typedef struct {
+    uint8_t height_q8;           /* most possible heading's possibility */
+    fl_angle_t heading;          /* that heading */
+    int32_t spread;              /* how far around it the heading is fully
+                                    possible (binary angle, 0..32768) */
+} fl_loc_cell_t;
+
 typedef struct fl_localizer {
     const char *name;            /* "fuzzy" */
     const char *summary;         /* one line */
@@ -125,6 +141,10 @@ typedef struct fl_localizer {
     uint32_t (*possibility_q16)(const void *state, int32_t x_mm,
                                 int32_t y_mm, fl_angle_t heading);
     void (*stats)(const void *state, fl_loc_stats_t *out);
+    /* Grid geometry (false: no grid, or uninitialized; then pictures use
+     * possibility_q16) and one cell (false outside the grid). */
+    bool (*belief_grid)(const void *state, fl_loc_grid_t *out);
+    bool (*belief_cell)(const void *state, int ix, int iy, fl_loc_cell_t *out);
 } fl_localizer_t;
 
 /* ---- catalogue ---------------------------------------------------------- */

@@ -162,6 +162,39 @@ static void fz_stats(const void *state, fl_loc_stats_t *out)
     out->resets = g->stats.resets;
 }
 
+static bool fz_belief_grid(const void *state, fl_loc_grid_t *out)
+{
+    const fl_fuzzy_t *g = (const fl_fuzzy_t *)state;
+    if (out == NULL)
+        return false;
+    memset(out, 0, sizeof *out);
+    if (g == NULL || g->field == NULL || g->nx == 0 || g->ny == 0)
+        return false;
+    out->nx = g->nx;
+    out->ny = g->ny;
+    out->x0_mm = g->x0_mm;
+    out->y0_mm = g->y0_mm;
+    out->cell_mm = FL_FUZZY_CELL_MM;
+    return true;
+}
+
+static bool fz_belief_cell(const void *state, int ix, int iy, fl_loc_cell_t *out)
+{
+    const fl_fuzzy_t *g = (const fl_fuzzy_t *)state;
+    const fl_fuzzy_cell_t *c;
+    if (out == NULL)
+        return false;
+    memset(out, 0, sizeof *out);
+    if (g == NULL || g->field == NULL || ix < 0 || iy < 0 || ix >= g->nx || iy >= g->ny)
+        return false;
+    c = &g->cell[iy * g->nx + ix];
+    out->height_q8 = c->height;
+    out->heading = c->centre;
+    out->spread = c->core >= FL_FUZZY_WFULL ? FL_FUZZY_HALF_TURN
+                                            : (int32_t)c->core * FL_FUZZY_AUNIT;
+    return true;
+}
+
 /* Parameter table: every field of fl_fuzzy_params_t, in declaration order,
  * with the range of its type (fl_fuzzy_params_check decides the rest). */
 #define OFF(f) ((uint16_t)offsetof(fl_fuzzy_params_t, f))
@@ -209,4 +242,6 @@ const fl_localizer_t fl_localizer_fuzzy = {
     fz_check,
     fz_possibility_q16,
     fz_stats,
+    fz_belief_grid,
+    fz_belief_cell,
 };
