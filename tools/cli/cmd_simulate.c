@@ -1,6 +1,7 @@
 /*
  * tools/cli/cmd_simulate.c - `fieldloc simulate`: a simulated walk (tools/world/sim.h)
- * localized by the fuzzy position grid (include/fieldloc/fuzzy.h).
+ * localized through the localizer interface (include/fieldloc/localizer.h;
+ * default the fuzzy position grid).
  *
  *   fieldloc simulate --field spl2013|uva2013|aibo2004 --localizer fuzzy
  *                     --seed N [--features | --frames] [--steps N] [--quiet]
@@ -41,7 +42,8 @@
  * uses lr_params_frames (tools/loc/locrun.c: narrower rings for vision's
  * accurate ranges, measured there).  --param NAME=VALUE (repeatable)
  * changes one parameter of the localizer's table on top (raw integer
- * units; fuzzy: the fields of fl_fuzzy_params_t, fuzzy.h); every value that differs from the defaults is printed.
+ * units; fuzzy: the fields of fl_fuzzy_params_t, fuzzy.h); every value
+ * that differs from the defaults is printed.
  * --obs-cache FILE (frames mode, for parameter studies) stores
  * the vision observations of the walk in FILE, or reads them from it when
  * it holds those of the same walk, field, seed and --every: the localizer
