@@ -150,6 +150,16 @@ static void t_odometry(void)
     CHECK_EQ(lr_param_set(loc, &p, "no_such=1"), -1);
     CHECK_EQ(lr_param_set(loc, &p, "ring_core_q8"), -1);
     CHECK_EQ(lr_param_set(loc, &p, "ring_core_q8=1x"), -1);
+    CHECK_EQ(lr_param_set(loc, &p, "odo_max_mm=99999999999"), -1);   /* beyond int32 */
+    CHECK_EQ(lr_param_set(loc, &p, "odo_max_mm=5000"), -1);   /* fits, out of use */
+    /* the localizer by name */
+    {
+        char err[128];
+        CHECK(lr_localizer(NULL, err, (int)sizeof err) == loc);
+        CHECK(lr_localizer("fuzzy", err, (int)sizeof err) == loc);
+        CHECK(lr_localizer("mcl", err, (int)sizeof err) == NULL);
+        CHECK(strstr(err, "unknown localizer 'mcl'") != NULL && strstr(err, "fuzzy") != NULL);
+    }
 }
 
 /* lr_predict: many small steps integrate without rounding drift. */

@@ -191,6 +191,29 @@ static void test_same_as_direct(void)
     CHECK_EQ(ls.predicts, g->stats.predicts);
     CHECK_EQ(ls.obs_used, g->stats.obs_used);
     CHECK(fl_loc_check(loc, st));
+    {
+        /* the belief cell by cell = the grid's cells */
+        fl_loc_grid_t gr;
+        fl_loc_cell_t c;
+        int ix, iy, bad = 0;
+        CHECK(loc->belief_grid(st, &gr));
+        CHECK_EQ(gr.nx, g->nx);
+        CHECK_EQ(gr.ny, g->ny);
+        CHECK_EQ(gr.x0_mm, g->x0_mm);
+        CHECK_EQ(gr.cell_mm, FL_FUZZY_CELL_MM);
+        for (iy = 0; iy < gr.ny; iy++)
+            for (ix = 0; ix < gr.nx; ix++) {
+                const fl_fuzzy_cell_t *fc = &g->cell[iy * g->nx + ix];
+                if (!loc->belief_cell(st, ix, iy, &c) || c.height_q8 != fc->height ||
+                    c.heading != fc->centre || c.spread < 0 || c.spread > 32768)
+                    bad++;
+            }
+        CHECK_EQ(bad, 0);
+        CHECK(!loc->belief_cell(st, -1, 0, &c));
+        CHECK(!loc->belief_cell(st, gr.nx, 0, &c));
+        CHECK(!loc->belief_cell(st, 0, gr.ny, &c));
+        CHECK(!loc->belief_grid(NULL, &gr));
+    }
     /* resets and priors through the interface */
     loc->reset_pose(st, 1000, -500, 8192, 300, 2048);
     fl_fuzzy_reset_pose(g, 1000, -500, 8192, 300, 2048);
