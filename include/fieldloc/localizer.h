@@ -59,7 +59,7 @@ typedef struct {
 } fl_loc_estimate_t;
 
 /* Counters every localizer keeps (0 when a localizer has no such event);
- * the tools print these.  fl_loc_stats gives the rest by index too. */
+ * the tools print these (saturating, since init). */
 typedef struct {
     uint32_t predicts, updates;
     uint32_t obs_used, obs_gated, obs_ignored;
@@ -141,8 +141,8 @@ typedef struct fl_localizer {
     uint32_t (*possibility_q16)(const void *state, int32_t x_mm,
                                 int32_t y_mm, fl_angle_t heading);
     void (*stats)(const void *state, fl_loc_stats_t *out);
-    /* Grid geometry (false: no grid, or uninitialized; then pictures use
-     * possibility_q16) and one cell (false outside the grid). */
+    /* Grid geometry (false: no grid, or uninitialized: the host's belief
+     * pictures need it) and one cell (false outside the grid). */
     bool (*belief_grid)(const void *state, fl_loc_grid_t *out);
     bool (*belief_cell)(const void *state, int ix, int iy, fl_loc_cell_t *out);
 } fl_localizer_t;
