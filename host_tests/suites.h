@@ -10,6 +10,7 @@ T_SUITE(realdata);
 T_SUITE(color);
 T_SUITE(scan);
 T_SUITE(fuzzy);
+T_SUITE(localizer);
 T_SUITE(lines);
 T_SUITE(features);
 T_SUITE(beacon);

@@ -10,31 +10,42 @@
 #include <stdlib.h>
 
 /* ---- the README example, verbatim from here ---- */
+#define LOCALIZER "fuzzy"   /* the one line that picks the filter (localizer.h catalogue) */
+
 typedef struct {
     fl_color_table_t colors;   /* ~230 KiB, built once */
     fl_vision_t vision;        /* ~120 KiB, all buffers of the vision path */
-    fl_fuzzy_t grid;           /* ~63 KiB, the belief */
+    const fl_localizer_t *loc; /* the localizer's functions */
+    const fl_field_t *field;
+    union { int64_t align; void *p; uint8_t b[72 * 1024]; } state;   /* the belief (fuzzy ~63 KiB) */
+    union { int64_t align; void *p; uint8_t b[512]; } params;
 } robot_loc_t;
 
 static fl_status_t loc_init(robot_loc_t *r, const char *field_name)
 {
     fl_color_params_t cp;
     fl_vision_params_t vp;
-    fl_fuzzy_params_t fp;
     fl_status_t s;
+    r->loc = fl_localizer_find(LOCALIZER);
+    r->field = fl_field_find(field_name);
+    if (r->loc == NULL) return FL_ERR_NOT_FOUND;
+    if (r->loc->state_size > sizeof r->state || r->loc->params_size > sizeof r->params)
+        return FL_ERR_SIZE;
     fl_color_params_default(&cp);               /* HSV boxes from the UvA 2013 images */
     fl_vision_params_default(&vp);
-    fl_fuzzy_params_vision(&fp, fl_camera_model_find("nao4-bottom-320"));   /* for vision's obs */
+    /* parameters for vision's observations; the camera's width picks the preset */
+    r->loc->params_preset(r->params.b,
+                          fl_loc_preset_for_width(fl_camera_model_find("nao4-bottom-320")->width_px));
     if ((s = fl_color_init(&r->colors, &cp)) != FL_OK) return s;
     if ((s = fl_vision_init(&r->vision, &vp)) != FL_OK) return s;
-    return fl_fuzzy_init(&r->grid, fl_field_find(field_name), &fp);   /* total ignorance */
+    return fl_loc_init(r->loc, r->state.b, r->field, r->params.b);   /* total ignorance */
 }
 
 /* once per camera frame: odometry since the last frame (robot frame, mm,
  * binary angle), the frame, the head joints */
 static void loc_frame(robot_loc_t *r, int32_t odo_dx_mm, int32_t odo_dy_mm, fl_angle_t odo_dtheta,
                       const fl_image_t *img, fl_angle_t head_pitch, fl_angle_t head_yaw,
-                      fl_fuzzy_estimate_t *est)
+                      fl_loc_estimate_t *est)
 {
     const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-320");
     fl_camera_pose_t pose = {m->default_neck_height_mm, head_pitch, head_yaw, m->default_pitch_offset};
@@ -42,11 +53,11 @@ static void loc_frame(robot_loc_t *r, int32_t odo_dx_mm, int32_t odo_dy_mm, fl_a
     fl_obs_list_t obs;
     fl_obs_view_t view;
     fl_camera_init(&cam, m, &pose);
-    fl_vision_frame(&r->vision, &r->colors, img, &cam, r->grid.field, &obs);  /* -> observations */
-    fl_obs_view_vision(&cam, &view);   /* where landmarks would surely have been seen */
-    fl_fuzzy_predict(&r->grid, odo_dx_mm, odo_dy_mm, odo_dtheta);
-    fl_fuzzy_update_view(&r->grid, &obs, &view);   /* observations + negative information */
-    fl_fuzzy_estimate(&r->grid, est);   /* x_mm, y_mm, heading, reliability_q16 */
+    fl_vision_frame(&r->vision, &r->colors, img, &cam, r->field, &obs);  /* -> observations */
+    fl_vision_view(&cam, &view);   /* where landmarks would surely have been seen */
+    fl_loc_predict(r->loc, r->state.b, odo_dx_mm, odo_dy_mm, odo_dtheta);
+    fl_loc_update(r->loc, r->state.b, &obs, &view);   /* observations + negative information */
+    fl_loc_estimate(r->loc, r->state.b, est);   /* x_mm, y_mm, heading, reliability_q16 */
 }
 /* ---- end of the README example ---- */
 
@@ -55,7 +66,7 @@ static void test_readme_example(void)
     robot_loc_t *r = malloc(sizeof *r);
     render_scene_t sc;
     render_frame_t fr;
-    fl_fuzzy_estimate_t est;
+    fl_loc_estimate_t est;
     char err[128];
     FILE *f = fopen("fixtures/frames/spl2013_t_near.scene", "r");
     int i;
@@ -69,16 +80,16 @@ static void test_readme_example(void)
     fclose(f);
     CHECK_EQ(render_frame(&sc, &fr), 0);
     CHECK_EQ(loc_init(r, "spl2013"), FL_OK);
-    fl_fuzzy_set_prior_half(&r->grid, sc.robot_x_mm < 0 ? -1 : 1);
+    r->loc->set_prior_half(r->state.b, sc.robot_x_mm < 0 ? -1 : 1);
     for (i = 0; i < 5; i++)   /* standing still, the same frame */
         loc_frame(r, 0, 0, 0, &fr.view, sc.head.head_pitch, sc.head.head_yaw, &est);
     CHECK(r->vision.crossings.n > 0);
     /* one T seen from one spot is ambiguous, but the true pose must stay
      * among the most possible ones */
-    CHECK_LE(32768, fl_fuzzy_possibility_q16(&r->grid, sc.robot_x_mm, sc.robot_y_mm, sc.robot_heading));
+    CHECK_LE(32768, r->loc->possibility_q16(r->state.b, sc.robot_x_mm, sc.robot_y_mm, sc.robot_heading));
     t_info("README example on spl2013_t_near: possibility of the true pose %.2f, estimate (%d, %d) mm "
            "reliability %.2f (one crossing: ambiguous), truth (%d, %d) mm",
-           fl_fuzzy_possibility_q16(&r->grid, sc.robot_x_mm, sc.robot_y_mm, sc.robot_heading) / 65536.0,
+           r->loc->possibility_q16(r->state.b, sc.robot_x_mm, sc.robot_y_mm, sc.robot_heading) / 65536.0,
            (int)est.x_mm, (int)est.y_mm, est.reliability_q16 / 65536.0, (int)sc.robot_x_mm,
            (int)sc.robot_y_mm);
     render_frame_free(&fr);

@@ -137,33 +137,45 @@ static void t_odometry(void)
 {
     lr_odo_t o = {0, 0, 0};
     fl_fuzzy_params_t p;
+    const fl_localizer_t *loc = &fl_localizer_fuzzy;
     /* compose: 100 forward, turn 90 left, then 100 forward = (100, 100, 90) */
     lr_odo_add(&o, 100, 0, M_PI / 2);
     lr_odo_add(&o, 100, 0, 0);
     CHECK(fabs(o.x - 100) < 1e-9 && fabs(o.y - 100) < 1e-9 && fabs(o.a - M_PI / 2) < 1e-12);
     /* parameters by name */
     fl_fuzzy_params_default(&p);
-    CHECK_EQ(lr_param_set(&p, "ring_core_q8=10"), 0);
+    CHECK_EQ(lr_param_set(loc, &p, "ring_core_q8=10"), 0);
     CHECK_EQ(p.ring_core_q8, 10);
-    CHECK_EQ(lr_param_set(&p, "gate_run=300"), -1);   /* does not fit uint8 */
-    CHECK_EQ(lr_param_set(&p, "no_such=1"), -1);
-    CHECK_EQ(lr_param_set(&p, "ring_core_q8"), -1);
-    CHECK_EQ(lr_param_set(&p, "ring_core_q8=1x"), -1);
+    CHECK_EQ(lr_param_set(loc, &p, "gate_run=300"), -1);   /* does not fit uint8 */
+    CHECK_EQ(lr_param_set(loc, &p, "no_such=1"), -1);
+    CHECK_EQ(lr_param_set(loc, &p, "ring_core_q8"), -1);
+    CHECK_EQ(lr_param_set(loc, &p, "ring_core_q8=1x"), -1);
+    CHECK_EQ(lr_param_set(loc, &p, "odo_max_mm=99999999999"), -1);   /* beyond int32 */
+    CHECK_EQ(lr_param_set(loc, &p, "odo_max_mm=5000"), -1);   /* fits, out of use */
+    /* the localizer by name */
+    {
+        char err[128];
+        CHECK(lr_localizer(NULL, err, (int)sizeof err) == loc);
+        CHECK(lr_localizer("fuzzy", err, (int)sizeof err) == loc);
+        CHECK(lr_localizer("mcl", err, (int)sizeof err) == NULL);
+        CHECK(strstr(err, "unknown localizer 'mcl'") != NULL && strstr(err, "fuzzy") != NULL);
+    }
 }
 
 /* lr_predict: many small steps integrate without rounding drift. */
 static void t_predict_carry(void)
 {
     lr_t r;
-    fl_fuzzy_estimate_t e;
+    fl_loc_estimate_t e;
+    fl_loc_stats_t stats;
     char err[128];
     int k;
-    if (lr_init(&r, fl_field_find("spl2013"), fl_camera_model_find("nao4-top-320"), NULL, err,
+    if (lr_init(&r, NULL, fl_field_find("spl2013"), fl_camera_model_find("nao4-top-320"), NULL, err,
                 (int)sizeof err) != 0) {
         CHECK(0);
         return;
     }
-    fl_fuzzy_reset_pose(r.grid, -2000, 0, 0, 100, fl_angle_from_mdeg(5000));
+    r.loc->reset_pose(r.state, -2000, 0, 0, 100, fl_angle_from_mdeg(5000));
     /* 0.4 mm per call, 1500 calls = 600 mm forward (rounding each call to
      * an integer without the carry would move 0 mm) */
     for (k = 0; k < 1500; k++)
@@ -172,10 +184,11 @@ static void t_predict_carry(void)
     CHECK_LE(abs((int)e.x_mm - -1400), 100);
     CHECK_LE(abs((int)e.y_mm), 100);
     /* one absurd call is split, not rejected: 2.5 m forward */
-    fl_fuzzy_reset_pose(r.grid, -3000, 0, 0, 100, fl_angle_from_mdeg(5000));
+    r.loc->reset_pose(r.state, -3000, 0, 0, 100, fl_angle_from_mdeg(5000));
     lr_predict(&r, 2500, 0, 0);
     lr_estimate(&r, &e);
-    CHECK_EQ(r.grid->stats.odo_rejected, 0);
+    r.loc->stats(r.state, &stats);
+    CHECK_EQ(stats.odo_rejected, 0);
     CHECK_LE(abs((int)e.x_mm - -500), 200);
     t_info("predict carry: estimate x %d (want -500 after the 2.5 m call)", (int)e.x_mm);
     lr_free(&r);
@@ -303,18 +316,22 @@ static void t_picture(void)
     static fl_fuzzy_t g;
     host_image_t img, back, both;
     pic_pose_t truth = {1000, -500, 30};
-    fl_fuzzy_estimate_t est;
+    fl_fuzzy_estimate_t fe;
+    fl_loc_estimate_t est;
+    const fl_localizer_t *loc = &fl_localizer_fuzzy;
     char base[64], path[80], err[128];
     int w = 0, h = 0, png = 0;
     const uint8_t *px;
     CHECK_EQ(fl_fuzzy_init(&g, fl_field_find("spl2013"), NULL), FL_OK);
     fl_fuzzy_reset_pose(&g, 1000, -500, fl_angle_from_mdeg(30000), 300,
                         fl_angle_from_mdeg(10000));
-    fl_fuzzy_estimate(&g, &est);
-    CHECK_EQ(pic_belief_size(&g, 8, &w, &h), 0);
+    fl_fuzzy_estimate(&g, &fe);
+    CHECK(loc->estimate(&g, &est));
+    CHECK_EQ(est.x_mm, fe.x_mm);
+    CHECK_EQ(pic_belief_size(loc, &g, 8, &w, &h), 0);
     CHECK_EQ(w, 104 * 8);
     CHECK_EQ(h, 74 * 8);
-    CHECK_EQ(pic_belief(&g, 8, &truth, &est, NULL, &img), 0);
+    CHECK_EQ(pic_belief(loc, &g, g.field, 8, &truth, &est, NULL, &img), 0);
     CHECK_EQ(img.width, w);
     CHECK_EQ(img.height, h);
     /* far corner cell: carpet (height 0); the pose's cell row near the
@@ -354,7 +371,7 @@ static void t_picture(void)
     host_image_free(&img);
     /* an uninitialized grid is refused */
     memset(&g, 0, sizeof g);
-    CHECK_EQ(pic_belief(&g, 8, NULL, NULL, NULL, &img), -1);
+    CHECK_EQ(pic_belief(loc, &g, fl_field_find("spl2013"), 8, NULL, NULL, NULL, &img), -1);
     CHECK(img.rgb == NULL);
 }
 

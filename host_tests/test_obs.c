@@ -2,6 +2,7 @@
 #include "test.h"
 #include "fieldloc/fuzzy.h"
 #include "fieldloc/obs.h"
+#include "fieldloc/vision.h"
 
 #include <string.h>
 
@@ -97,7 +98,7 @@ static void test_orientation(void)
     t_digest("obs.orientation", h);
 }
 
-/* fl_obs_view_from_camera: the sector lies inside the shrunk image (its
+/* fl_vision_view_from_camera: the sector lies inside the shrunk image (its
  * corners and centre project at least the margin inside), follows the
  * head yaw, and is invalid for a camera that sees no ground or bad
  * arguments. */
@@ -132,7 +133,7 @@ static void test_view(void)
             pose.head_pitch = fl_angle_from_urad(300000);
             pose.head_yaw = yaw;
             CHECK_EQ(fl_camera_init(&cam, model, &pose), FL_OK);
-            fl_obs_view_from_camera(&cam, m_px, 4000, &v);
+            fl_vision_view_from_camera(&cam, m_px, 4000, &v);
             CHECK(v.valid);
             width = fl_angle_sub(v.bearing_left, v.bearing_right);
             CHECK(width > fl_angle_from_mdeg(20000) && width < fl_angle_from_mdeg(65000));
@@ -160,26 +161,26 @@ static void test_view(void)
             pose.neck_height_mm = model->default_neck_height_mm;
             pose.head_pitch = fl_angle_from_urad(-1200000);
             CHECK_EQ(fl_camera_init(&cam, model, &pose), FL_OK);
-            fl_obs_view_from_camera(&cam, m_px, 4000, &v);
+            fl_vision_view_from_camera(&cam, m_px, 4000, &v);
             CHECK(!v.valid);
             /* bad arguments */
             pose.head_pitch = fl_angle_from_urad(300000);
             CHECK_EQ(fl_camera_init(&cam, model, &pose), FL_OK);
-            fl_obs_view_from_camera(&cam, -1, 4000, &v);
+            fl_vision_view_from_camera(&cam, -1, 4000, &v);
             CHECK(!v.valid);
-            fl_obs_view_from_camera(&cam, model->width_px, 4000, &v);
+            fl_vision_view_from_camera(&cam, model->width_px, 4000, &v);
             CHECK(!v.valid);
-            fl_obs_view_from_camera(&cam, m_px, 0, &v);
+            fl_vision_view_from_camera(&cam, m_px, 0, &v);
             CHECK(!v.valid);
-            fl_obs_view_from_camera(NULL, m_px, 4000, &v);
+            fl_vision_view_from_camera(NULL, m_px, 4000, &v);
             CHECK(!v.valid);
-            fl_obs_view_from_camera(&cam, m_px, 4000, NULL);
+            fl_vision_view_from_camera(&cam, m_px, 4000, NULL);
         }
     }
     t_digest("obs.view", h);
 }
 
-/* fl_obs_view_vision and fl_fuzzy_params_vision / _for_camera: the view
+/* fl_vision_view and fl_fuzzy_params_vision / _for_camera: the view
  * is the 1/16-margin view up to 4 m (2.5 m under 320 px wide); the
  * parameters pass fl_fuzzy_params_check for every catalogue camera, keep
  * the precise tracking rings and all crossings for the NAO cameras, and
@@ -202,8 +203,8 @@ static void test_vision_defaults(void)
         pose.pitch_offset = model->default_pitch_offset;
         pose.head_pitch = fl_angle_from_urad(300000);
         CHECK_EQ(fl_camera_init(&cam, model, &pose), FL_OK);
-        fl_obs_view_vision(&cam, &a);
-        fl_obs_view_from_camera(&cam, w / 16, w >= 320 ? 4000 : 2500, &b);
+        fl_vision_view(&cam, &a);
+        fl_vision_view_from_camera(&cam, w / 16, w >= 320 ? 4000 : 2500, &b);
         CHECK(a.valid && b.valid);
         CHECK_EQ(memcmp(&a, &b, sizeof a), 0);
         CHECK_LE(a.far_mm, w >= 320 ? 4000 : 2500);
@@ -235,7 +236,7 @@ static void test_vision_defaults(void)
     CHECK_EQ(memcmp(&p, &d, sizeof p), 0);
     fl_fuzzy_params_vision(NULL, NULL);   /* no crash */
     fl_fuzzy_params_for_camera(NULL, NULL);
-    fl_obs_view_vision(NULL, &v);
+    fl_vision_view(NULL, &v);
     CHECK(!v.valid);
 }
 

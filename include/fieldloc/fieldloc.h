@@ -21,5 +21,6 @@
 #include "fieldloc/beacon.h"
 #include "fieldloc/vision.h"
 #include "fieldloc/fuzzy.h"
+#include "fieldloc/localizer.h"
 
 #endif /* FIELDLOC_FIELDLOC_H */

@@ -54,6 +54,7 @@
 #ifndef FIELDLOC_FUZZY_H
 #define FIELDLOC_FUZZY_H
 
+#include "fieldloc/camera.h"   /* fl_fuzzy_params_vision, _for_camera */
 #include "fieldloc/common.h"
 #include "fieldloc/config.h"
 #include "fieldloc/fixed.h"
@@ -353,8 +354,8 @@ void fl_fuzzy_params_default(fl_fuzzy_params_t *p);
 fl_status_t fl_fuzzy_params_check(const fl_fuzzy_params_t *p);
 
 /* The parameters for observations from fl_vision_frame (vision.h), with
- * the frame's view given to fl_fuzzy_update_view (obs.h,
- * fl_obs_view_vision): the defaults above suit noisy feature-level
+ * the frame's view given to fl_fuzzy_update_view (vision.h,
+ * fl_vision_view): the defaults above suit noisy feature-level
  * observations; vision's are more precise but fewer, with L/T confusions
  * and far false marks instead.  Changes (what each trades in
  * src/loc/fuzzy.c; measured by `build/fieldloc simulate ... --frames`):

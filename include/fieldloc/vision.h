@@ -97,4 +97,26 @@ int32_t fl_vision_frame(fl_vision_t *v, const fl_color_table_t *colors,
                         const fl_image_t *img, const fl_camera_t *camera,
                         const fl_field_t *field, fl_obs_list_t *out);
 
+/* ---- the frame's view, for negative information (obs.h fl_obs_view_t;
+ * src/vision/vision_view.c) ---- */
+
+/* The view of a camera (camera.h, initialized with the frame's pose): the
+ * image shrunk by margin_px on every side (and below the horizon by as
+ * much) projected onto the ground, reduced to the sector inside it
+ * (samples along each edge: near = the farthest of the bottom edge, far =
+ * the nearest of the top edge but at most max_range_mm, bearings the
+ * innermost of the side edges; the footprint is convex, so the sector
+ * lies inside it up to the curvature of the side edges, which the margin
+ * covers).  valid false when the camera is NULL, the shrunk image has no
+ * ground, or the sector is empty.  Integer only (camera.c projections). */
+void fl_vision_view_from_camera(const fl_camera_t *cam, int32_t margin_px,
+                                int32_t max_range_mm, fl_obs_view_t *view);
+
+/* The view that goes with fl_fuzzy_params_vision (fuzzy.h): the image
+ * shrunk by 1/16 of its width, up to 4 m for cameras at least 320 px wide
+ * and 2.5 m for narrower ones (vision finds 72-99 % of the landmarks of
+ * each kind that project that far inside the image, simulate --frames
+ * "# vision" lines).  valid false for a NULL camera. */
+void fl_vision_view(const fl_camera_t *cam, fl_obs_view_t *view);
+
 #endif /* FIELDLOC_VISION_H */

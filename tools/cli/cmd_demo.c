@@ -3,7 +3,7 @@
  * bundled walk.  A NAO walks the SPL 2013 field (fixtures/walks/spl2013.walk:
  * 130 s, head scanning, a kidnap at 55 s, a penalty at 95 s); every 3rd frame
  * (10 Hz) is rendered at the true pose, run through the firmware vision path
- * and fed to the fuzzy position grid, exactly as `fieldloc simulate
+ * and fed to the localizer (--localizer, default the fuzzy position grid), exactly as `fieldloc simulate
  * --frames` (tools/loc/locrun.c lr_walk_run; same metrics and summary lines).
  *
  *   fieldloc demo [--walk FILE.walk | --field NAME] [--seed N] [--every N]
@@ -81,7 +81,7 @@ static void demo_picture(demo_t *d, const lr_walk_step_t *ws, const char *name, 
     ep.x_mm = ws->est->x_mm;
     ep.y_mm = ws->est->y_mm;
     ep.heading_deg = lr_deg(ws->est->heading);
-    if (pic_belief(ws->lr->grid, 0, &truth, ws->est, &ws->lr->obs, &belief) != 0)
+    if (pic_belief(ws->lr->loc, ws->lr->state, ws->lr->field, 0, &truth, ws->est, &ws->lr->obs, &belief) != 0)
         return;
     if (ws->frame != NULL &&
         pic_frame(&ws->lr->det, &ws->frame->view, &ws->lr->cam, ws->lr->field, &ep, 2, &frame) ==
@@ -104,7 +104,7 @@ static void demo_picture(demo_t *d, const lr_walk_step_t *ws, const char *name, 
 static void demo_hook(void *user, const lr_walk_step_t *ws)
 {
     demo_t *d = user;
-    const fl_fuzzy_estimate_t *e = ws->est;
+    const fl_loc_estimate_t *e = ws->est;
     char name[64];
     d->records++;
     if (ws->events & SIM_EV_KIDNAP) {
@@ -158,7 +158,8 @@ static int demo_usage(void)
 {
     fprintf(stderr,
             "usage: fieldloc demo [--walk FILE.walk | --field NAME] [--seed N] [--every N]\n"
-            "                     [--seconds S] [--out DIR] [--picture-every-s S] [--no-png]\n");
+            "                     [--seconds S] [--out DIR] [--picture-every-s S] [--no-png]\n"
+            "                     [--localizer NAME (default fuzzy)]\n");
     return 2;
 }
 
@@ -172,7 +173,9 @@ int cmd_demo(int argc, char **argv)
     char err[256], path[1100];
     lr_walk_opts_t o;
     lr_walk_result_t res;
-    fl_fuzzy_params_t params;
+    const char *localizer = NULL;
+    const fl_localizer_t *loc;
+    void *params;
     demo_t d;
     demo_final_t fin;
     sim_t *probe;
@@ -194,11 +197,17 @@ int cmd_demo(int argc, char **argv)
             pic_s = atof(argv[++k]);
         else if (!strcmp(argv[k], "--no-png"))
             png = 0;
+        else if (!strcmp(argv[k], "--localizer") && k + 1 < argc)
+            localizer = argv[++k];
         else
             return demo_usage();
     }
     if (every < 1 || every > 1000 || seconds < 0 || pic_s < 0)
         return demo_usage();
+    if ((loc = lr_localizer(localizer, err, (int)sizeof err)) == NULL) {
+        fprintf(stderr, "demo: %s\n", err);
+        return 2;
+    }
     if (walk != NULL) {
         if (sim_scenario_load(&sc, walk, err, (int)sizeof err) != 0) {
             fprintf(stderr, "demo: %s: %s\n", walk, err);
@@ -226,8 +235,14 @@ int cmd_demo(int argc, char **argv)
     memset(&o, 0, sizeof o);
     o.frames = 1;
     o.every = (int)every;
-    lr_params_frames(&params);
-    o.params = &params;
+    /* the localizer's vision parameters; freed at exit */
+    if ((params = lr_params_new(loc)) == NULL) {
+        fprintf(stderr, "demo: out of memory\n");
+        return 1;
+    }
+    lr_params_frames(loc, params);
+    o.loc = loc;
+    o.params = params;
     o.max_steps = seconds > 0 ? (long)floor(seconds * sc.frame_hz) + 1 : -1;
     o.steps = d.steps;
     fin.d = &d;
@@ -235,6 +250,7 @@ int cmd_demo(int argc, char **argv)
     probe = malloc(sizeof *probe);
     if (probe == NULL || sim_init(probe, &sc) != 0) {
         free(probe);
+        free(params);
         fprintf(stderr, "demo: invalid scenario\n");
         return 1;
     }
@@ -252,17 +268,20 @@ int cmd_demo(int argc, char **argv)
            o.max_steps >= 0 ? (double)(o.max_steps - 1) / sc.frame_hz : sc.duration_s,
            sc.frame_hz, walk ? "" : " (fixtures/walks/NAME.walk)");
     printf("  every %ld%s step (%.1f Hz): render the frame at the true pose -> fl_vision_frame "
-           "-> fuzzy grid (odometry accumulated between);\n  start in total ignorance, prior "
+           "-> %s (odometry accumulated between);\n  start in total ignorance, prior "
            "own half; rendering on %d thread(s); pictures in %s\n",
            every, every == 1 ? "st" : every == 2 ? "nd" : every == 3 ? "rd" : "th",
-           sc.frame_hz / (double)every, lr_threads_default(), out);
+           sc.frame_hz / (double)every,
+           strcmp(loc->name, "fuzzy") != 0 ? loc->name : "fuzzy grid", lr_threads_default(), out);
     fflush(stdout);
     if (lr_walk_run(&sc, &o, &res, err, (int)sizeof err) != 0) {
         fprintf(stderr, "demo: %s\n", err);
         if (d.steps)
             fclose(d.steps);
+        free(params);
         return 1;
     }
+    free(params);
     if (d.steps)
         fclose(d.steps);
     printf("  %ld frames in %.1f s (rendering %.1f s, vision + grid %.2f ms per frame)\n",

@@ -83,7 +83,7 @@ typedef struct {
 } lz_spot_t;
 
 static int lz_uva_spots(const char *pictures, const char *write_seq,
-                        const fl_fuzzy_params_t *params)
+                        const fl_localizer_t *loc, const void *params)
 {
     const char *dir = rd_dir();
     char path[1200], err[256];
@@ -189,6 +189,7 @@ static int lz_uva_spots(const char *pictures, const char *write_seq,
         snprintf(prefix, sizeof prefix, "%.60s_", name);
         o.picture_prefix = prefix;
         o.picture_every = 1;
+        o.loc = loc;
         o.params = params;
         rc = lr_seq_run(&seq, &o, res);
         if (rc < 0) {
@@ -197,7 +198,7 @@ static int lz_uva_spots(const char *pictures, const char *write_seq,
         }
         for (i = 0; i < sp->n; i++) {
             const rd_uva_record_t *r = &set.rec[sp->idx[i]];
-            const fl_fuzzy_estimate_t *e = &res[i].est;
+            const fl_loc_estimate_t *e = &res[i].est;
             double pe, he, mpe, mhe, ex = e->x_mm, ey = e->y_mm, eh = lr_deg(e->heading);
             int mir;
             lr_pose_error(ex, ey, eh, r->x_cm * 10, r->y_cm * 10, r->theta_deg, &pe, &he, &mpe,
@@ -236,8 +237,10 @@ int cmd_localize(int argc, char **argv)
     lr_seq_t seq;
     lr_seq_opts_t o;
     char err[512];
-    fl_fuzzy_params_t params;
-    lr_params_frames(&params);
+    const char *localizer = NULL, *param[64];
+    int n_param = 0;
+    const fl_localizer_t *loc;
+    void *params;
     for (k = 0; k < argc; k++) {
         if (!strcmp(argv[k], "--pictures") && k + 1 < argc)
             pictures = argv[++k];
@@ -249,12 +252,11 @@ int cmd_localize(int argc, char **argv)
             write_seq = argv[++k];
         else if (!strcmp(argv[k], "--uva-spots"))
             uva = 1;
+        else if (!strcmp(argv[k], "--localizer") && k + 1 < argc)
+            localizer = argv[++k];
         else if (!strcmp(argv[k], "--param") && k + 1 < argc) {
-            if (lr_param_set(&params, argv[++k]) != 0) {
-                fprintf(stderr, "localize: bad --param '%s' (NAME=INTEGER, a field of "
-                                "fl_fuzzy_params_t, in range)\n", argv[k]);
-                return 2;
-            }
+            if (n_param < 64)
+                param[n_param++] = argv[++k];
         }
         else if (argv[k][0] == '-' && argv[k][1] != '\0')
             return lz_usage();
@@ -263,12 +265,35 @@ int cmd_localize(int argc, char **argv)
         else
             return lz_usage();
     }
-    if (uva)
-        return seq_path != NULL ? lz_usage() : lz_uva_spots(pictures, write_seq, &params);
-    if (seq_path == NULL || write_seq != NULL)
+    if ((loc = lr_localizer(localizer, err, (int)sizeof err)) == NULL) {
+        fprintf(stderr, "localize: %s\n", err);
+        return 2;
+    }
+    if ((params = lr_params_new(loc)) == NULL) {
+        fprintf(stderr, "localize: out of memory\n");
+        return 1;
+    }
+    lr_params_frames(loc, params);
+    for (k = 0; k < n_param; k++) {
+        if (lr_param_set(loc, params, param[k]) != 0) {
+            fprintf(stderr, "localize: bad --param '%s' (NAME=INTEGER, a parameter of "
+                            "localizer %s, in range)\n", param[k], loc->name);
+            free(params);
+            return 2;
+        }
+    }
+    if (uva) {
+        rc = seq_path != NULL ? lz_usage() : lz_uva_spots(pictures, write_seq, loc, params);
+        free(params);
+        return rc;
+    }
+    if (seq_path == NULL || write_seq != NULL) {
+        free(params);
         return lz_usage();
+    }
     if (lr_seq_load(seq_path, &seq, err, (int)sizeof err) != 0) {
         fprintf(stderr, "localize: %s: %s\n", seq_path, err);
+        free(params);
         return 2;
     }
     if (pictures != NULL)
@@ -279,8 +304,10 @@ int cmd_localize(int argc, char **argv)
     o.pictures = pictures;
     o.picture_prefix = "frame_";
     o.picture_every = every;
-    o.params = &params;
+    o.loc = loc;
+    o.params = params;
     rc = lr_seq_run(&seq, &o, NULL);
+    free(params);
     k = seq.n;
     lr_seq_free(&seq);
     if (rc < 0)

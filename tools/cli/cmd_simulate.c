@@ -1,6 +1,7 @@
 /*
  * tools/cli/cmd_simulate.c - `fieldloc simulate`: a simulated walk (tools/world/sim.h)
- * localized by the fuzzy position grid (include/fieldloc/fuzzy.h).
+ * localized through the localizer interface (include/fieldloc/localizer.h;
+ * default the fuzzy position grid).
  *
  *   fieldloc simulate --field spl2013|uva2013|aibo2004 --localizer fuzzy
  *                     --seed N [--features | --frames] [--steps N] [--quiet]
@@ -36,11 +37,13 @@
  * ("# vision ..." lines, tools/loc/locrun.h lr_vdiag_t) and the time spent
  * rendering and in vision + grid.
  *
- * Localizer parameters: --features uses fl_fuzzy_params_default; --frames
+ * --localizer NAME: any of the catalogue (localizer.h; default fuzzy).
+ * Localizer parameters: --features uses the localizer's defaults; --frames
  * uses lr_params_frames (tools/loc/locrun.c: narrower rings for vision's
  * accurate ranges, measured there).  --param NAME=VALUE (repeatable)
- * changes one field of fl_fuzzy_params_t on top (raw integer units, see
- * fuzzy.h); every value that differs from the defaults is printed.
+ * changes one parameter of the localizer's table on top (raw integer
+ * units; fuzzy: the fields of fl_fuzzy_params_t, fuzzy.h); every value
+ * that differs from the defaults is printed.
  * --obs-cache FILE (frames mode, for parameter studies) stores
  * the vision observations of the walk in FILE, or reads them from it when
  * it holds those of the same walk, field, seed and --every: the localizer
@@ -102,7 +105,7 @@
 static void usage(void)
 {
     fprintf(stderr,
-            "usage: fieldloc simulate --field spl2013|uva2013|aibo2004 --localizer fuzzy\n"
+            "usage: fieldloc simulate --field spl2013|uva2013|aibo2004 [--localizer fuzzy]\n"
             "                         --seed N [--features | --frames] [--steps N] [--quiet]\n"
             "                         [--scenario FILE.walk] [--every N] [--param NAME=V]...\n"
             "                         [--obs-cache FILE] [--print-obs]\n"
@@ -121,7 +124,9 @@ int cmd_simulate(int argc, char **argv)
     char err[256], *end;
     const char *obs_cache = NULL, *param[64];
     int n_param = 0;
-    fl_fuzzy_params_t params, defaults;
+    const fl_localizer_t *loc;
+    void *params = NULL, *defaults = NULL;
+    int rc;
 
     for (k = 0; k < argc; k++) {
         if (!strcmp(argv[k], "--field") && k + 1 < argc)
@@ -172,32 +177,41 @@ int cmd_simulate(int argc, char **argv)
         usage();
         return 2;
     }
-    if (localizer != NULL && strcmp(localizer, "fuzzy") != 0) {
-        fprintf(stderr, "simulate: unknown localizer '%s' (available: fuzzy)\n", localizer);
+    if ((loc = lr_localizer(localizer, err, (int)sizeof err)) == NULL) {
+        fprintf(stderr, "simulate: %s\n", err);
         return 2;
+    }
+    params = lr_params_new(loc);
+    defaults = lr_params_new(loc);
+    if (params == NULL || defaults == NULL) {
+        fprintf(stderr, "simulate: out of memory\n");
+        free(params);
+        free(defaults);
+        return 1;
     }
     /* the localizer's parameters: the mode's base set, then --param */
     if (frames)
-        lr_params_frames(&params);
-    else
-        fl_fuzzy_params_default(&params);
-    fl_fuzzy_params_default(&defaults);
+        lr_params_frames(loc, params);
     for (k = 0; k < n_param; k++) {
-        if (lr_param_set(&params, param[k]) != 0) {
-            fprintf(stderr, "simulate: bad --param '%s' (NAME=INTEGER, a field of "
-                            "fl_fuzzy_params_t, in range)\n", param[k]);
+        if (lr_param_set(loc, params, param[k]) != 0) {
+            fprintf(stderr, "simulate: bad --param '%s' (NAME=INTEGER, a parameter of "
+                            "localizer %s, in range)\n", param[k], loc->name);
+            free(params);
+            free(defaults);
             return 2;
         }
     }
     if (scen_path != NULL) {
         if (sim_scenario_load(&sc, scen_path, err, (int)sizeof err) != 0) {
             fprintf(stderr, "simulate: %s: %s\n", scen_path, err);
-            return 1;
+            rc = 1;
+            goto done;
         }
     } else if (sim_scenario_builtin(&sc, field_name) != 0) {
         fprintf(stderr, "simulate: no built-in walk for field '%s' (spl2013, uva2013, aibo2004)\n",
                 field_name);
-        return 2;
+        rc = 2;
+        goto done;
     }
     if (seed >= 0)
         sc.seed = (uint64_t)seed;
@@ -208,10 +222,11 @@ int cmd_simulate(int argc, char **argv)
     o.steps = quiet ? NULL : stdout;
     o.print_obs = print_obs;
     o.ignore_post_sides = !post_sides;
-    o.params = &params;
+    o.loc = loc;
+    o.params = params;
     o.obs_cache = obs_cache;
-    printf("# simulate field %s localizer fuzzy seed %llu %s, %.0f s at %.0f Hz\n",
-           sc.field->name, (unsigned long long)sc.seed, frames ? "frames" : "features",
+    printf("# simulate field %s localizer %s seed %llu %s, %.0f s at %.0f Hz\n",
+           sc.field->name, loc->name, (unsigned long long)sc.seed, frames ? "frames" : "features",
            sc.duration_s, sc.frame_hz);
     if (frames)
         printf("# frames: camera %s %dx%d rendered at the true pose, vision on every %ld%s step "
@@ -219,15 +234,16 @@ int cmd_simulate(int argc, char **argv)
                sc.camera->name, (int)sc.camera->width_px, (int)sc.camera->height_px, every,
                every == 1 ? "st" : every == 2 ? "nd" : every == 3 ? "rd" : "th",
                sc.frame_hz / (double)every);
-    if (memcmp(&params, &defaults, sizeof params) != 0) {
-        printf("# localizer params changed from fl_fuzzy_params_default:");
-        lr_param_print(stdout, &params, &defaults);
+    if (lr_param_diff(loc, params, defaults) != 0) {
+        printf("# localizer params changed from fl_%s_params_default:", loc->name);
+        lr_param_print(stdout, loc, params, defaults);
         printf("\n");
     }
     fflush(stdout);
     if (lr_walk_run(&sc, &o, &res, err, (int)sizeof err) != 0) {
         fprintf(stderr, "simulate: %s\n", err);
-        return 1;
+        rc = 1;
+        goto done;
     }
     printf("# steps %ld (%.1f s), %ld records, rmse over %ld records\n", res.steps,
            (double)res.steps / sc.frame_hz, res.records, res.used);
@@ -244,5 +260,9 @@ int cmd_simulate(int argc, char **argv)
                res.records ? 1000.0 * res.vision_grid_s / (double)res.records : 0.0);
     }
     lr_walk_print_summary(stdout, &res);
-    return 0;
+    rc = 0;
+done:
+    free(params);
+    free(defaults);
+    return rc;
 }

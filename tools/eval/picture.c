@@ -71,11 +71,15 @@ static void pic_ramp(double h, uint8_t *c)
         c[k] = (uint8_t)lround(stop[i][k] + f * (stop[i + 1][k] - stop[i][k]));
 }
 
-int pic_belief_size(const fl_fuzzy_t *g, int px_per_cell, int *width, int *height)
+int pic_belief_size(const fl_localizer_t *loc, const void *state, int px_per_cell,
+                    int *width, int *height)
 {
     int s = px_per_cell <= 0 ? PIC_DEFAULT_PX_PER_CELL : px_per_cell;
-    if (g == NULL || g->field == NULL || g->nx == 0 || g->ny == 0)
+    fl_loc_grid_t gr;
+    if (loc == NULL || state == NULL || loc->belief_grid == NULL ||
+        !loc->belief_grid(state, &gr) || gr.nx == 0 || gr.ny == 0)
         return -1;
+    const fl_loc_grid_t *g = &gr;
     if (s < 2)
         s = 2;
     if (s > 32)
@@ -97,37 +101,40 @@ static void pic_to_px(const pic_map_t *m, double x, double y, double *u, double 
     *v = m->h - (y - m->y0) * m->s - 0.5;
 }
 
-int pic_belief(const fl_fuzzy_t *g, int px_per_cell, const pic_pose_t *truth,
-               const fl_fuzzy_estimate_t *est, const fl_obs_list_t *obs,
-               host_image_t *out)
+int pic_belief(const fl_localizer_t *loc, const void *state, const fl_field_t *f, int px_per_cell,
+               const pic_pose_t *truth, const fl_loc_estimate_t *est,
+               const fl_obs_list_t *obs, host_image_t *out)
 {
     static const uint8_t carpet[3] = {18, 62, 28}, white[3] = {235, 235, 235},
                          black[3] = {0, 0, 0}, cyan[3] = {0, 230, 255},
                          magenta[3] = {255, 40, 255};
     int W, H, s, ix, iy, i, u, v;
     pic_map_t m;
-    const fl_field_t *f;
+    fl_loc_grid_t gr;
+    const fl_loc_grid_t *g = &gr;
     memset(out, 0, sizeof *out);
-    if (pic_belief_size(g, px_per_cell, &W, &H) != 0)
+    if (pic_belief_size(loc, state, px_per_cell, &W, &H) != 0 || loc->belief_cell == NULL ||
+        f == NULL)
         return -1;
+    loc->belief_grid(state, &gr);
     s = W / g->nx;
     *out = host_image_new(W, H, carpet[0], carpet[1], carpet[2]);
     if (out->rgb == NULL)
         return -1;
-    f = g->field;
     m.x0 = g->x0_mm;
     m.y0 = g->y0_mm;
-    m.s = (double)s / FL_FUZZY_CELL_MM;
+    m.s = (double)s / g->cell_mm;
     m.h = H;
     /* cells */
     for (iy = 0; iy < g->ny; iy++) {
         for (ix = 0; ix < g->nx; ix++) {
-            const fl_fuzzy_cell_t *c = &g->cell[iy * g->nx + ix];
+            fl_loc_cell_t cl;
+            const fl_loc_cell_t *c = &cl;
             uint8_t col[3];
             int v0 = (g->ny - 1 - iy) * s, u0 = ix * s;
-            if (c->height == 0)
+            if (!loc->belief_cell(state, ix, iy, &cl) || c->height_q8 == 0)
                 continue;
-            pic_ramp(c->height / 255.0, col);
+            pic_ramp(c->height_q8 / 255.0, col);
             for (v = 0; v < s; v++)
                 for (u = 0; u < s; u++)
                     pic_px(out, u0 + u, v0 + v, col);
@@ -167,11 +174,13 @@ int pic_belief(const fl_fuzzy_t *g, int px_per_cell, const pic_pose_t *truth,
     /* heading ticks */
     for (iy = 0; iy < g->ny; iy++) {
         for (ix = 0; ix < g->nx; ix++) {
-            const fl_fuzzy_cell_t *c = &g->cell[iy * g->nx + ix];
+            fl_loc_cell_t cl;
+            const fl_loc_cell_t *c = &cl;
             double cu = ix * s + (s - 1) / 2.0, cv = (g->ny - 1 - iy) * s + (s - 1) / 2.0;
-            double a = c->centre * (PIC_PI / 32768.0), L = 0.45 * s;
-            if (c->height < 64 || (uint32_t)c->core * FL_FUZZY_AUNIT >= 8192u)
+            double a, L = 0.45 * s;
+            if (!loc->belief_cell(state, ix, iy, &cl) || c->height_q8 < 64 || c->spread >= 8192)
                 continue;
+            a = c->heading * (PIC_PI / 32768.0);
             pic_line(out, cu, cv, cu + L * cos(a), cv - L * sin(a), black, 0);
         }
     }

@@ -23,7 +23,6 @@
 
 #include "eval/detect.h"
 #include "fieldloc/fieldloc.h"
-#include "fieldloc/fuzzy.h"
 #include "io/ppm.h"
 
 #include <stdint.h>
@@ -35,15 +34,20 @@ typedef struct {
 /* Pixels per cell used when 0 is given. */
 #define PIC_DEFAULT_PX_PER_CELL 8
 
-/* Size of the belief picture of grid g (0 on success). */
-int pic_belief_size(const fl_fuzzy_t *g, int px_per_cell, int *width, int *height);
+/* Size of the belief picture of a localizer's state (localizer.h; its
+ * belief_grid) (0 on success). */
+int pic_belief_size(const fl_localizer_t *loc, const void *state, int px_per_cell,
+                    int *width, int *height);
 
 /* Draw the belief into a new image (out->rgb malloc'd; free with
- * host_image_free).  truth, est, obs may be NULL.  0 on success, -1 on a
- * NULL/uninitialized grid or out of memory. */
-int pic_belief(const fl_fuzzy_t *g, int px_per_cell, const pic_pose_t *truth,
-               const fl_fuzzy_estimate_t *est, const fl_obs_list_t *obs,
-               host_image_t *out);
+ * host_image_free); field: the state's field (lines drawn).  truth, est,
+ * obs may be NULL.  0 on success, -1 on a
+ * NULL/uninitialized state, a localizer without belief_grid or out of
+ * memory. */
+int pic_belief(const fl_localizer_t *loc, const void *state, const fl_field_t *field,
+               int px_per_cell,
+               const pic_pose_t *truth, const fl_loc_estimate_t *est,
+               const fl_obs_list_t *obs, host_image_t *out);
 
 /* The frame with the last vision run of det drawn over it (det_draw) and,
  * when pose is not NULL, the field lines and circle projected from that

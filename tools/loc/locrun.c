@@ -4,10 +4,11 @@
  * Algorithm: lr_predict rounds the (double) odometry to mm and binary
  * angles with error diffusion (the remainder of each call is added to the
  * next), so a long run of small motions integrates without bias; a
- * component beyond the grid's odo_max_mm is split into equal parts.
+ * component beyond the localizer's odo_max_mm is split into equal parts.
  * lr_frame builds the camera for the frame's pose, runs fl_vision_frame and
- * feeds the observation list to fl_fuzzy_update.
- * Memory: the grid (about 64 KiB) and the vision context (color tables,
+ * feeds the observation list and the view to the localizer's update
+ * (localizer.h; the tools hold only the interface).
+ * Memory: the localizer's state (fuzzy: about 64 KiB) and the vision context (color tables,
  * vision workspace) are malloc'd once per lr_t; a parsed sequence holds
  * one lr_seq_frame_t (about 1 KiB) per frame.
  */
@@ -27,37 +28,41 @@
 
 /* ---- engine ---------------------------------------------------------------- */
 
-int lr_init(lr_t *r, const fl_field_t *field, const fl_camera_model_t *model,
-            const fl_fuzzy_params_t *params, char *err, int err_len)
+int lr_init(lr_t *r, const fl_localizer_t *loc, const fl_field_t *field,
+            const fl_camera_model_t *model, const void *params, char *err, int err_len)
 {
-    fl_fuzzy_params_t pw;
     memset(r, 0, sizeof *r);
-    if (field == NULL || model == NULL) {
+    if (loc == NULL)
+        loc = fl_localizer_find("fuzzy");
+    if (field == NULL || model == NULL || loc == NULL) {
         if (err)
-            snprintf(err, (size_t)err_len, "no field or camera");
+            snprintf(err, (size_t)err_len, "no field, camera or localizer");
         return -1;
     }
     r->field = field;
     r->model = model;
-    r->grid = malloc(sizeof *r->grid);
-    if (r->grid == NULL || det_ctx_init(&r->det) != 0) {
+    r->loc = loc;
+    r->state = malloc(loc->state_size);
+    r->params = malloc(loc->params_size);
+    if (r->state == NULL || r->params == NULL || det_ctx_init(&r->det) != 0) {
         if (err)
-            snprintf(err, (size_t)err_len, "out of memory (vision context or grid)");
+            snprintf(err, (size_t)err_len, "out of memory (vision context or localizer)");
         lr_free(r);
         return -1;
     }
     if (params != NULL) {
-        /* the camera-dependent part of the vision parameters (fuzzy.h
+        /* the camera-dependent part of the vision parameters (fuzzy:
          * fl_fuzzy_params_for_camera: wide rings and crossings up to 2.5 m
          * for the AIBO); a no-op for other parameters */
-        pw = *params;
-        fl_fuzzy_params_for_camera(&pw, model);
-        params = &pw;
+        memcpy(r->params, params, loc->params_size);
+        loc->params_adapt(r->params, fl_loc_preset_for_width(model->width_px));
+    } else {
+        loc->params_default(r->params);
     }
-    if (fl_fuzzy_init(r->grid, field, params) != FL_OK) {
+    if (loc->init(r->state, field, params != NULL ? r->params : NULL) != FL_OK) {
         if (err)
-            snprintf(err, (size_t)err_len, "cannot size the grid for field %s (or bad params)",
-                     field->name);
+            snprintf(err, (size_t)err_len, "cannot size the %s localizer for field %s (or bad params)",
+                     loc->name, field->name);
         lr_free(r);
         return -1;
     }
@@ -69,17 +74,30 @@ void lr_free(lr_t *r)
 {
     if (r == NULL)
         return;
-    free(r->grid);
-    r->grid = NULL;
+    free(r->state);
+    r->state = NULL;
+    free(r->params);
+    r->params = NULL;
     if (r->det.colors != NULL || r->det.vis != NULL)
         det_ctx_free(&r->det);
+}
+
+/* The largest |dx| or |dy| the localizer takes in one predict call:
+ * its odo_max_mm parameter when it has one (fuzzy), else 1000. */
+static double lr_odo_max(const lr_t *r)
+{
+    int32_t v = 0;
+    void *p = r->loc->params_of(r->state);
+    if (p == NULL || fl_localizer_param_get(r->loc, p, "odo_max_mm", &v) != FL_OK || v <= 0)
+        return 1000.0;
+    return (double)v;
 }
 
 void lr_predict(lr_t *r, double dx_mm, double dy_mm, double dtheta_rad)
 {
     double x = dx_mm + r->carry_x, y = dy_mm + r->carry_y;
     double a = dtheta_rad * (32768.0 / LR_PI) + r->carry_a;
-    double rx, ry, ra, lim = (double)r->grid->params.odo_max_mm, m;
+    double rx, ry, ra, lim = lr_odo_max(r), m;
     int parts, k;
     if (!isfinite(x) || !isfinite(y) || !isfinite(a))
         return;
@@ -92,13 +110,13 @@ void lr_predict(lr_t *r, double dx_mm, double dy_mm, double dtheta_rad)
     ra = fmod(ra, 65536.0);
     if (fabs(rx) > 2e6 || fabs(ry) > 2e6) {
         /* absurd: one call, which the grid rejects and counts */
-        fl_fuzzy_predict(r->grid, rx > 0 ? 2000000 : -2000000, 0, 0);
+        r->loc->predict(r->state, rx > 0 ? 2000000 : -2000000, 0, 0);
         return;
     }
     m = fabs(rx) > fabs(ry) ? fabs(rx) : fabs(ry);
     parts = m > lim ? (int)ceil(m / lim) : 1;
     if (parts == 1) {
-        fl_fuzzy_predict(r->grid, (int32_t)rx, (int32_t)ry, fl_angle_wrap((int32_t)ra));
+        r->loc->predict(r->state, (int32_t)rx, (int32_t)ry, fl_angle_wrap((int32_t)ra));
         return;
     }
     {
@@ -107,7 +125,7 @@ void lr_predict(lr_t *r, double dx_mm, double dy_mm, double dtheta_rad)
         for (k = 1; k <= parts; k++) {
             int32_t tx = (int32_t)floor(rx * k / parts + 0.5);
             int32_t ty = (int32_t)floor(ry * k / parts + 0.5);
-            fl_fuzzy_predict(r->grid, tx - done_x, ty - done_y,
+            r->loc->predict(r->state, tx - done_x, ty - done_y,
                              k == parts ? fl_angle_wrap((int32_t)ra) : 0);
             done_x = tx;
             done_y = ty;
@@ -147,8 +165,8 @@ int lr_frame(lr_t *r, const fl_image_t *img, const fl_camera_pose_t *pose)
     fl_vision_frame(r->det.vis, r->det.colors, img, &r->cam, r->field, &r->obs);
     r->frames++;
     lr_filter(r);
-    fl_obs_view_vision(&r->cam, &r->view);
-    r->obs_used = fl_fuzzy_update_view(r->grid, &r->obs, &r->view);
+    fl_vision_view(&r->cam, &r->view);
+    r->obs_used = r->loc->update(r->state, &r->obs, &r->view);
     return r->obs_used;
 }
 
@@ -161,14 +179,14 @@ int lr_frame_obs(lr_t *r, const fl_camera_pose_t *pose, const fl_obs_list_t *obs
     r->obs = *obs;
     r->frames++;
     lr_filter(r);
-    fl_obs_view_vision(&r->cam, &r->view);
-    r->obs_used = fl_fuzzy_update_view(r->grid, &r->obs, &r->view);
+    fl_vision_view(&r->cam, &r->view);
+    r->obs_used = r->loc->update(r->state, &r->obs, &r->view);
     return r->obs_used;
 }
 
-void lr_estimate(lr_t *r, fl_fuzzy_estimate_t *est)
+void lr_estimate(lr_t *r, fl_loc_estimate_t *est)
 {
-    fl_fuzzy_estimate(r->grid, est);
+    r->loc->estimate(r->state, est);
 }
 
 void lr_odo_add(lr_odo_t *o, double dx_mm, double dy_mm, double dtheta_rad)
@@ -460,7 +478,7 @@ void lr_seq_free(lr_seq_t *s)
 /* ---- running a sequence --------------------------------------------------- */
 
 static void lr_seq_picture(const lr_seq_opts_t *o, lr_t *lr, const render_frame_t *fr, int have_frame,
-                       const fl_fuzzy_estimate_t *est, int k)
+                       const fl_loc_estimate_t *est, int k)
 {
     host_image_t belief, frame, both;
     pic_pose_t ep;
@@ -468,7 +486,7 @@ static void lr_seq_picture(const lr_seq_opts_t *o, lr_t *lr, const render_frame_
     ep.x_mm = est->x_mm;
     ep.y_mm = est->y_mm;
     ep.heading_deg = lr_deg(est->heading);
-    if (pic_belief(lr->grid, 0, NULL, est, have_frame ? &lr->obs : NULL, &belief) != 0)
+    if (pic_belief(lr->loc, lr->state, lr->field, 0, NULL, est, have_frame ? &lr->obs : NULL, &belief) != 0)
         return;
     snprintf(base, sizeof base, "%s/%s%05d", o->pictures,
              o->picture_prefix ? o->picture_prefix : "frame_", k);
@@ -490,21 +508,21 @@ int lr_seq_run(const lr_seq_t *seq, const lr_seq_opts_t *o, lr_frame_result_t *r
     char err[256];
     int k, skipped = 0;
     const char *name = o->name != NULL ? o->name : "sequence";
-    if (lr_init(&lr, seq->field, seq->camera, o->params, err, (int)sizeof err) != 0) {
+    if (lr_init(&lr, o->loc, seq->field, seq->camera, o->params, err, (int)sizeof err) != 0) {
         fprintf(stderr, "localize: %s\n", err);
         return -1;
     }
     if (seq->has_prior) {
         int32_t x = (int32_t)lround(seq->prior_x_mm), y = (int32_t)lround(seq->prior_y_mm);
         fl_angle_t h = fl_angle_from_mdeg((int32_t)lround(fmod(seq->prior_theta_deg, 360.0) * 1000));
-        fl_fuzzy_set_prior_pose(lr.grid, x, y, h, 1000);
-        fl_fuzzy_reset_pose(lr.grid, x, y, h, 300, fl_angle_from_mdeg(20000));
+        lr.loc->set_prior_pose(lr.state, x, y, h, 1000);
+        lr.loc->reset_pose(lr.state, x, y, h, 300, fl_angle_from_mdeg(20000));
     }
     for (k = 0; k < seq->n; k++) {
         const lr_seq_frame_t *f = &seq->frame[k];
         render_frame_t fr;
         fl_camera_pose_t pose;
-        fl_fuzzy_estimate_t est;
+        fl_loc_estimate_t est;
         int have = 0, used = -1;
         lr_predict(&lr, f->odo_dx_mm, f->odo_dy_mm, f->odo_dtheta_deg * (LR_PI / 180.0));
         if (render_read_frame(f->image, &fr, err, (int)sizeof err) != 0) {
@@ -778,7 +796,7 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
     FILE *cache = NULL;
     int cache_read = 0;
     double t_kidnap = -1;
-    fl_fuzzy_estimate_t est;
+    fl_loc_estimate_t est;
 
     memset(res, 0, sizeof *res);
     sim = malloc(sizeof *sim);
@@ -797,13 +815,13 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
         free(job);
         return lr_fail(err, err_len, 0, "invalid scenario");
     }
-    if (lr_init(&lr, sc->field, sc->camera, o->params, err, err_len) != 0) {
+    if (lr_init(&lr, o->loc, sc->field, sc->camera, o->params, err, err_len) != 0) {
         free(sim);
         free(st);
         free(job);
         return -1;
     }
-    fl_fuzzy_set_prior_half(lr.grid, sc->start_x_mm < 0 ? -1 : 1);
+    lr.loc->set_prior_half(lr.state, sc->start_x_mm < 0 ? -1 : 1);
     lr.ignore_post_sides = o->ignore_post_sides;
     sym = sc->field->symmetric;
     cap = (long)sim_step_count(sim) + 1;
@@ -854,14 +872,14 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
                 half_known = 0;
             if (!o->frames) {
                 /* feature mode: predict, placement, update every step */
-                fl_fuzzy_predict(lr.grid, st->odo_dx_mm, st->odo_dy_mm, st->odo_dtheta);
+                lr.loc->predict(lr.state, st->odo_dx_mm, st->odo_dy_mm, st->odo_dtheta);
                 if (st->events & SIM_EV_PENALIZED) {
-                    fl_fuzzy_reset_penalty(lr.grid, (int32_t)sc->penalty_x_mm, 300, 2730);
+                    lr.loc->reset_penalty(lr.state, (int32_t)sc->penalty_x_mm, 300, 2730);
                     half_known = 1;
                     if (i_penalty < 0)
                         i_penalty = n;
                 }
-                fl_fuzzy_update(lr.grid, &st->obs);
+                lr.loc->update(lr.state, &st->obs, NULL);
                 nb = 1;
                 break;
             }
@@ -917,7 +935,7 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
                     return lr_fail(err, err_len, 0, "render failed at step %lu", idx);
                 }
                 if (job[b].placed)
-                    fl_fuzzy_reset_penalty(lr.grid, (int32_t)sc->penalty_x_mm, 300, 2730);
+                    lr.loc->reset_penalty(lr.state, (int32_t)sc->penalty_x_mm, 300, 2730);
                 t0 = lr_now_s();
                 lr_predict(&lr, job[b].ax, job[b].ay, job[b].aa);
                 if (cache_read) {
@@ -944,7 +962,7 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
                 res->vision_grid_s += lr_now_s() - t0;
                 lr_vdiag_frame(res->vdiag, sc, &lr.cam, sp, &lr.obs);
             }
-            fl_fuzzy_estimate(lr.grid, &est);
+            lr.loc->estimate(lr.state, &est);
             lr_record(&rec[n], t, sym, hk, est.x_mm, est.y_mm, lr_deg(est.heading), sp->x_mm,
                       sp->y_mm, lr_deg(sp->heading));
             if (o->steps != NULL)
@@ -1027,7 +1045,7 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
         res->pos_rmse_all_mm = used_all > 0 ? sqrt(se_pa / (double)used_all) : NAN;
         res->heading_rmse_all_deg = used_all > 0 ? sqrt(se_ha / (double)used_all) : NAN;
     }
-    res->stats = lr.grid->stats;
+    lr.loc->stats(lr.state, &res->stats);
     if (cache != NULL)
         fclose(cache);
     free(rec);
@@ -1087,54 +1105,86 @@ void lr_walk_print_vdiag(FILE *f, const lr_walk_result_t *res)
 
 /* ---- parameters by name ------------------------------------------------------ */
 
-#define LR_PARAMS(X)                                                                   \
-    X(odo_trans_q8) X(odo_turn_mm_per_rad) X(odo_rot_q8) X(odo_rot_per_m)              \
-    X(blur_kappa_min_q8) X(blur_kappa_gain_q8) X(blur_kappa_max_q8) X(blur_step_mm)    \
-    X(wide_core) X(odo_max_mm) X(ring_base_mm) X(ring_core_q8) X(ring_slope_mm)        \
-    X(ring_slope_q8) X(ring_track_q8) X(bearing_core) X(bearing_slope) X(head_min_core) \
-    X(head_min_slope) X(orient_core) X(orient_slope) X(bias_min_q8) X(head_bias_q8)    \
-    X(head_bias_outlier) X(confuse_q8) X(confuse_conf)                                 \
-    X(max_range_mm) X(cross_max_mm) X(min_height_q8) X(mode_radius_mm)                 \
-    X(track_radius_mm) X(switch_q8) X(track_min_q16) X(gate_q8) X(gate_run)            \
-    X(cons_shift) X(kidnap_q16) X(kidnap_rate_q8) X(neg_q8) X(neg_max) X(neg_track)    \
-    X(neg_kidnap) X(neg_margin_mm) X(neg_range_q8) X(neg_bearing) X(neg_head_max) X(neg_min_q8)
-
-/* fl_fuzzy_params_vision (src/loc/fuzzy.c, where its measurements are) for a
- * NAO camera; lr_init applies fl_fuzzy_params_for_camera. */
-void lr_params_frames(fl_fuzzy_params_t *p)
+/* The localizer's vision preset for a NAO camera (fuzzy: fl_fuzzy_params_vision,
+ * src/loc/fuzzy.c, where its measurements are); lr_init applies params_adapt
+ * for the actual camera. */
+void lr_params_frames(const fl_localizer_t *loc, void *p)
 {
-    fl_fuzzy_params_vision(p, NULL);
+    loc->params_preset(p, FL_LOC_PRESET_VISION);
 }
 
-int lr_param_set(fl_fuzzy_params_t *p, const char *assign)
+const fl_localizer_t *lr_localizer(const char *name, char *err, int err_len)
+{
+    const fl_localizer_t *loc = fl_localizer_find(name != NULL ? name : "fuzzy");
+    uint16_t i;
+    size_t n;
+    if (loc != NULL)
+        return loc;
+    if (err != NULL && err_len > 0) {
+        snprintf(err, (size_t)err_len, "unknown localizer '%s' (known:", name);
+        for (i = 0; i < fl_localizer_count(); i++) {
+            n = strlen(err);
+            snprintf(err + n, (size_t)err_len - n, " %s", fl_localizer_get(i)->name);
+        }
+        n = strlen(err);
+        snprintf(err + n, (size_t)err_len - n, ")");
+    }
+    return NULL;
+}
+
+void *lr_params_new(const fl_localizer_t *loc)
+{
+    void *p = loc != NULL ? malloc(loc->params_size) : NULL;
+    if (p != NULL)
+        loc->params_default(p);
+    return p;
+}
+
+int lr_param_set(const fl_localizer_t *loc, void *p, const char *assign)
 {
     const char *eq = assign ? strchr(assign, '=') : NULL;
-    char *end;
+    char name[128], *end;
     long v;
     size_t n;
-    if (p == NULL || eq == NULL)
+    if (loc == NULL || p == NULL || eq == NULL)
         return -1;
     n = (size_t)(eq - assign);
-    v = strtol(eq + 1, &end, 10);
-    if (*end != '\0' || eq[1] == '\0')
+    if (n >= sizeof name)
         return -1;
-#define LR_SET(name)                                                                   \
-    if (n == strlen(#name) && !strncmp(assign, #name, n)) {                            \
-        p->name = (__typeof__(p->name))v;                                              \
-        if ((long)p->name != v)                                                        \
-            return -1;                                                                 \
-        return fl_fuzzy_params_check(p) == FL_OK ? 0 : -1;                             \
-    }
-    LR_PARAMS(LR_SET)
-#undef LR_SET
-    return -1;
+    memcpy(name, assign, n);
+    name[n] = '\0';
+    errno = 0;
+    v = strtol(eq + 1, &end, 10);
+    if (*end != '\0' || eq[1] == '\0' || errno != 0 || v < INT32_MIN || v > INT32_MAX)
+        return -1;
+    if (fl_localizer_param_set(loc, p, name, (int32_t)v) != FL_OK)
+        return -1;
+    return loc->params_check(p) == FL_OK ? 0 : -1;
 }
 
-void lr_param_print(FILE *f, const fl_fuzzy_params_t *p, const fl_fuzzy_params_t *ref)
+int lr_param_diff(const fl_localizer_t *loc, const void *p, const void *ref)
 {
-#define LR_PR(name)                                                                    \
-    if (ref == NULL || (long)p->name != (long)ref->name)                               \
-        fprintf(f, " %s=%ld", #name, (long)p->name);
-    LR_PARAMS(LR_PR)
-#undef LR_PR
+    uint16_t i;
+    int n = 0;
+    for (i = 0; i < loc->n_param; i++) {
+        int32_t a = 0, b = 0;
+        fl_localizer_param_get(loc, p, loc->param[i].name, &a);
+        fl_localizer_param_get(loc, ref, loc->param[i].name, &b);
+        n += a != b;
+    }
+    return n;
+}
+
+void lr_param_print(FILE *f, const fl_localizer_t *loc, const void *p, const void *ref)
+{
+    uint16_t i;
+    for (i = 0; i < loc->n_param; i++) {
+        int32_t a = 0, b = 0;
+        const char *nm = loc->param[i].name;
+        fl_localizer_param_get(loc, p, nm, &a);
+        if (ref != NULL)
+            fl_localizer_param_get(loc, ref, nm, &b);
+        if (ref == NULL || a != b)
+            fprintf(f, " %s=%ld", nm, (long)a);
+    }
 }

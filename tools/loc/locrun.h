@@ -1,6 +1,6 @@
 /*
  * tools/loc/locrun.h - host glue between the vision path (fieldloc/vision.h)
- * and the fuzzy grid (fieldloc/fuzzy.h), shared by `fieldloc simulate
+ * and a localizer (fieldloc/localizer.h; "fuzzy" by default), shared by `fieldloc simulate
  * --frames`, `fieldloc localize`, `fieldloc demo` and the UvA spot
  * evaluation (`fieldloc localize --uva-spots`); plus the parser of the
  * `localize` sequence format.  Host only (double, malloc).
@@ -38,7 +38,6 @@
 
 #include "eval/detect.h"
 #include "fieldloc/fieldloc.h"
-#include "fieldloc/fuzzy.h"
 #include "fieldloc/vision.h"
 
 #include <stdint.h>
@@ -50,23 +49,28 @@ typedef struct {
     const fl_field_t *field;
     const fl_camera_model_t *model;
     det_ctx_t det;              /* color tables and vision workspace */
-    fl_fuzzy_t *grid;           /* malloc'd */
+    const fl_localizer_t *loc;  /* the localizer (localizer.h) */
+    void *state;                /* malloc'd, loc->state_size bytes */
+    void *params;               /* malloc'd, loc->params_size bytes: the
+                                   parameters given to init */
     fl_obs_list_t obs;          /* the last frame's observations */
     fl_camera_t cam;            /* the last frame's camera */
     int32_t obs_used;           /* of the last frame */
     int ignore_post_sides;      /* 1: post sides from vision are dropped
                                    (FL_SIDE_UNKNOWN) before the update */
     fl_obs_view_t view;         /* the last frame's view (negative
-                                   information, fl_fuzzy_update_view;
-                                   obs.h fl_obs_view_vision) */
+                                   information, loc->update;
+                                   obs.h fl_vision_view) */
     double carry_x, carry_y, carry_a;   /* predict rounding remainders */
     uint32_t frames;            /* lr_frame calls that ran vision */
 } lr_t;
 
-/* params NULL: fl_fuzzy_params_default.  0 on success, -1 (message in err)
- * on a NULL field/model, out of memory or a grid that does not fit. */
-int lr_init(lr_t *r, const fl_field_t *field, const fl_camera_model_t *model,
-            const fl_fuzzy_params_t *params, char *err, int err_len);
+/* loc NULL: "fuzzy".  params (loc->params_size bytes) NULL: the
+ * localizer's defaults; otherwise adapted to the camera (params_adapt with
+ * fl_loc_preset_for_width).  0 on success, -1 (message in err) on a NULL
+ * field/model, out of memory or a state that does not fit. */
+int lr_init(lr_t *r, const fl_localizer_t *loc, const fl_field_t *field,
+            const fl_camera_model_t *model, const void *params, char *err, int err_len);
 void lr_free(lr_t *r);
 
 void lr_predict(lr_t *r, double dx_mm, double dy_mm, double dtheta_rad);
@@ -80,7 +84,7 @@ int lr_frame(lr_t *r, const fl_image_t *img, const fl_camera_pose_t *pose);
  * set up for the pose (r->cam), r->obs = *obs, update.  -1 on a bad pose. */
 int lr_frame_obs(lr_t *r, const fl_camera_pose_t *pose, const fl_obs_list_t *obs);
 
-void lr_estimate(lr_t *r, fl_fuzzy_estimate_t *est);
+void lr_estimate(lr_t *r, fl_loc_estimate_t *est);
 
 /* Camera pose from the model's defaults and NAOqi head angles (rad). */
 void lr_camera_pose(const fl_camera_model_t *m, double head_pitch_rad,
@@ -109,19 +113,26 @@ int lr_mkdirs(const char *path);
 double lr_deg(fl_angle_t a);
 
 /* The localizer parameters used with the vision path (simulate --frames,
- * localize, demo): the firmware's fl_fuzzy_params_vision (fuzzy.h) for a
- * NAO camera; lr_init applies fl_fuzzy_params_for_camera, which turns the
- * tracking rings back to wide and cuts crossings at 2.5 m for cameras
- * narrower than 320 px (the AIBO's) unless --param changed ring_track_q8. */
-void lr_params_frames(fl_fuzzy_params_t *p);
+ * localize, demo): the localizer's FL_LOC_PRESET_VISION (a NAO camera;
+ * fuzzy: fl_fuzzy_params_vision); lr_init applies params_adapt for the
+ * actual camera (fuzzy: wide tracking rings and crossings cut at 2.5 m for
+ * cameras narrower than 320 px unless --param changed ring_track_q8). */
+void lr_params_frames(const fl_localizer_t *loc, void *p);
 
-/* Set one fuzzy parameter by name, "NAME=INTEGER" (field names of
- * fl_fuzzy_params_t, raw units).  0 on success; -1 for an unknown name, a
- * value that does not fit the field or params that fail
- * fl_fuzzy_params_check. */
-int lr_param_set(fl_fuzzy_params_t *p, const char *assign);
-/* " name=value" for every field that differs from ref (all when NULL). */
-void lr_param_print(FILE *f, const fl_fuzzy_params_t *p, const fl_fuzzy_params_t *ref);
+/* The localizer by name (NULL: "fuzzy"); NULL with a message naming the
+ * known ones in err when unknown. */
+const fl_localizer_t *lr_localizer(const char *name, char *err, int err_len);
+/* malloc'd parameter block of loc (defaults); NULL when out of memory. */
+void *lr_params_new(const fl_localizer_t *loc);
+
+/* Set one parameter by name, "NAME=INTEGER" (loc's parameter table, raw
+ * units).  0 on success; -1 for an unknown name, a value that does not fit
+ * the field or params that fail loc->params_check. */
+int lr_param_set(const fl_localizer_t *loc, void *p, const char *assign);
+/* How many parameters of p differ from ref. */
+int lr_param_diff(const fl_localizer_t *loc, const void *p, const void *ref);
+/* " name=value" for every parameter that differs from ref (all when NULL). */
+void lr_param_print(FILE *f, const fl_localizer_t *loc, const void *p, const void *ref);
 
 /* ---- sequence files ------------------------------------------------------- */
 
@@ -159,7 +170,7 @@ void lr_seq_free(lr_seq_t *s);
  * skipped with a message on stderr (odometry still applied, pose line still
  * printed). */
 typedef struct {
-    fl_fuzzy_estimate_t est;
+    fl_loc_estimate_t est;
     int obs, used, ok;           /* observations, applied, image used */
 } lr_frame_result_t;
 
@@ -169,7 +180,8 @@ typedef struct {
     const char *pictures;        /* folder for pictures, or NULL */
     const char *picture_prefix;  /* file name prefix ("frame_") */
     int picture_every;           /* every Nth frame (and the last) */
-    const fl_fuzzy_params_t *params;   /* NULL: defaults */
+    const fl_localizer_t *loc;   /* NULL: "fuzzy" */
+    const void *params;          /* NULL: defaults */
     int quiet;                   /* 1: no messages for skipped frames */
 } lr_seq_opts_t;
 
@@ -216,7 +228,8 @@ typedef struct {
                                      rendering (vision does not depend on
                                      the localizer); otherwise they are
                                      computed and written to it.  NULL: off */
-    const fl_fuzzy_params_t *params;   /* NULL: defaults */
+    const fl_localizer_t *loc;    /* NULL: "fuzzy" */
+    const void *params;           /* NULL: defaults */
     FILE *steps;                  /* per-record "step ..." lines; NULL: none */
     int print_obs;                /* 1: after each step line, one "#  obs"
                                      line per observation of the record */
@@ -229,7 +242,7 @@ typedef struct lr_walk_step {
     const sim_scenario_t *sc;
     const sim_step_t *st;
     lr_t *lr;                     /* grid, obs, cam of this record */
-    const fl_fuzzy_estimate_t *est;
+    const fl_loc_estimate_t *est;
     const render_frame_t *frame;  /* frames mode; NULL otherwise */
     long record;                  /* record index */
     double t_s, pos_err_mm, head_err_deg;   /* error used by the metrics */
@@ -253,7 +266,7 @@ typedef struct {
                                      nothing excluded (information) */
     long flips;
     double final_pos_err_mm, final_head_err_deg;
-    fl_fuzzy_stats_t stats;
+    fl_loc_stats_t stats;
     lr_vdiag_t vdiag[FL_LM_KIND_COUNT];
     double render_s, vision_grid_s;   /* wall time spent */
 } lr_walk_result_t;

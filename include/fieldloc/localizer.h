@@ -1,0 +1,184 @@
+/*
+ * fieldloc/localizer.h - one interface for every localizer (the fuzzy
+ * position grid today; a Monte Carlo filter, an unscented particle filter
+ * and a particle grid to follow).  A caller holds a `const fl_localizer_t *`
+ * (fl_localizer_find("fuzzy")), a state of loc->state_size bytes and a
+ * parameter block of loc->params_size bytes, both caller-owned (static
+ * storage on a robot, malloc on a host; aligned for any type), and calls
+ * through the function pointers or the fl_loc_* wrappers below, which
+ * check their arguments:
+ *
+ *     const fl_localizer_t *loc = fl_localizer_find("fuzzy");
+ *     void *st = <loc->state_size bytes, caller-owned>;
+ *     fl_loc_init(loc, st, fl_field_find("spl2013"), NULL);
+ *     every frame: fl_loc_predict(loc, st, dx_mm, dy_mm, dtheta);
+ *                  fl_loc_update(loc, st, &obs, &view);
+ *                  fl_loc_estimate(loc, st, &est);
+ *
+ * Nothing here needs the camera or vision: vision-path presets are chosen
+ * by the caller as an fl_loc_preset_t, the frame's view comes as an
+ * fl_obs_view_t (obs.h; vision.h fl_vision_view computes it).
+ *
+ * Parameters by name: every localizer lists its tunable parameters as
+ * fl_loc_param_t descriptors (offset into its params block, width and
+ * signedness, range); fl_localizer_param_find / _set / _get work on any
+ * of them (names compared by hand, no libc).
+ */
+#ifndef FIELDLOC_LOCALIZER_H
+#define FIELDLOC_LOCALIZER_H
+
+#include "fieldloc/common.h"
+#include "fieldloc/config.h"
+#include "fieldloc/fixed.h"
+#include "fieldloc/field.h"
+#include "fieldloc/obs.h"
+
+/* Vision-path presets (the caller decides from its camera). */
+typedef enum {
+    FL_LOC_PRESET_DEFAULT = 0,      /* = params_default (feature-level obs) */
+    FL_LOC_PRESET_VISION = 1,       /* observations from fl_vision_frame with
+                                       a camera at least 320 px wide (NAO) */
+    FL_LOC_PRESET_VISION_LOWRES = 2 /* ... narrower than 320 px (AIBO) */
+} fl_loc_preset_t;
+
+/* The preset for a camera image width in pixels (FL_LOC_PRESET_VISION for
+ * >= 320 or <= 0 = unknown: a NAO camera, FL_LOC_PRESET_VISION_LOWRES
+ * below). */
+fl_loc_preset_t fl_loc_preset_for_width(int32_t width_px);
+
+/* One estimate, common to every localizer. */
+typedef struct {
+    int32_t x_mm, y_mm;          /* field frame */
+    fl_angle_t heading;
+    uint16_t reliability_q16;    /* Q0.16 in [0, 65535] ~ [0, 1] */
+    uint8_t peak_q8;             /* the chosen mode's peak (localizer's own
+                                    measure of belief; 255 = 1) */
+    uint16_t mode_cells;         /* size of the chosen mode (cells,
+                                    particles, ...: the localizer's unit) */
+    bool switched;               /* the estimate left the tracked mode */
+} fl_loc_estimate_t;
+
+/* Counters every localizer keeps (0 when a localizer has no such event);
+ * the tools print these (saturating, since init). */
+typedef struct {
+    uint32_t predicts, updates;
+    uint32_t obs_used, obs_gated, obs_ignored;
+    uint32_t odo_rejected;
+    uint32_t empty_resets, kidnaps, mode_switches, resets;
+} fl_loc_stats_t;
+
+/* A tunable parameter: params block + offset, `size` bytes (1, 2 or 4),
+ * signed or not, valid range [min, max]. */
+typedef struct {
+    const char *name;
+    uint16_t offset;
+    uint8_t size;
+    bool is_signed;
+    int32_t min, max;
+} fl_loc_param_t;
+
+/* A localizer whose belief lives on a grid shows it cell by cell (belief
+ * pictures): nx x ny cells of cell_mm, cell (ix, iy) centred at
+ * (x0 + ix * cell + cell / 2, y0 + iy * cell + cell / 2). */
+typedef struct {
+    uint16_t nx, ny;
+    int32_t x0_mm, y0_mm;
+    int32_t cell_mm;
+} fl_loc_grid_t;
+
+typedef struct {
+    uint8_t height_q8;           /* most possible heading's possibility */
+    fl_angle_t heading;          /* that heading */
+    int32_t spread;              /* how far around it the heading is fully
+                                    possible (binary angle, 0..32768) */
+} fl_loc_cell_t;
+
+typedef struct fl_localizer {
+    const char *name;            /* "fuzzy" */
+    const char *summary;         /* one line */
+    size_t state_size;           /* bytes of caller-owned state */
+    size_t params_size;          /* bytes of caller-owned params */
+    const fl_loc_param_t *param; /* parameter table, n_param entries */
+    uint16_t n_param;
+
+    void (*params_default)(void *params);
+    void (*params_preset)(void *params, fl_loc_preset_t preset);
+    /* Only the camera-dependent part of a vision preset, applied to
+     * parameters the caller already holds (e.g. preset VISION, then its
+     * own changes, then this with the actual camera's preset): a no-op
+     * for FL_LOC_PRESET_DEFAULT and _VISION, and for parameters that are
+     * not a vision preset's (fuzzy: fl_fuzzy_params_for_camera). */
+    void (*params_adapt)(void *params, fl_loc_preset_t preset);
+    fl_status_t (*params_check)(const void *params);
+    /* params NULL: defaults.  The state keeps a pointer to field. */
+    fl_status_t (*init)(void *state, const fl_field_t *field,
+                        const void *params);
+    /* The state's current parameters (read/write between calls, like
+     * fl_fuzzy_t.params), NULL if uninitialized. */
+    void *(*params_of)(void *state);
+
+    void (*predict)(void *state, int32_t dx_mm, int32_t dy_mm,
+                    fl_angle_t dtheta);
+    /* view NULL or !valid: no negative information. */
+    uint16_t (*update)(void *state, const fl_obs_list_t *obs,
+                       const fl_obs_view_t *view);
+    bool (*estimate)(void *state, fl_loc_estimate_t *out);
+
+    void (*reset_ignorance)(void *state);
+    void (*reset_pose)(void *state, int32_t x_mm, int32_t y_mm,
+                       fl_angle_t heading, int32_t pos_unc_mm,
+                       fl_angle_t heading_unc);
+    void (*reset_penalty)(void *state, int32_t x_mm, int32_t pos_unc_mm,
+                          fl_angle_t heading_unc);
+    void (*set_prior_half)(void *state, int half);
+    void (*set_prior_pose)(void *state, int32_t x_mm, int32_t y_mm,
+                           fl_angle_t heading, int32_t radius_mm);
+    void (*clear_prior)(void *state);
+
+    bool (*check)(const void *state);
+    /* Possibility (or density normalized to the peak) of a pose, Q16
+     * (65536 = 1); 0 off the field. */
+    uint32_t (*possibility_q16)(const void *state, int32_t x_mm,
+                                int32_t y_mm, fl_angle_t heading);
+    void (*stats)(const void *state, fl_loc_stats_t *out);
+    /* Grid geometry (false: no grid, or uninitialized: the host's belief
+     * pictures need it) and one cell (false outside the grid). */
+    bool (*belief_grid)(const void *state, fl_loc_grid_t *out);
+    bool (*belief_cell)(const void *state, int ix, int iy, fl_loc_cell_t *out);
+} fl_localizer_t;
+
+/* ---- catalogue ---------------------------------------------------------- */
+
+/* The fuzzy position grid (fuzzy.h; adapter src/loc/loc_fuzzy.c), "fuzzy". */
+extern const fl_localizer_t fl_localizer_fuzzy;
+
+/* NULL for NULL or an unknown name. */
+const fl_localizer_t *fl_localizer_find(const char *name);
+uint16_t fl_localizer_count(void);
+const fl_localizer_t *fl_localizer_get(uint16_t i);   /* NULL out of range */
+
+/* ---- parameters by name ------------------------------------------------- */
+
+const fl_loc_param_t *fl_localizer_param_find(const fl_localizer_t *loc,
+                                              const char *name);
+/* FL_OK, FL_ERR_NULL, FL_ERR_NOT_FOUND, FL_ERR_RANGE (value outside
+ * [min, max]: params unchanged). */
+fl_status_t fl_localizer_param_set(const fl_localizer_t *loc, void *params,
+                                   const char *name, int32_t value);
+fl_status_t fl_localizer_param_get(const fl_localizer_t *loc,
+                                   const void *params, const char *name,
+                                   int32_t *value);
+
+/* ---- checked wrappers (NULL loc or state: no-op / error / false / 0) ---- */
+
+fl_status_t fl_loc_init(const fl_localizer_t *loc, void *state,
+                        const fl_field_t *field, const void *params);
+void fl_loc_predict(const fl_localizer_t *loc, void *state, int32_t dx_mm,
+                    int32_t dy_mm, fl_angle_t dtheta);
+uint16_t fl_loc_update(const fl_localizer_t *loc, void *state,
+                       const fl_obs_list_t *obs, const fl_obs_view_t *view);
+bool fl_loc_estimate(const fl_localizer_t *loc, void *state,
+                     fl_loc_estimate_t *out);
+bool fl_loc_check(const fl_localizer_t *loc, const void *state);
+
+#endif /* FIELDLOC_LOCALIZER_H */

@@ -1,0 +1,247 @@
+/*
+ * src/loc/loc_fuzzy.c - the fuzzy position grid (fuzzy.h) behind the
+ * localizer interface (localizer.h) as "fuzzy".  The only interface file
+ * that knows fl_fuzzy_t; it calls the public fl_fuzzy_* API only.
+ */
+#include "fieldloc/localizer.h"
+#include "fieldloc/fuzzy.h"
+
+#include <stddef.h>
+#include <string.h>
+
+/* A camera model standing for "narrower than 320 px" (fl_fuzzy_params_
+ * for_camera reads the width only). */
+static void lowres_model(fl_camera_model_t *m)
+{
+    memset(m, 0, sizeof *m);
+    m->width_px = 208;
+    m->height_px = 160;
+}
+
+static void fz_params_default(void *params)
+{
+    if (params != NULL)
+        fl_fuzzy_params_default((fl_fuzzy_params_t *)params);
+}
+
+static void fz_params_preset(void *params, fl_loc_preset_t preset)
+{
+    fl_camera_model_t m;
+    fl_fuzzy_params_t *p = (fl_fuzzy_params_t *)params;
+    if (p == NULL)
+        return;
+    switch (preset) {
+    case FL_LOC_PRESET_VISION:
+        fl_fuzzy_params_vision(p, NULL);
+        break;
+    case FL_LOC_PRESET_VISION_LOWRES:
+        lowres_model(&m);
+        fl_fuzzy_params_vision(p, &m);
+        break;
+    case FL_LOC_PRESET_DEFAULT:
+    default:
+        fl_fuzzy_params_default(p);
+        break;
+    }
+}
+
+static void fz_params_adapt(void *params, fl_loc_preset_t preset)
+{
+    fl_camera_model_t m;
+    if (params == NULL || preset != FL_LOC_PRESET_VISION_LOWRES)
+        return;
+    lowres_model(&m);
+    fl_fuzzy_params_for_camera((fl_fuzzy_params_t *)params, &m);
+}
+
+static fl_status_t fz_params_check(const void *params)
+{
+    return fl_fuzzy_params_check((const fl_fuzzy_params_t *)params);
+}
+
+static fl_status_t fz_init(void *state, const fl_field_t *field, const void *params)
+{
+    return fl_fuzzy_init((fl_fuzzy_t *)state, field, (const fl_fuzzy_params_t *)params);
+}
+
+static void *fz_params_of(void *state)
+{
+    fl_fuzzy_t *g = (fl_fuzzy_t *)state;
+    return g == NULL || g->field == NULL ? NULL : (void *)&g->params;
+}
+
+static void fz_predict(void *state, int32_t dx_mm, int32_t dy_mm, fl_angle_t dtheta)
+{
+    fl_fuzzy_predict((fl_fuzzy_t *)state, dx_mm, dy_mm, dtheta);
+}
+
+static uint16_t fz_update(void *state, const fl_obs_list_t *obs, const fl_obs_view_t *view)
+{
+    return fl_fuzzy_update_view((fl_fuzzy_t *)state, obs, view);
+}
+
+static bool fz_estimate(void *state, fl_loc_estimate_t *out)
+{
+    fl_fuzzy_estimate_t e;
+    bool ok;
+    if (out == NULL)
+        return false;
+    ok = fl_fuzzy_estimate((fl_fuzzy_t *)state, &e);
+    memset(out, 0, sizeof *out);
+    out->x_mm = e.x_mm;
+    out->y_mm = e.y_mm;
+    out->heading = e.heading;
+    out->reliability_q16 = e.reliability_q16;
+    out->peak_q8 = e.peak_q8;
+    out->mode_cells = e.mode_cells;
+    out->switched = e.switched;
+    return ok;
+}
+
+static void fz_reset_ignorance(void *state)
+{
+    fl_fuzzy_reset_ignorance((fl_fuzzy_t *)state);
+}
+
+static void fz_reset_pose(void *state, int32_t x_mm, int32_t y_mm, fl_angle_t heading,
+                          int32_t pos_unc_mm, fl_angle_t heading_unc)
+{
+    fl_fuzzy_reset_pose((fl_fuzzy_t *)state, x_mm, y_mm, heading, pos_unc_mm, heading_unc);
+}
+
+static void fz_reset_penalty(void *state, int32_t x_mm, int32_t pos_unc_mm,
+                             fl_angle_t heading_unc)
+{
+    fl_fuzzy_reset_penalty((fl_fuzzy_t *)state, x_mm, pos_unc_mm, heading_unc);
+}
+
+static void fz_set_prior_half(void *state, int half)
+{
+    fl_fuzzy_set_prior_half((fl_fuzzy_t *)state, half);
+}
+
+static void fz_set_prior_pose(void *state, int32_t x_mm, int32_t y_mm,
+                              fl_angle_t heading, int32_t radius_mm)
+{
+    fl_fuzzy_set_prior_pose((fl_fuzzy_t *)state, x_mm, y_mm, heading, radius_mm);
+}
+
+static void fz_clear_prior(void *state)
+{
+    fl_fuzzy_clear_prior((fl_fuzzy_t *)state);
+}
+
+static bool fz_check(const void *state)
+{
+    return fl_fuzzy_check((const fl_fuzzy_t *)state);
+}
+
+static uint32_t fz_possibility_q16(const void *state, int32_t x_mm, int32_t y_mm,
+                                   fl_angle_t heading)
+{
+    return fl_fuzzy_possibility_q16((const fl_fuzzy_t *)state, x_mm, y_mm, heading);
+}
+
+static void fz_stats(const void *state, fl_loc_stats_t *out)
+{
+    const fl_fuzzy_t *g = (const fl_fuzzy_t *)state;
+    if (out == NULL)
+        return;
+    memset(out, 0, sizeof *out);
+    if (g == NULL)
+        return;
+    out->predicts = g->stats.predicts;
+    out->updates = g->stats.updates;
+    out->obs_used = g->stats.obs_used;
+    out->obs_gated = g->stats.obs_gated;
+    out->obs_ignored = g->stats.obs_ignored;
+    out->odo_rejected = g->stats.odo_rejected;
+    out->empty_resets = g->stats.empty_resets;
+    out->kidnaps = g->stats.kidnaps;
+    out->mode_switches = g->stats.mode_switches;
+    out->resets = g->stats.resets;
+}
+
+static bool fz_belief_grid(const void *state, fl_loc_grid_t *out)
+{
+    const fl_fuzzy_t *g = (const fl_fuzzy_t *)state;
+    if (out == NULL)
+        return false;
+    memset(out, 0, sizeof *out);
+    if (g == NULL || g->field == NULL || g->nx == 0 || g->ny == 0)
+        return false;
+    out->nx = g->nx;
+    out->ny = g->ny;
+    out->x0_mm = g->x0_mm;
+    out->y0_mm = g->y0_mm;
+    out->cell_mm = FL_FUZZY_CELL_MM;
+    return true;
+}
+
+static bool fz_belief_cell(const void *state, int ix, int iy, fl_loc_cell_t *out)
+{
+    const fl_fuzzy_t *g = (const fl_fuzzy_t *)state;
+    const fl_fuzzy_cell_t *c;
+    if (out == NULL)
+        return false;
+    memset(out, 0, sizeof *out);
+    if (g == NULL || g->field == NULL || ix < 0 || iy < 0 || ix >= g->nx || iy >= g->ny)
+        return false;
+    c = &g->cell[iy * g->nx + ix];
+    out->height_q8 = c->height;
+    out->heading = c->centre;
+    out->spread = c->core >= FL_FUZZY_WFULL ? FL_FUZZY_HALF_TURN
+                                            : (int32_t)c->core * FL_FUZZY_AUNIT;
+    return true;
+}
+
+/* Parameter table: every field of fl_fuzzy_params_t, in declaration order,
+ * with the range of its type (fl_fuzzy_params_check decides the rest). */
+#define OFF(f) ((uint16_t)offsetof(fl_fuzzy_params_t, f))
+#define U8(f)  { #f, OFF(f), 1, false, 0, 255 }
+#define U16(f) { #f, OFF(f), 2, false, 0, 65535 }
+#define S16(f) { #f, OFF(f), 2, true, -32768, 32767 }
+#define S32(f) { #f, OFF(f), 4, true, INT32_MIN, INT32_MAX }
+
+static const fl_loc_param_t fz_param[] = {
+    U16(odo_trans_q8), U16(odo_turn_mm_per_rad), U16(odo_rot_q8), U16(odo_rot_per_m),
+    U8(blur_kappa_min_q8), U8(blur_kappa_gain_q8), U8(blur_kappa_max_q8), U16(blur_step_mm),
+    U16(wide_core), S32(odo_max_mm), S32(ring_base_mm), U16(ring_core_q8), S32(ring_slope_mm),
+    U16(ring_slope_q8), U16(ring_track_q8), S16(bearing_core), S16(bearing_slope),
+    S16(head_min_core), S16(head_min_slope), S16(orient_core), S16(orient_slope),
+    U8(bias_min_q8), U8(head_bias_q8), U8(head_bias_outlier), U8(confuse_q8), U8(confuse_conf),
+    S32(max_range_mm), S32(cross_max_mm), U8(min_height_q8), S32(mode_radius_mm),
+    S32(track_radius_mm), U8(switch_q8), U16(track_min_q16), U8(gate_q8), U8(gate_run),
+    U8(cons_shift), U16(kidnap_q16), U16(kidnap_rate_q8), U8(neg_q8), U8(neg_max), U8(neg_track),
+    U8(neg_kidnap), S32(neg_margin_mm), U16(neg_range_q8), S16(neg_bearing), S16(neg_head_max),
+    U8(neg_min_q8),
+};
+
+const fl_localizer_t fl_localizer_fuzzy = {
+    "fuzzy",
+    "fuzzy position grid (seed 004): heading trapezoid per 100 mm cell",
+    sizeof(fl_fuzzy_t),
+    sizeof(fl_fuzzy_params_t),
+    fz_param,
+    (uint16_t)(sizeof fz_param / sizeof fz_param[0]),
+    fz_params_default,
+    fz_params_preset,
+    fz_params_adapt,
+    fz_params_check,
+    fz_init,
+    fz_params_of,
+    fz_predict,
+    fz_update,
+    fz_estimate,
+    fz_reset_ignorance,
+    fz_reset_pose,
+    fz_reset_penalty,
+    fz_set_prior_half,
+    fz_set_prior_pose,
+    fz_clear_prior,
+    fz_check,
+    fz_possibility_q16,
+    fz_stats,
+    fz_belief_grid,
+    fz_belief_cell,
+};
