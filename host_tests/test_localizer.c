@@ -71,7 +71,6 @@ static void test_params_by_name(void)
     fl_fuzzy_params_t p, d, v;
     int32_t x = 0;
     uint16_t i;
-    fl_camera_model_t m;
     loc->params_default(&p);
     fl_fuzzy_params_default(&d);
     CHECK(same_params(&p, &d));
@@ -112,15 +111,15 @@ static void test_params_by_name(void)
     CHECK_EQ(fl_localizer_param_set(loc, &p, NULL, 1), FL_ERR_NULL);
     CHECK_EQ(fl_localizer_param_get(loc, &p, "gate_q8", NULL), FL_ERR_NULL);
     CHECK(fl_localizer_param_find(loc, NULL) == NULL);
-    /* presets = the camera-taking fuzzy.h functions */
+    /* presets = the fuzzy.h vision presets */
     loc->params_preset(&p, FL_LOC_PRESET_VISION);
-    fl_fuzzy_params_vision(&v, NULL);
+    fl_fuzzy_params_vision(&v, false);
     CHECK(same_params(&p, &v));
-    memset(&m, 0, sizeof m);
-    m.width_px = 208;
-    m.height_px = 160;
+    CHECK_EQ(fl_loc_preset_for_width(208), FL_LOC_PRESET_VISION_LOWRES);
+    CHECK_EQ(fl_loc_preset_for_width(320), FL_LOC_PRESET_VISION);
+    CHECK_EQ(fl_loc_preset_for_width(0), FL_LOC_PRESET_VISION);
     loc->params_preset(&p, FL_LOC_PRESET_VISION_LOWRES);
-    fl_fuzzy_params_vision(&v, &m);
+    fl_fuzzy_params_vision(&v, true);
     CHECK(same_params(&p, &v));
     loc->params_preset(&p, FL_LOC_PRESET_VISION);
     loc->params_adapt(&p, FL_LOC_PRESET_VISION_LOWRES);
@@ -188,7 +187,7 @@ static void test_same_as_direct(void)
         free(g), free(st), free(pp);
         return;
     }
-    fl_fuzzy_params_vision(&fp, NULL);
+    fl_fuzzy_params_vision(&fp, false);
     loc->params_preset(pp, FL_LOC_PRESET_VISION);
     CHECK_EQ(fl_fuzzy_init(g, field, &fp), FL_OK);
     CHECK_EQ(fl_loc_init(loc, st, field, pp), FL_OK);

@@ -180,7 +180,7 @@ static void test_view(void)
     t_digest("obs.view", h);
 }
 
-/* fl_vision_view and fl_fuzzy_params_vision / _for_camera: the view
+/* fl_vision_view and fl_fuzzy_params_vision / _lowres: the view
  * is the 1/16-margin view up to 4 m (2.5 m under 320 px wide); the
  * parameters pass fl_fuzzy_params_check for every catalogue camera, keep
  * the precise tracking rings and all crossings for the NAO cameras, and
@@ -208,7 +208,7 @@ static void test_vision_defaults(void)
         CHECK(a.valid && b.valid);
         CHECK_EQ(memcmp(&a, &b, sizeof a), 0);
         CHECK_LE(a.far_mm, w >= 320 ? 4000 : 2500);
-        fl_fuzzy_params_vision(&p, model);
+        fl_fuzzy_params_vision(&p, w < 320);
         CHECK_EQ(fl_fuzzy_params_check(&p), FL_OK);
         CHECK(p.neg_q8 > 0 && p.confuse_q8 > 0 && p.head_bias_outlier == 1);
         if (w < 320) {
@@ -224,18 +224,18 @@ static void test_vision_defaults(void)
     CHECK(narrow >= 1 && wide >= 1);
     /* NULL model: a NAO camera; the camera part leaves chosen values and
      * other parameter sets alone */
-    fl_fuzzy_params_vision(&p, NULL);
+    fl_fuzzy_params_vision(&p, false);
     CHECK_EQ(p.ring_track_q8, FL_FUZZY_RING_TRACK_VISION);
     p.ring_track_q8 = 128;
-    fl_fuzzy_params_for_camera(&p, fl_camera_model_find("aibo-ers7"));
+    fl_fuzzy_params_lowres(&p);
     CHECK_EQ(p.ring_track_q8, 128);
     CHECK_EQ(p.cross_max_mm, 0);
     fl_fuzzy_params_default(&d);
     p = d;
-    fl_fuzzy_params_for_camera(&p, fl_camera_model_find("aibo-ers7"));
+    fl_fuzzy_params_lowres(&p);
     CHECK_EQ(memcmp(&p, &d, sizeof p), 0);
-    fl_fuzzy_params_vision(NULL, NULL);   /* no crash */
-    fl_fuzzy_params_for_camera(NULL, NULL);
+    fl_fuzzy_params_vision(NULL, true);   /* no crash */
+    fl_fuzzy_params_lowres(NULL);
     fl_vision_view(NULL, &v);
     CHECK(!v.valid);
 }

@@ -54,7 +54,6 @@
 #ifndef FIELDLOC_FUZZY_H
 #define FIELDLOC_FUZZY_H
 
-#include "fieldloc/camera.h"   /* fl_fuzzy_params_vision, _for_camera */
 #include "fieldloc/common.h"
 #include "fieldloc/config.h"
 #include "fieldloc/fixed.h"
@@ -187,7 +186,7 @@ typedef struct {
                                     and centre marks) farther are ignored
                                     (0 = max_range_mm, the default): a
                                     low-resolution camera measures them
-                                    badly far away (fl_fuzzy_params_for_camera) */
+                                    badly far away (fl_fuzzy_params_lowres) */
     /* normalization */
     uint8_t min_height_q8;       /* heights below this after normalization
                                     are zero (2/255) */
@@ -364,19 +363,19 @@ fl_status_t fl_fuzzy_params_check(const fl_fuzzy_params_t *p);
  * uncertainty per metre walked, outlier heading bias, kidnap rate 0.5,
  * negative information (neg_q8 0.39 on cells at least half the peak,
  * neg_kidnap 2), tracking from reliability 0.2, L/T confusion (0.39 rising
- * to 1 at confidence 160).  For a camera model narrower than 320 px (the
- * AIBO's) fl_fuzzy_params_for_camera then keeps the wide rings and ignores
- * crossings beyond 2.5 m.  model NULL: a NAO camera. */
+ * to 1 at confidence 160).  lowres: a camera narrower than 320 px (the
+ * AIBO's; localizer.h fl_loc_preset_for_width decides from the width):
+ * fl_fuzzy_params_lowres then keeps the wide rings and ignores crossings
+ * beyond 2.5 m. */
 #define FL_FUZZY_RING_TRACK_VISION 96
-void fl_fuzzy_params_vision(fl_fuzzy_params_t *p, const fl_camera_model_t *model);
+void fl_fuzzy_params_vision(fl_fuzzy_params_t *p, bool lowres);
 
-/* The camera-dependent part of fl_fuzzy_params_vision, applied only while
+/* The low-resolution part of fl_fuzzy_params_vision, applied only while
  * ring_track_q8 still has its vision value (an explicit other value is the
- * caller's choice): for a model narrower than 320 px, ring_track_q8 256
- * (its ranges are less precise: precise rings cost accuracy) and, when
- * cross_max_mm is 0, 2500 (its far crossings read short).
- * No-op for NULL or a wider model. */
-void fl_fuzzy_params_for_camera(fl_fuzzy_params_t *p, const fl_camera_model_t *model);
+ * caller's choice): ring_track_q8 256 (a narrow camera's ranges are less
+ * precise: precise rings cost accuracy) and, when cross_max_mm is 0, 2500
+ * (its far crossings read short).  No-op for NULL. */
+void fl_fuzzy_params_lowres(fl_fuzzy_params_t *p);
 
 /* Sizes the grid to the field's carpet (ceil(2 * half / CELL) cells each way,
  * centred) and resets to total ignorance with no prior.  params NULL gives

@@ -107,7 +107,7 @@ typedef struct fl_localizer {
      * parameters the caller already holds (e.g. preset VISION, then its
      * own changes, then this with the actual camera's preset): a no-op
      * for FL_LOC_PRESET_DEFAULT and _VISION, and for parameters that are
-     * not a vision preset's (fuzzy: fl_fuzzy_params_for_camera). */
+     * not a vision preset's (fuzzy: fl_fuzzy_params_lowres). */
     void (*params_adapt)(void *params, fl_loc_preset_t preset);
     fl_status_t (*params_check)(const void *params);
     /* params NULL: defaults.  The state keeps a pointer to field. */

@@ -13,6 +13,12 @@
 #include "fieldloc/fixed.h"
 #include "fieldloc/field.h"
 
+/* No observation is farther than this (mm): the camera's largest ground
+ * range (camera.h FL_CAMERA_MAX_RANGE_MM, equal by a compile-time check in
+ * src/vision/vision_view.c).  A localizer may treat a larger range as bad
+ * input. */
+#define FL_OBS_MAX_RANGE_MM 20000
+
 /* Orientation conventions (robot frame, binary angle), when has_orientation:
  *   L   direction of the bisector of the two arms (pointing between them)
  *   T   direction of the stem (the arm with no opposite arm)

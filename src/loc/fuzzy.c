@@ -129,7 +129,7 @@ fl_status_t fl_fuzzy_params_check(const fl_fuzzy_params_t *p)
  * flips per field and seed) and `build/fieldloc localize` on the real
  * sequences; cost with `make bench` (rows fuzzy_*).
  */
-void fl_fuzzy_params_vision(fl_fuzzy_params_t *p, const fl_camera_model_t *model)
+void fl_fuzzy_params_vision(fl_fuzzy_params_t *p, bool lowres)
 {
     if (p == NULL)
         return;
@@ -147,7 +147,8 @@ void fl_fuzzy_params_vision(fl_fuzzy_params_t *p, const fl_camera_model_t *model
     p->track_min_q16 = 13107;
     p->confuse_q8 = 100;
     p->confuse_conf = 160;
-    fl_fuzzy_params_for_camera(p, model);
+    if (lowres)
+        fl_fuzzy_params_lowres(p);
 }
 
 /* Low-resolution cameras (the AIBO's 208 x 160) measure ranges several
@@ -156,10 +157,9 @@ void fl_fuzzy_params_vision(fl_fuzzy_params_t *p, const fl_camera_model_t *model
  * short and often of the wrong kind: ignored beyond cross_max_mm.
  * Measured with `build/fieldloc simulate --field aibo2004 --localizer
  * fuzzy --seed N --frames`. */
-void fl_fuzzy_params_for_camera(fl_fuzzy_params_t *p, const fl_camera_model_t *model)
+void fl_fuzzy_params_lowres(fl_fuzzy_params_t *p)
 {
-    if (p == NULL || model == NULL || model->width_px >= 320 ||
-        p->ring_track_q8 != FL_FUZZY_RING_TRACK_VISION)
+    if (p == NULL || p->ring_track_q8 != FL_FUZZY_RING_TRACK_VISION)
         return;
     p->ring_track_q8 = 256;
     if (p->cross_max_mm == 0)

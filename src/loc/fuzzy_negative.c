@@ -122,7 +122,7 @@ static int neg_count(const fl_fuzzy_t *g, const negctx_t *x, const negpose_t *ps
         int32_t best = bt + 1;
         int jb = -1;
         if (o->confidence == 0 || (unsigned)o->kind >= (unsigned)FL_LM_KIND_COUNT ||
-            o->range_mm < 0 || o->range_mm > 2 * FL_CAMERA_MAX_RANGE_MM)
+            o->range_mm < 0 || o->range_mm > 2 * FL_OBS_MAX_RANGE_MM)
             continue;
         for (j = 0; j < e; j++) {
             int32_t db = fz_iabs(fz_asub(o->bearing, ex[j].b));
@@ -201,7 +201,7 @@ uint16_t fl_fuzzy_update_view(fl_fuzzy_t *g, const fl_obs_list_t *obs,
     p = &g->params;
     width = fl_angle_sub(view->bearing_left, view->bearing_right);
     if (width <= 0 || view->near_mm < 0 || view->far_mm <= view->near_mm ||
-        view->far_mm > FL_CAMERA_MAX_RANGE_MM)
+        view->far_mm > FL_OBS_MAX_RANGE_MM)
         return used;                   /* not a view: ignored */
     x.obs = obs;
     x.near_mm = view->near_mm;

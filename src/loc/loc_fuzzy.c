@@ -9,15 +9,6 @@
 #include <stddef.h>
 #include <string.h>
 
-/* A camera model standing for "narrower than 320 px" (fl_fuzzy_params_
- * for_camera reads the width only). */
-static void lowres_model(fl_camera_model_t *m)
-{
-    memset(m, 0, sizeof *m);
-    m->width_px = 208;
-    m->height_px = 160;
-}
-
 static void fz_params_default(void *params)
 {
     if (params != NULL)
@@ -26,17 +17,15 @@ static void fz_params_default(void *params)
 
 static void fz_params_preset(void *params, fl_loc_preset_t preset)
 {
-    fl_camera_model_t m;
     fl_fuzzy_params_t *p = (fl_fuzzy_params_t *)params;
     if (p == NULL)
         return;
     switch (preset) {
     case FL_LOC_PRESET_VISION:
-        fl_fuzzy_params_vision(p, NULL);
+        fl_fuzzy_params_vision(p, false);
         break;
     case FL_LOC_PRESET_VISION_LOWRES:
-        lowres_model(&m);
-        fl_fuzzy_params_vision(p, &m);
+        fl_fuzzy_params_vision(p, true);
         break;
     case FL_LOC_PRESET_DEFAULT:
     default:
@@ -47,11 +36,9 @@ static void fz_params_preset(void *params, fl_loc_preset_t preset)
 
 static void fz_params_adapt(void *params, fl_loc_preset_t preset)
 {
-    fl_camera_model_t m;
     if (params == NULL || preset != FL_LOC_PRESET_VISION_LOWRES)
         return;
-    lowres_model(&m);
-    fl_fuzzy_params_for_camera((fl_fuzzy_params_t *)params, &m);
+    fl_fuzzy_params_lowres((fl_fuzzy_params_t *)params);
 }
 
 static fl_status_t fz_params_check(const void *params)

@@ -9,6 +9,9 @@
 
 #include <string.h>
 
+/* obs.h promises no observation beyond the camera's ground range. */
+typedef char fl_vv_obs_range_is_camera_range[FL_OBS_MAX_RANGE_MM == FL_CAMERA_MAX_RANGE_MM ? 1 : -1];
+
 /* Samples along each edge of the shrunk image (fl_vision_view_from_camera). */
 #define VIEW_SAMPLES 5
 

@@ -52,7 +52,7 @@ int lr_init(lr_t *r, const fl_localizer_t *loc, const fl_field_t *field,
     }
     if (params != NULL) {
         /* the camera-dependent part of the vision parameters (fuzzy:
-         * fl_fuzzy_params_for_camera: wide rings and crossings up to 2.5 m
+         * fl_fuzzy_params_lowres: wide rings and crossings up to 2.5 m
          * for the AIBO); a no-op for other parameters */
         memcpy(r->params, params, loc->params_size);
         loc->params_adapt(r->params, fl_loc_preset_for_width(model->width_px));
