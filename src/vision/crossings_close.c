@@ -128,18 +128,95 @@ static bool cr_close_model(const cr_ctx_t *ctx, const cr_ray_t *r, fl_angle_t gi
     return false;
 }
 
+/* Step 1 of fl_cr_close: the nearest image-parallel segment (6 steps) 1 px
+ * to 2 steps across E = (eu, ev), E within CR_CLOSE_REACH steps of its
+ * extent; -1 when none. */
+static int32_t cr_close_nearest(const cr_ctx_t *ctx, int32_t is, int32_t eu, int32_t ev)
+{
+    const fl_lines_t *l = ctx->l;
+    const fl_segment_t *S = &l->segments[is];
+    int32_t step_q4 = 16 * l->step_px, j, best = -1, bd = 0;
+    for (j = 0; j < l->n_segments; j++) {
+        const fl_segment_t *P = &l->segments[j];
+        int64_t px = (int64_t)P->u1_q4 - P->u0_q4, py = (int64_t)P->v1_q4 - P->v0_q4, t;
+        int32_t d;
+        if (j == is || (P->flags & FL_SEG_CIRCLE) || P->len_q4 < 6 * step_q4 ||
+            cr_abs(fl_sin_q15(fl_angle_sub(P->angle, S->angle))) > CR_CONN_PAR_SIN)
+            continue;
+        /* distance of E from P's line; E's position along P */
+        d = (int32_t)(cr_abs64(((int64_t)eu - P->u0_q4) * py - ((int64_t)ev - P->v0_q4) * px) /
+                      P->len_q4);
+        t = (((int64_t)eu - P->u0_q4) * px + ((int64_t)ev - P->v0_q4) * py) / P->len_q4;
+        if (d < 16 || d > 2 * step_q4 || t < -CR_CLOSE_REACH * step_q4 ||
+            t > P->len_q4 + CR_CLOSE_REACH * step_q4)
+            continue;
+        if (best < 0 || d < bd) {
+            best = j;
+            bd = d;
+        }
+    }
+    return best;
+}
+
+/* Step 3 of fl_cr_close with a farther segment P: F, the foot of E (r:
+ * E's ray, r->gx its ground point) on P's ground line, whose distance
+ * from E must be a box depth (depth[2]) within CR_CLOSE_TOL_PCT, farther
+ * from the robot than E and inside the image; into ft (ground, Q4 pixel)
+ * and gp (P's ground direction).  False when there is no such F. */
+static bool cr_close_on_p(const cr_ctx_t *ctx, const fl_segment_t *P, const cr_ray_t *r,
+                          const int32_t *depth, cr_foot_t *ft, fl_angle_t *gp)
+{
+    const fl_lines_t *l = ctx->l;
+    const fl_camera_t *cam = ctx->cam;
+    int64_t gx, gy, dx, dy, len2, dot, cr, rE;
+    fl_point_t gA, gB;
+    int32_t k;
+    int32_t D, ok = 0;
+    if (!fl_camera_pixel_to_ground(cam, P->u0_q4, P->v0_q4, &gA) ||
+        !fl_camera_pixel_to_ground(cam, P->u1_q4, P->v1_q4, &gB))
+        return false;
+    if (cr_abs(gA.x_mm) > 65535 || cr_abs(gA.y_mm) > 65535 || cr_abs(gB.x_mm) > 65535 ||
+        cr_abs(gB.y_mm) > 65535 || cr_abs(r->gx.x_mm) > 65535 || cr_abs(r->gx.y_mm) > 65535)
+        return false;
+    dx = (int64_t)gB.x_mm - gA.x_mm;
+    dy = (int64_t)gB.y_mm - gA.y_mm;
+    len2 = dx * dx + dy * dy;
+    if (len2 <= 0)
+        return false;
+    gx = (int64_t)r->gx.x_mm - gA.x_mm;
+    gy = (int64_t)r->gx.y_mm - gA.y_mm;
+    cr = gx * dy - gy * dx;
+    dot = gx * dx + gy * dy;
+    D = (int32_t)(cr_abs64(cr) / (int64_t)fl_hypot((int32_t)dx, (int32_t)dy));
+    for (k = 0; k < 2; k++)
+        if (depth[k] > 0 && 100 * cr_abs(D - depth[k]) <= CR_CLOSE_TOL_PCT * depth[k])
+            ok = 1;
+    if (!ok)
+        return false;
+    ft->g.x_mm = gA.x_mm + (int32_t)fl_div_round(dx * dot, len2);
+    ft->g.y_mm = gA.y_mm + (int32_t)fl_div_round(dy * dot, len2);
+    rE = (int64_t)r->gx.x_mm * r->gx.x_mm + (int64_t)r->gx.y_mm * r->gx.y_mm;
+    if ((int64_t)ft->g.x_mm * ft->g.x_mm + (int64_t)ft->g.y_mm * ft->g.y_mm <= rE)
+        return false;
+    if (!fl_camera_ground_to_pixel(cam, ft->g, &ft->u, &ft->v))
+        return false;
+    if (ft->u < 0 || ft->v < 0 || ft->u > 16 * (l->width - 1) || ft->v > 16 * (l->height - 1))
+        return false;
+    *gp = fl_atan2((int32_t)dy, (int32_t)dx);
+    return true;
+}
+
 void fl_cr_close(const cr_ctx_t *ctx, int32_t is, bool end1)
 {
     fl_crossings_t *c = ctx->c;
     const fl_lines_t *l = ctx->l;
     const fl_segment_t *S = &l->segments[is];
-    const fl_camera_t *cam = ctx->cam;
     const fl_field_t *field = ctx->field;
-    int32_t step_q4 = 16 * l->step_px, eu, ev, w, merge, k, j, best = -1, bd = 0, conf;
+    int32_t step_q4 = 16 * l->step_px, eu, ev, w, merge, k, j, best, conf;
     int32_t fu, fv, depth[2];
-    int64_t gx, gy, dx, dy, len2, dot, cr, rE;
     fl_angle_t ain, gin, gp;
-    fl_point_t gA, gB, gF;
+    fl_point_t gF;
+    cr_foot_t ft;
     cr_ray_t r;
     cr_item_t it;
     bool near = false, t_ok = true;
@@ -162,26 +239,7 @@ void fl_cr_close(const cr_ctx_t *ctx, int32_t is, bool end1)
         if (a * a + b * b <= (int64_t)merge * merge)
             return;
     }
-    /* the nearest image-parallel segment 1 px to 2 steps across E */
-    for (j = 0; j < l->n_segments; j++) {
-        const fl_segment_t *P = &l->segments[j];
-        int64_t px = (int64_t)P->u1_q4 - P->u0_q4, py = (int64_t)P->v1_q4 - P->v0_q4, t;
-        int32_t d;
-        if (j == is || (P->flags & FL_SEG_CIRCLE) || P->len_q4 < 6 * step_q4 ||
-            cr_abs(fl_sin_q15(fl_angle_sub(P->angle, S->angle))) > CR_CONN_PAR_SIN)
-            continue;
-        /* distance of E from P's line; E's position along P */
-        d = (int32_t)(cr_abs64(((int64_t)eu - P->u0_q4) * py - ((int64_t)ev - P->v0_q4) * px) /
-                      P->len_q4);
-        t = (((int64_t)eu - P->u0_q4) * px + ((int64_t)ev - P->v0_q4) * py) / P->len_q4;
-        if (d < 16 || d > 2 * step_q4 || t < -CR_CLOSE_REACH * step_q4 ||
-            t > P->len_q4 + CR_CLOSE_REACH * step_q4)
-            continue;
-        if (best < 0 || d < bd) {
-            best = j;
-            bd = d;
-        }
-    }
+    best = cr_close_nearest(ctx, is, eu, ev);
     /* the segment's extreme point stops up to a step short of the paint;
      * S's paint stops at E */
     r.xu = eu;
@@ -208,7 +266,6 @@ void fl_cr_close(const cr_ctx_t *ctx, int32_t is, bool end1)
             return;
     }
     if (best < 0) {
-        cr_foot_t ft;
         if (!cr_close_model(ctx, &r, gin, S->angle, &ft))
             return;
         gF = ft.g;
@@ -217,42 +274,13 @@ void fl_cr_close(const cr_ctx_t *ctx, int32_t is, bool end1)
         t_ok = ft.t_ok;
         /* gin is S's ground direction from E inward */
         gp = end1 ? fl_angle_add(gin, FL_ANGLE_180) : gin;
-    } else
-    /* P on the ground: E's distance D from its line, farther away */
-    {
-        const fl_segment_t *P = &l->segments[best];
-        int32_t D, ok = 0;
-        if (!fl_camera_pixel_to_ground(cam, P->u0_q4, P->v0_q4, &gA) ||
-            !fl_camera_pixel_to_ground(cam, P->u1_q4, P->v1_q4, &gB))
+    } else {
+        /* P on the ground: E's distance D from its line, farther away */
+        if (!cr_close_on_p(ctx, &l->segments[best], &r, depth, &ft, &gp))
             return;
-        if (cr_abs(gA.x_mm) > 65535 || cr_abs(gA.y_mm) > 65535 || cr_abs(gB.x_mm) > 65535 ||
-            cr_abs(gB.y_mm) > 65535 || cr_abs(r.gx.x_mm) > 65535 || cr_abs(r.gx.y_mm) > 65535)
-            return;
-        dx = (int64_t)gB.x_mm - gA.x_mm;
-        dy = (int64_t)gB.y_mm - gA.y_mm;
-        len2 = dx * dx + dy * dy;
-        if (len2 <= 0)
-            return;
-        gx = (int64_t)r.gx.x_mm - gA.x_mm;
-        gy = (int64_t)r.gx.y_mm - gA.y_mm;
-        cr = gx * dy - gy * dx;
-        dot = gx * dx + gy * dy;
-        D = (int32_t)(cr_abs64(cr) / (int64_t)fl_hypot((int32_t)dx, (int32_t)dy));
-        for (k = 0; k < 2; k++)
-            if (depth[k] > 0 && 100 * cr_abs(D - depth[k]) <= CR_CLOSE_TOL_PCT * depth[k])
-                ok = 1;
-        if (!ok)
-            return;
-        gF.x_mm = gA.x_mm + (int32_t)fl_div_round(dx * dot, len2);
-        gF.y_mm = gA.y_mm + (int32_t)fl_div_round(dy * dot, len2);
-        rE = (int64_t)r.gx.x_mm * r.gx.x_mm + (int64_t)r.gx.y_mm * r.gx.y_mm;
-        if ((int64_t)gF.x_mm * gF.x_mm + (int64_t)gF.y_mm * gF.y_mm <= rE)
-            return;
-        if (!fl_camera_ground_to_pixel(cam, gF, &fu, &fv))
-            return;
-        if (fu < 0 || fv < 0 || fu > 16 * (l->width - 1) || fv > 16 * (l->height - 1))
-            return;
-        gp = fl_atan2((int32_t)dy, (int32_t)dx);
+        gF = ft.g;
+        fu = ft.u;
+        fv = ft.v;
     }
     conf = CR_CLOSE_CONF;
     if (conf < c->params.min_confidence)
