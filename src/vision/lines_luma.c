@@ -1,9 +1,7 @@
 /*
  * src/vision/lines_luma.c - luma line points (ridges beyond the class map's
- * reach) and the paint checks of a path (class-map white ratio, luma ridge
- * ratio; kept in one unit: the segment growth calls them per candidate).
- * lines_int.h for the algorithm, scaling and cost model; lines.h for the
- * method.
+ * reach) and the luma ridge check of a path (lines_int.h for the algorithm,
+ * scaling and cost model; lines.h for the method).
  */
 #include "lines_int.h"
 
@@ -414,111 +412,4 @@ int32_t fl_lines_int_ridge_pct(const fl_lines_t *l, int32_t u0, int32_t v0, int3
             break; /* need is out of reach: the ratio so far is below it */
     }
     return pass * 100 / (n + 1);
-}
-
-/* ---- class map access ------------------------------------------------------ */
-
-int32_t fl_lines_white_pct(const fl_scan_t *scan, int32_t u0_q4,
-                           int32_t v0_q4, int32_t u1_q4, int32_t v1_q4)
-{
-    return fl_lines_int_white_pct(scan, u0_q4, v0_q4, u1_q4, v1_q4, 4096);
-}
-
-/* As fl_lines_white_pct with at most max_samples samples (evenly spread:
- * long paths are subsampled); strict: no neighbour tolerance (lines at
- * least two cells wide). */
-int32_t fl_lines_int_white_pct(const fl_scan_t *scan, int32_t u0_q4, int32_t v0_q4,
-                            int32_t u1_q4, int32_t v1_q4, int32_t mode)
-{
-    int32_t max_samples = mode & 0xffff;
-    bool strict = (mode & LN_STRICT) != 0;
-    int32_t need = (mode >> 20) & 127;
-    int32_t cs, rs, gu0, gv0, gu1, gv1, du, dv, n, k, white = 0, inside = 0;
-    int32_t su, sv, pu, pv;
-    bool horiz;
-    if (!scan)
-        return 100;
-    if (scan->width <= 0 || scan->cols <= 0)
-        return 0;
-    cs = scan->params.col_step;
-    rs = scan->params.row_step;
-    if (cs < 1 || rs < 1)
-        return 0;
-    /* grid coordinates, Q4 cells (inputs clamped to a sane range first) */
-    u0_q4 = ln_clamp(u0_q4, -(1 << 17), 1 << 17);
-    u1_q4 = ln_clamp(u1_q4, -(1 << 17), 1 << 17);
-    v0_q4 = ln_clamp(v0_q4, -(1 << 17), 1 << 17);
-    v1_q4 = ln_clamp(v1_q4, -(1 << 17), 1 << 17);
-    gu0 = u0_q4 / cs;
-    gu1 = u1_q4 / cs;
-    gv0 = v0_q4 / rs;
-    gv1 = v1_q4 / rs;
-    du = gu1 - gu0;
-    dv = gv1 - gv0;
-    horiz = ln_abs(du) >= ln_abs(dv);
-    n = (horiz ? ln_abs(du) : ln_abs(dv)) / 16;
-    if (n > max_samples - 1)
-        n = max_samples - 1;
-    /* n + 1 samples from end 0 to end 1 in Q16 cell units */
-    pu = gu0 * 4096;
-    pv = gv0 * 4096;
-    su = n > 0 ? du * 4096 / n : 0;
-    sv = n > 0 ? dv * 4096 / n : 0;
-    for (k = 0; k <= n; k++) {
-        int32_t i = (pu + 32768) >> 16, j = (pv + 32768) >> 16;
-        if (i >= 0 && j >= 0 && i < scan->cols && j < scan->rows) {
-            inside++;
-            if (ln_cell(scan, i, j) == FL_CLASS_WHITE)
-                white++;
-            else if (strict)
-                ;
-            else if (horiz ? (ln_cell(scan, i, j - 1) == FL_CLASS_WHITE ||
-                              ln_cell(scan, i, j + 1) == FL_CLASS_WHITE)
-                           : (ln_cell(scan, i - 1, j) == FL_CLASS_WHITE ||
-                              ln_cell(scan, i + 1, j) == FL_CLASS_WHITE))
-                white++;
-        }
-        /* early rejection: even all-white samples from here on stay below
-         * need (the result is then below need, as the full walk's) */
-        if (need > 0 && (white + n - k) * 100 < need * (n + 1))
-            break;
-        pu += su;
-        pv += sv;
-    }
-    if (inside == 0)
-        return 0;
-    return white * 100 / (n + 1);
-}
-
-/* ---- paint of a path ------------------------------------------------------ */
-
-int32_t fl_lines_int_paint_pct(fl_lines_t *l, const fl_scan_t *scan, int32_t u0, int32_t v0,
-                            int32_t u1, int32_t v1)
-{
-    int32_t p = fl_lines_int_white_pct(scan, u0, v0, u1, v1, 4096 | LN_NEED(l->params.white_pct)), r;
-    if (!scan || !ln_luma_path(l, p, v0, v1) || l->ridge_checks >= ln_ridge_budget(l))
-        return p;
-    l->ridge_checks++;
-    r = fl_lines_int_ridge_pct(l, u0, v0, u1, v1, l->params.white_pct | LN_RIDGE_NEAR);
-    return r > p ? r : p;
-}
-
-int32_t fl_lines_paint_pct(const fl_lines_t *l, const fl_scan_t *scan, int32_t u0_q4,
-                           int32_t v0_q4, int32_t u1_q4, int32_t v1_q4)
-{
-    int32_t p = fl_lines_white_pct(scan, u0_q4, v0_q4, u1_q4, v1_q4), r;
-    if (!l || !scan || !ln_luma_path(l, p, v0_q4, v1_q4))
-        return p;
-    r = fl_lines_int_ridge_pct(l, u0_q4, v0_q4, u1_q4, v1_q4, 0);
-    return r > p ? r : p;
-}
-
-int32_t fl_lines_paint_beside_pct(const fl_lines_t *l, const fl_scan_t *scan, int32_t u0_q4,
-                                  int32_t v0_q4, int32_t u1_q4, int32_t v1_q4)
-{
-    int32_t p = fl_lines_white_pct(scan, u0_q4, v0_q4, u1_q4, v1_q4), r;
-    if (!l || !scan || !ln_luma_path(l, p, v0_q4, v1_q4))
-        return p;
-    r = fl_lines_int_ridge_pct(l, u0_q4, v0_q4, u1_q4, v1_q4, LN_RIDGE_NEAR);
-    return r > p ? r : p;
 }
