@@ -171,44 +171,4 @@ int32_t fl_lines_int_paint_pct(fl_lines_t *l, const fl_scan_t *scan, int32_t u0,
  * and the segment growth read it). */
 void fl_lines_int_buckets(fl_lines_t *l);
 
-static inline int32_t ln_cell(const fl_scan_t *s, int32_t i, int32_t j)
-{
-    uint64_t w;
-    if (i < 0 || j < 0 || i >= s->cols || j >= s->rows)
-        return FL_CLASS_OTHER;
-    w = s->map[j][i >> 5];
-    return (int32_t)((w >> (62 - 2 * (i & 31))) & 3u);
-}
-
-/* Interpolated projected width at pixel row v (Q4 px); 0 = unknown. */
-static inline int32_t ln_width_at(const fl_lines_t *l, const int16_t *tab, int32_t v)
-{
-    int32_t k = v >> l->wtab_shift, f = v - (k << l->wtab_shift);
-    int32_t a = tab[k], b = tab[k + 1];
-    if (a == 0 || b == 0)
-        return 0;
-    return a + (((b - a) * f) >> l->wtab_shift);
-}
-
-static inline void ln_push(fl_lines_t *l, int32_t u_q1, int32_t v_q1, int32_t w,
-                    uint8_t flags)
-{
-    fl_line_point_t *pt;
-    if (l->n_points >= FL_LINES_MAX_POINTS) {
-        l->points_dropped++;
-        return;
-    }
-    pt = &l->points[l->n_points++];
-    pt->u_q1 = (int16_t)u_q1;
-    pt->v_q1 = (int16_t)v_q1;
-    pt->width_px = (uint8_t)(w > 255 ? 255 : w);
-    pt->flags = flags;
-    pt->seg = FL_LINES_NONE;
-}
-
-/* Luma points (lines_luma.c): the band of rows where they are looked for,
- * then the points along the scan lines in it. */
-void fl_lines_int_luma_band(fl_lines_t *l);
-void fl_lines_int_luma_points(fl_lines_t *l, const fl_scan_t *s, int32_t mc, int32_t mr);
-
 #endif
