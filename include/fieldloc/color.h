@@ -28,19 +28,17 @@
  *          (edge pixels mixed with carpet), V 140..255
  * Seed 000's Table 1 gives green hue 20..37 and yellow 38..75.  In the
  * 0..179 convention these rows are swapped: the measured carpet (52..73)
- * falls in 38..75 and the posts (26..32) in 20..37 (test: Table 1 as
- * printed finds 0.55 % of the carpet green, the swapped rows 98.9 %).
+ * falls in 38..75 and the posts (26..32) in 20..37 (Table 1 as printed
+ * finds almost none of the carpet green, the swapped rows nearly all).
  * The defaults are
  *   green  hue 46..78 (carpet p0.5..p99 +- 4 of drift; re-centred per
  *          frame by fl_color_adapt), S 49..255 (the pale far carpet; a line
  *          pixel half covered by near carpet has S ~ 40-57), V 25..255 (the
  *          carpet at half the light: V p1 57 -> 28)
- *   white  hue 0..179, S 0..48 (the boxes meet: S >= 49 is green).  A
- *          trade-off measured with the exact RGB path, the luma line points
- *          and the connectors of lines.c/crossings.c (eval-detect, UvA
- *          crossings P / R; scan.lighting white P): S <= 47: .889 / .621,
- *          .955; 48: .880 / .641, .950; 49: .835 / .641, .945.  (Before the
- *          luma points, 49 had been best for UvA recall.)  V
+ *   white  hue 0..179, S 0..48 (the boxes meet: S >= 49 is green): the
+ *          trade-off between crossing precision and recall with the exact
+ *          RGB path, the luma line points and the connectors (a lower
+ *          bound loses recall, a higher one precision; eval-detect).  V
  *          60..255 (lines at gain 0.5 have V ~ 100); contrast 25 %: a white
  *          run must be 1.25x as bright (luma) as the green next to it
  *          (nominal lines are ~2x; pale carpet and grey clutter much less);

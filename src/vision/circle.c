@@ -83,29 +83,11 @@ static int32_t ci_tol(fl_point_t p)
     return r > 150 ? r : 150;
 }
 
-int32_t fl_circle_find(fl_circle_t *c, fl_lines_t *lines,
-                       const fl_camera_t *camera, const fl_field_t *field)
+/* Steps 1-2 of fl_circle_find: ground ends and states of the segments,
+ * the bulge of each chord candidate; long straight chords are lines. */
+static void ci_ground(fl_circle_t *c, fl_lines_t *lines, const fl_camera_t *camera, int32_t R)
 {
-    int32_t R, i, j, k, best = -1, best_w = 0, n, stride, tol, it, cnt_pts;
-    int32_t nseg;
-    int64_t sx, sy, se;
-    fl_point_t ctr;
-    if (!c)
-        return 0;
-    c->found = false;
-    c->has_pixel = false;
-    c->has_orientation = false;
-    c->orientation = 0;
-    c->confidence = 0;
-    c->n_points = c->n_segments = c->rms_mm = 0;
-    c->range_mm = 0;
-    c->bearing = 0;
-    c->n_cand = c->cand_dropped = 0;
-    if (!lines || !camera || !field || field->circle_radius_mm <= 0 ||
-        lines->width <= 0)
-        return 0;
-    R = field->circle_radius_mm;
-    nseg = lines->n_segments;
+    int32_t i, k, nseg = lines->n_segments;
 
     /* 1. ground ends and states */
     for (i = 0; i < nseg; i++) {
@@ -149,6 +131,13 @@ int32_t fl_circle_find(fl_circle_t *c, fl_lines_t *lines,
             ci_abs(3 * c->seg_bulge[i] / (2 * s->n)) < 2)
             c->seg_state[i] &= (uint8_t)~CI_CHORD;
     }
+}
+
+/* Step 3a of fl_circle_find: a circle through each single bulging chord. */
+static void ci_singles(fl_circle_t *c, const fl_lines_t *lines, const fl_camera_t *camera,
+                       int32_t R)
+{
+    int32_t i, nseg = lines->n_segments;
 
     /* 3a. single bulging segments */
     for (i = 0; i < nseg; i++) {
@@ -172,6 +161,12 @@ int32_t fl_circle_find(fl_circle_t *c, fl_lines_t *lines,
         if (ci_abs(r - R) * 10 <= 3 * R)
             ci_add(c, cc, i, -1, s->n);
     }
+}
+
+/* Step 3b of fl_circle_find: a circle through two chords meeting end to end. */
+static void ci_pairs(fl_circle_t *c, const fl_lines_t *lines, int32_t R)
+{
+    int32_t i, j, nseg = lines->n_segments;
 
     /* 3b. end-to-end pairs */
     for (i = 0; i < nseg; i++) {
@@ -216,8 +211,17 @@ int32_t fl_circle_find(fl_circle_t *c, fl_lines_t *lines,
                 ci_add(c, cc, i, j, a->n + b->n);
         }
     }
-    if (c->n_cand == 0)
-        return 0;
+}
+
+/* Step 4 of fl_circle_find: the heaviest cluster of candidate centres
+ * (its members marked, the unvoted arcs on its annulus too) into ctr, the
+ * cluster tolerance into tolp; false without two distinct members (or
+ * one long one). */
+static bool ci_cluster(fl_circle_t *c, const fl_lines_t *lines, int32_t R, fl_point_t *ctr,
+                       int32_t *tolp)
+{
+    int32_t i, j, t, tol, best = -1, best_w = 0, nseg = lines->n_segments;
+    int64_t sx, sy;
 
     /* 4. clustering */
     for (i = 0; i < c->n_cand; i++) {
@@ -225,26 +229,27 @@ int32_t fl_circle_find(fl_circle_t *c, fl_lines_t *lines,
         int32_t w = 0;
         pi.x_mm = c->cand[i].x_mm;
         pi.y_mm = c->cand[i].y_mm;
-        tol = ci_tol(pi);
+        t = ci_tol(pi);
         for (j = 0; j < c->n_cand; j++)
-            if (ci_abs(c->cand[j].x_mm - pi.x_mm) <= tol &&
-                ci_abs(c->cand[j].y_mm - pi.y_mm) <= tol)
+            if (ci_abs(c->cand[j].x_mm - pi.x_mm) <= t &&
+                ci_abs(c->cand[j].y_mm - pi.y_mm) <= t)
                 w += c->cand[j].weight;
         if (w > best_w) {
             best_w = w;
             best = i;
         }
     }
-    ctr.x_mm = c->cand[best].x_mm;
-    ctr.y_mm = c->cand[best].y_mm;
-    tol = ci_tol(ctr);
-    sx = sy = se = 0;
+    ctr->x_mm = c->cand[best].x_mm;
+    ctr->y_mm = c->cand[best].y_mm;
+    tol = ci_tol(*ctr);
+    *tolp = tol;
+    sx = sy = 0;
     {
         int64_t wsum = 0;
         int32_t distinct = 0, single_long = 0;
         for (j = 0; j < c->n_cand; j++) {
             const fl_circle_cand_t *k2 = &c->cand[j];
-            if (ci_abs(k2->x_mm - ctr.x_mm) > tol || ci_abs(k2->y_mm - ctr.y_mm) > tol)
+            if (ci_abs(k2->x_mm - ctr->x_mm) > tol || ci_abs(k2->y_mm - ctr->y_mm) > tol)
                 continue;
             sx += (int64_t)k2->x_mm * k2->weight;
             sy += (int64_t)k2->y_mm * k2->weight;
@@ -261,26 +266,38 @@ int32_t fl_circle_find(fl_circle_t *c, fl_lines_t *lines,
                 single_long = 1;
         }
         if (wsum <= 0 || (distinct < 2 && !single_long))
-            return 0;
-        ctr.x_mm = (int32_t)(sx / wsum);
-        ctr.y_mm = (int32_t)(sy / wsum);
+            return false;
+        ctr->x_mm = (int32_t)(sx / wsum);
+        ctr->y_mm = (int32_t)(sy / wsum);
     }
     /* unvoted arcs: chord candidates with both ends on the annulus */
     for (i = 0; i < nseg; i++) {
         int32_t d0, d1;
         if (!(c->seg_state[i] & CI_CHORD) || (c->seg_state[i] & CI_MEMBER))
             continue;
-        d0 = (int32_t)fl_hypot(c->seg_g0[i].x_mm - ctr.x_mm, c->seg_g0[i].y_mm - ctr.y_mm);
-        d1 = (int32_t)fl_hypot(c->seg_g1[i].x_mm - ctr.x_mm, c->seg_g1[i].y_mm - ctr.y_mm);
+        d0 = (int32_t)fl_hypot(c->seg_g0[i].x_mm - ctr->x_mm, c->seg_g0[i].y_mm - ctr->y_mm);
+        d1 = (int32_t)fl_hypot(c->seg_g1[i].x_mm - ctr->x_mm, c->seg_g1[i].y_mm - ctr->y_mm);
         if (ci_abs(d0 - R) <= tol / 2 && ci_abs(d1 - R) <= tol / 2)
             c->seg_state[i] |= CI_MEMBER;
     }
+    return true;
+}
+
+/* Step 5 of fl_circle_find: fixed-radius Gauss-Newton fit of ctr over the
+ * member points (into c->pts); members whose points stay off the circle
+ * are dropped and the fit repeated.  Returns the points fitted, 0 when
+ * too few or the centre moved more than 2 tol. */
+static int32_t ci_fit(fl_circle_t *c, const fl_lines_t *lines, const fl_camera_t *camera,
+                      int32_t R, fl_point_t *ctr, int32_t tol)
+{
+    int32_t i, j, k, n = 0, stride, it, cnt_pts, nseg = lines->n_segments;
+    int64_t sx, sy;
 
     /* 5. fit: fixed-radius Gauss-Newton over the member points; members
      * whose points stay off the circle are dropped and the fit repeated */
     {
-        fl_point_t start = ctr;
-        int32_t round, lim = (int32_t)fl_hypot(ctr.x_mm, ctr.y_mm) / 12;
+        fl_point_t start = *ctr;
+        int32_t round, lim = (int32_t)fl_hypot(ctr->x_mm, ctr->y_mm) / 12;
         if (lim < 60)
             lim = 60;
         for (round = 0; round < 2; round++) {
@@ -310,22 +327,22 @@ int32_t fl_circle_find(fl_circle_t *c, fl_lines_t *lines,
             if (n < 6)
                 return 0;
             for (it = 0; it < 12; it++) {
-                fl_point_t prev = ctr;
+                fl_point_t prev = *ctr;
                 sx = sy = 0;
                 for (k = 0; k < n; k++) {
-                    int32_t dx = c->pts[k].x_mm - ctr.x_mm, dy = c->pts[k].y_mm - ctr.y_mm;
+                    int32_t dx = c->pts[k].x_mm - ctr->x_mm, dy = c->pts[k].y_mm - ctr->y_mm;
                     int32_t d = (int32_t)fl_hypot(dx, dy);
                     if (d <= 0) {
-                        sx += ctr.x_mm;
-                        sy += ctr.y_mm;
+                        sx += ctr->x_mm;
+                        sy += ctr->y_mm;
                         continue;
                     }
                     sx += c->pts[k].x_mm - (int64_t)dx * R / d;
                     sy += c->pts[k].y_mm - (int64_t)dy * R / d;
                 }
-                ctr.x_mm = (int32_t)(sx / n);
-                ctr.y_mm = (int32_t)(sy / n);
-                if (ci_abs(ctr.x_mm - prev.x_mm) + ci_abs(ctr.y_mm - prev.y_mm) <= 1)
+                ctr->x_mm = (int32_t)(sx / n);
+                ctr->y_mm = (int32_t)(sy / n);
+                if (ci_abs(ctr->x_mm - prev.x_mm) + ci_abs(ctr->y_mm - prev.y_mm) <= 1)
                     break;
             }
             if (round == 1)
@@ -336,8 +353,8 @@ int32_t fl_circle_find(fl_circle_t *c, fl_lines_t *lines,
                 c->seg_cnt[i] = 0;
             }
             for (k = 0; k < n; k++) {
-                int32_t d = (int32_t)fl_hypot(c->pts[k].x_mm - ctr.x_mm,
-                                              c->pts[k].y_mm - ctr.y_mm) - R;
+                int32_t d = (int32_t)fl_hypot(c->pts[k].x_mm - ctr->x_mm,
+                                              c->pts[k].y_mm - ctr->y_mm) - R;
                 c->seg_bulge[c->pts_seg[k]] += ci_abs(d) > 30000 ? 30000 : ci_abs(d);
                 c->seg_cnt[c->pts_seg[k]]++;
             }
@@ -351,9 +368,82 @@ int32_t fl_circle_find(fl_circle_t *c, fl_lines_t *lines,
             if (kept < 1)
                 return 0;
         }
-        if (ci_abs(ctr.x_mm - start.x_mm) > 2 * tol || ci_abs(ctr.y_mm - start.y_mm) > 2 * tol)
+        if (ci_abs(ctr->x_mm - start.x_mm) > 2 * tol || ci_abs(ctr->y_mm - start.y_mm) > 2 * tol)
             return 0;
     }
+    return n;
+}
+
+/* Orientation of a found circle: the longest line through the centre. */
+static void ci_orient(fl_circle_t *c, const fl_lines_t *lines, fl_point_t ctr)
+{
+    int32_t i, tol, nseg = lines->n_segments;
+
+    /* orientation: the longest line through the centre */
+    {
+        int32_t best_len = 0;
+        tol = ci_tol(ctr);
+        for (i = 0; i < nseg; i++) {
+            int64_t dx, dy, len, cr;
+            if (!(c->seg_state[i] & CI_LONG) || (c->seg_state[i] & CI_MEMBER))
+                continue;
+            dx = (int64_t)c->seg_g1[i].x_mm - c->seg_g0[i].x_mm;
+            dy = (int64_t)c->seg_g1[i].y_mm - c->seg_g0[i].y_mm;
+            len = fl_hypot((int32_t)dx, (int32_t)dy);
+            cr = dx * ((int64_t)ctr.y_mm - c->seg_g0[i].y_mm) -
+                 dy * ((int64_t)ctr.x_mm - c->seg_g0[i].x_mm);
+            if (cr < 0)
+                cr = -cr;
+            if (len > 0 && cr <= (int64_t)tol * len && len > best_len) {
+                fl_angle_t o = fl_atan2((int32_t)dy, (int32_t)dx);
+                if (o >= 16384 || o < -16384)
+                    o = fl_angle_add(o, FL_ANGLE_180);
+                best_len = (int32_t)len;
+                c->orientation = o;
+                c->has_orientation = true;
+            }
+        }
+    }
+}
+
+int32_t fl_circle_find(fl_circle_t *c, fl_lines_t *lines,
+                       const fl_camera_t *camera, const fl_field_t *field)
+{
+    int32_t R, i, k, n, tol;
+    int32_t nseg;
+    int64_t se;
+    fl_point_t ctr;
+    if (!c)
+        return 0;
+    c->found = false;
+    c->has_pixel = false;
+    c->has_orientation = false;
+    c->orientation = 0;
+    c->confidence = 0;
+    c->n_points = c->n_segments = c->rms_mm = 0;
+    c->range_mm = 0;
+    c->bearing = 0;
+    c->n_cand = c->cand_dropped = 0;
+    if (!lines || !camera || !field || field->circle_radius_mm <= 0 ||
+        lines->width <= 0)
+        return 0;
+    R = field->circle_radius_mm;
+    nseg = lines->n_segments;
+
+    ci_ground(c, lines, camera, R);
+
+    ci_singles(c, lines, camera, R);
+
+    ci_pairs(c, lines, R);
+    if (c->n_cand == 0)
+        return 0;
+
+    if (!ci_cluster(c, lines, R, &ctr, &tol))
+        return 0;
+
+    n = ci_fit(c, lines, camera, R, &ctr, tol);
+    if (n == 0)
+        return 0;
     se = 0;
     for (k = 0; k < n; k++) {
         int32_t d = (int32_t)fl_hypot(c->pts[k].x_mm - ctr.x_mm, c->pts[k].y_mm - ctr.y_mm) - R;
@@ -405,30 +495,6 @@ int32_t fl_circle_find(fl_circle_t *c, fl_lines_t *lines,
             c->n_segments++;
         }
 
-    /* orientation: the longest line through the centre */
-    {
-        int32_t best_len = 0;
-        tol = ci_tol(ctr);
-        for (i = 0; i < nseg; i++) {
-            int64_t dx, dy, len, cr;
-            if (!(c->seg_state[i] & CI_LONG) || (c->seg_state[i] & CI_MEMBER))
-                continue;
-            dx = (int64_t)c->seg_g1[i].x_mm - c->seg_g0[i].x_mm;
-            dy = (int64_t)c->seg_g1[i].y_mm - c->seg_g0[i].y_mm;
-            len = fl_hypot((int32_t)dx, (int32_t)dy);
-            cr = dx * ((int64_t)ctr.y_mm - c->seg_g0[i].y_mm) -
-                 dy * ((int64_t)ctr.x_mm - c->seg_g0[i].x_mm);
-            if (cr < 0)
-                cr = -cr;
-            if (len > 0 && cr <= (int64_t)tol * len && len > best_len) {
-                fl_angle_t o = fl_atan2((int32_t)dy, (int32_t)dx);
-                if (o >= 16384 || o < -16384)
-                    o = fl_angle_add(o, FL_ANGLE_180);
-                best_len = (int32_t)len;
-                c->orientation = o;
-                c->has_orientation = true;
-            }
-        }
-    }
+    ci_orient(c, lines, ctr);
     return 1;
 }

@@ -124,6 +124,118 @@ typedef struct {
     int32_t diam, post_h;
 } gl_ctx_t;
 
+/* Is a post already found within its width plus half (px) of column u_c? */
+static bool gl_found(const fl_posts_t *out, int32_t u_c, int32_t half)
+{
+    int32_t k;
+    for (k = 0; k < out->n; k++) {
+        int32_t d = out->post[k].foot_u_q4 / 16 - u_c;
+        if (d < 0)
+            d = -d;
+        if (d <= out->post[k].width_q4 / 16 + half)
+            return true;
+    }
+    return false;
+}
+
+/* Step of gl_candidate: up from the foot row foot_v in column u_c: post
+ * rows (no wider than 1.6 widths w_px) then a crossbar band or clutter
+ * (wider rows).  Into tpw: the top post row, the top row (-1: unknown)
+ * and the rows of the band. */
+static void gl_climb(const fl_image_t *img, const fl_color_table_t *ct, int32_t u_c,
+                     int32_t foot_v, int32_t w_px, int32_t *tpw)
+{
+    int32_t top_post, top, wide, gap, v;
+    top_post = foot_v;
+    top = -1;
+    wide = 0;
+    gap = 0;
+    for (v = foot_v - 1; v >= 0; v--) {
+        int32_t ab[2], w;
+        if (!gl_yellow(img, ct, u_c, v)) {
+            if (++gap > 1)
+                break;
+            continue;
+        }
+        gap = 0;
+        /* the width every 4th row (and every row in a band); only "wider
+         * than 1.6 widths" matters, so the run is cut there */
+        if ((v & 3) != 0 && wide == 0) {
+            top_post = v;
+            continue;
+        }
+        w = gl_img_hrun_lim(img, ct, u_c, v, ab, 2 * w_px + 4);
+        if (w * 10 <= w_px * 16 + 20) {
+            if (wide > 0)
+                break;          /* post again above a band: clutter */
+            top_post = v;
+        } else {
+            wide++;
+            top = v;
+            if (wide > 2 * w_px + 2)
+                break;          /* too thick for a crossbar */
+        }
+    }
+    if (wide > 2 * w_px + 2)
+        top = -1;               /* clutter above: top unknown */
+    else if (wide == 0)
+        top = top_post;
+    tpw[0] = top_post;
+    tpw[1] = top;
+    tpw[2] = wide;
+}
+
+/* Step of gl_candidate: the post's range and bearing (from the foot, else
+ * from the width) and its confidence; false when its yellow is too short
+ * for the height the camera predicts from the foot distance. */
+static bool gl_range(const gl_ctx_t *ctx, fl_post_t *p, int32_t u_c, int32_t foot_v,
+                     int32_t top_post, int32_t height_px)
+{
+    fl_posts_t *out = ctx->out;
+    const fl_camera_t *cam = ctx->cam;
+    int32_t diam = ctx->diam, post_h = ctx->post_h;
+    /* a post is post_height tall: its yellow must reach half the height
+     * the camera predicts from the foot distance (f h / d), or the image
+     * top (small yellow things on the field are not posts) */
+    if (cam && p->foot_visible && p->range_mm > 0) {
+        int64_t hz = cam->pos_q4[2] / 16 - post_h / 2;
+        int64_t d = (int64_t)fl_isqrt64((uint64_t)((int64_t)p->range_mm * p->range_mm + hz * hz));
+        int64_t expect = d > 0 ? (int64_t)cam->model.focal_q4 * post_h / (16 * d) : 0;
+        if (top_post > 1 && (int64_t)height_px * 2 < expect) {
+            out->rejected_shape++;
+            return false;
+        }
+    }
+    if (cam && (!p->foot_visible || p->range_mm == 0)) {
+        /* width fallback: distance from the camera f d / w */
+        int64_t dist = (int64_t)cam->model.focal_q4 * diam / p->width_q4;
+        int64_t hz = cam->pos_q4[2] / 16, r;
+        fl_angle_t b = fl_angle_add(
+            fl_atan2(cam->model.cx_q4 - u_c * 8, cam->model.focal_q4),
+            cam->pose.head_yaw);
+        r = dist > hz ? (int64_t)fl_isqrt64((uint64_t)(dist * dist - hz * hz)) : 0;
+        if (r > FL_CAMERA_MAX_RANGE_MM)
+            r = FL_CAMERA_MAX_RANGE_MM;
+        p->range_mm = (int32_t)r;
+        p->bearing = b;
+        p->ground = fl_point_from_polar(p->range_mm, b);
+        p->range_from_width = true;
+        p->foot_u_q4 = u_c * 8;
+        p->foot_v_q4 = foot_v * 16 + 8;
+        p->confidence = 120;
+    }
+    if (p->foot_visible && cam && p->range_mm > 0) {
+        /* agreement of the width with the foot distance */
+        int64_t dist = (int64_t)cam->model.focal_q4 * diam / p->width_q4;
+        int64_t hz = cam->pos_q4[2] / 16;
+        int64_t r2 = (int64_t)p->range_mm * p->range_mm + hz * hz;
+        int64_t d2 = dist * dist;
+        if (d2 * 4 < r2 || d2 > r2 * 4)
+            p->confidence = 130;
+    }
+    return true;
+}
+
 /* One candidate: the image columns u0..u1 (px) look like a post just above
  * the field border.  vb: a row inside it (px). */
 static void gl_candidate(const gl_ctx_t *ctx, int32_t u0, int32_t u1, int32_t vb)
@@ -133,22 +245,17 @@ static void gl_candidate(const gl_ctx_t *ctx, int32_t u0, int32_t u1, int32_t vb
     const fl_image_t *img = ctx->img;
     const fl_color_table_t *ct = ctx->ct;
     const fl_camera_t *cam = ctx->cam;
-    int32_t diam = ctx->diam, post_h = ctx->post_h;
+    int32_t diam = ctx->diam;
     int32_t cs = s->params.col_step, H = s->height, k, v, gap, foot_v,
             top_post, top, lo, hi, wl[3], w_px, u_c, height_px, wide, ic,
-            jfoot, j;
+            jfoot, j, tpw[3];
     fl_post_t p;
     out->candidates++;
     /* a yellow pixel of the candidate at row vb, nearest to its middle */
     u_c = (u0 + u1) / 2;
     /* a post already found here (a column run split in two) */
-    for (k = 0; k < out->n; k++) {
-        int32_t d = out->post[k].foot_u_q4 / 16 - u_c;
-        if (d < 0)
-            d = -d;
-        if (d <= out->post[k].width_q4 / 16 + (u1 - u0) / 2 + 2)
-            return;
-    }
+    if (gl_found(out, u_c, (u1 - u0) / 2 + 2))
+        return;
     for (k = 0; k <= (u1 - u0) / 2 + 1; k++) {
         if (gl_yellow(img, ct, u_c + k, vb)) {
             u_c += k;
@@ -188,42 +295,11 @@ static void gl_candidate(const gl_ctx_t *ctx, int32_t u0, int32_t u1, int32_t vb
     lo = u_c;
     hi = u_c;
     (void)gl_img_hrun(img, ct, u_c, foot_v - 2, &lo, &hi);
-    /* up: post rows (no wider than 1.6 width) then a crossbar band or
-     * clutter (wider rows) */
-    top_post = foot_v;
-    top = -1;
-    wide = 0;
-    gap = 0;
-    for (v = foot_v - 1; v >= 0; v--) {
-        int32_t ab[2], w;
-        if (!gl_yellow(img, ct, u_c, v)) {
-            if (++gap > 1)
-                break;
-            continue;
-        }
-        gap = 0;
-        /* the width every 4th row (and every row in a band); only "wider
-         * than 1.6 widths" matters, so the run is cut there */
-        if ((v & 3) != 0 && wide == 0) {
-            top_post = v;
-            continue;
-        }
-        w = gl_img_hrun_lim(img, ct, u_c, v, ab, 2 * w_px + 4);
-        if (w * 10 <= w_px * 16 + 20) {
-            if (wide > 0)
-                break;          /* post again above a band: clutter */
-            top_post = v;
-        } else {
-            wide++;
-            top = v;
-            if (wide > 2 * w_px + 2)
-                break;          /* too thick for a crossbar */
-        }
-    }
-    if (wide > 2 * w_px + 2)
-        top = -1;               /* clutter above: top unknown */
-    else if (wide == 0)
-        top = top_post;
+    /* up: post rows then a crossbar band or clutter */
+    gl_climb(img, ct, u_c, foot_v, w_px, tpw);
+    top_post = tpw[0];
+    top = tpw[1];
+    wide = tpw[2];
     height_px = foot_v - top_post + 1;
     /* width: median of the runs at 10, 25 and 40 % of the post rows */
     for (k = 0; k < 3; k++) {
@@ -284,45 +360,8 @@ static void gl_candidate(const gl_ctx_t *ctx, int32_t u0, int32_t u1, int32_t vb
         if (fl_camera_foot_to_centre(cam, &p.foot_u_q4, &p.foot_v_q4, diam, &p.ground))
             fl_polar_from_point(p.ground, &p.range_mm, &p.bearing);
     }
-    /* a post is post_height tall: its yellow must reach half the height
-     * the camera predicts from the foot distance (f h / d), or the image
-     * top (small yellow things on the field are not posts) */
-    if (cam && p.foot_visible && p.range_mm > 0) {
-        int64_t hz = cam->pos_q4[2] / 16 - post_h / 2;
-        int64_t d = (int64_t)fl_isqrt64((uint64_t)((int64_t)p.range_mm * p.range_mm + hz * hz));
-        int64_t expect = d > 0 ? (int64_t)cam->model.focal_q4 * post_h / (16 * d) : 0;
-        if (top_post > 1 && (int64_t)height_px * 2 < expect) {
-            out->rejected_shape++;
-            return;
-        }
-    }
-    if (cam && (!p.foot_visible || p.range_mm == 0)) {
-        /* width fallback: distance from the camera f d / w */
-        int64_t dist = (int64_t)cam->model.focal_q4 * diam / p.width_q4;
-        int64_t hz = cam->pos_q4[2] / 16, r;
-        fl_angle_t b = fl_angle_add(
-            fl_atan2(cam->model.cx_q4 - u_c * 8, cam->model.focal_q4),
-            cam->pose.head_yaw);
-        r = dist > hz ? (int64_t)fl_isqrt64((uint64_t)(dist * dist - hz * hz)) : 0;
-        if (r > FL_CAMERA_MAX_RANGE_MM)
-            r = FL_CAMERA_MAX_RANGE_MM;
-        p.range_mm = (int32_t)r;
-        p.bearing = b;
-        p.ground = fl_point_from_polar(p.range_mm, b);
-        p.range_from_width = true;
-        p.foot_u_q4 = u_c * 8;
-        p.foot_v_q4 = foot_v * 16 + 8;
-        p.confidence = 120;
-    }
-    if (p.foot_visible && cam && p.range_mm > 0) {
-        /* agreement of the width with the foot distance */
-        int64_t dist = (int64_t)cam->model.focal_q4 * diam / p.width_q4;
-        int64_t hz = cam->pos_q4[2] / 16;
-        int64_t r2 = (int64_t)p.range_mm * p.range_mm + hz * hz;
-        int64_t d2 = dist * dist;
-        if (d2 * 4 < r2 || d2 > r2 * 4)
-            p.confidence = 130;
-    }
+    if (!gl_range(ctx, &p, u_c, foot_v, top_post, height_px))
+        return;
     /* side from the crossbar */
     p.side = FL_SIDE_UNKNOWN;
     if (p.top_visible && wide > 0) {
