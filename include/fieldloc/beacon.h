@@ -63,38 +63,15 @@
 #include "fieldloc/camera.h"
 #include "fieldloc/color.h"
 #include "fieldloc/common.h"
+#include "fieldloc/config.h"
 #include "fieldloc/field.h"
 #include "fieldloc/fixed.h"
 #include "fieldloc/image.h"
 #include "fieldloc/scan.h"
 
-/* ---- capacities ----------------------------------------------------------
- * FL_BEACON_MAX_RUNS   colored vertical runs per frame.  Default 384
- *                      (a 208x160 frame full of color at the default
- *                      grid: 104 columns x a few runs), range 16..4096.
- * FL_BEACON_MAX_BLOBS  blobs per frame.  Default 48, range 4..255.
- * FL_BEACON_MAX_FOUND  beacons + posts reported per frame.  Default 8,
- *                      range 1..32.
- * Runs and blobs beyond a cap are counted (runs_dropped, blobs_dropped)
- * and ignored; results beyond FL_BEACON_MAX_FOUND in found_dropped. */
-#ifndef FL_BEACON_MAX_RUNS
-#define FL_BEACON_MAX_RUNS 384
-#endif
-#if FL_BEACON_MAX_RUNS < 16 || FL_BEACON_MAX_RUNS > 4096
-#error "FL_BEACON_MAX_RUNS must be in 16..4096"
-#endif
-#ifndef FL_BEACON_MAX_BLOBS
-#define FL_BEACON_MAX_BLOBS 48
-#endif
-#if FL_BEACON_MAX_BLOBS < 4 || FL_BEACON_MAX_BLOBS > 255
-#error "FL_BEACON_MAX_BLOBS must be in 4..255"
-#endif
-#ifndef FL_BEACON_MAX_FOUND
-#define FL_BEACON_MAX_FOUND 8
-#endif
-#if FL_BEACON_MAX_FOUND < 1 || FL_BEACON_MAX_FOUND > 32
-#error "FL_BEACON_MAX_FOUND must be in 1..32"
-#endif
+/* Capacities FL_BEACON_MAX_RUNS, _BLOBS, _FOUND: config.h.  Runs and blobs
+ * beyond a cap are counted (runs_dropped, blobs_dropped) and ignored;
+ * results beyond FL_BEACON_MAX_FOUND in found_dropped. */
 
 /*
  * Default boxes (fl_beacon_params_default), measured on the rendered

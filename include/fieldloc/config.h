@@ -174,4 +174,31 @@
 #error "FL_OBS_MAX must be in 4..255"
 #endif
 
+/* ---- colored beacons and goals (beacon.h, AIBO fields) -------------------
+ * FL_BEACON_MAX_RUNS   colored vertical runs per frame.  Default 384
+ *                      (a 208x160 frame full of color at the default
+ *                      grid: 104 columns x a few runs), range 16..4096.
+ * FL_BEACON_MAX_BLOBS  blobs per frame.  Default 48, range 4..255.
+ * FL_BEACON_MAX_FOUND  beacons + posts reported per frame.  Default 8,
+ *                      range 1..32.
+ * Runs and blobs beyond a cap are counted and ignored. */
+#ifndef FL_BEACON_MAX_RUNS
+#define FL_BEACON_MAX_RUNS 384
+#endif
+#if FL_BEACON_MAX_RUNS < 16 || FL_BEACON_MAX_RUNS > 4096
+#error "FL_BEACON_MAX_RUNS must be in 16..4096"
+#endif
+#ifndef FL_BEACON_MAX_BLOBS
+#define FL_BEACON_MAX_BLOBS 48
+#endif
+#if FL_BEACON_MAX_BLOBS < 4 || FL_BEACON_MAX_BLOBS > 255
+#error "FL_BEACON_MAX_BLOBS must be in 4..255"
+#endif
+#ifndef FL_BEACON_MAX_FOUND
+#define FL_BEACON_MAX_FOUND 8
+#endif
+#if FL_BEACON_MAX_FOUND < 1 || FL_BEACON_MAX_FOUND > 32
+#error "FL_BEACON_MAX_FOUND must be in 1..32"
+#endif
+
 #endif /* FIELDLOC_CONFIG_H */
