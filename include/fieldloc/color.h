@@ -49,7 +49,7 @@
  *          46), S 90..255, V 50..255 (posts at half light: V ~ 85)
  *
  * Tables (fl_color_table_t, built by fl_color_init / rebuilt by
- * fl_color_adapt, no heap, 254 KiB, build < 1 ms on the host):
+ * fl_color_adapt, no heap, 254 KiB; built at start-up, not per frame):
  *   YCbCr (YUYV and planar frames): BT.601 full range as src/base/image.c,
  *   R = Y + a, G = Y + b, B = Y + c with integer offsets a, b, c that
  *   depend on (Cb, Cr) only.  So for one chroma, hue H and D = max - min

@@ -31,7 +31,8 @@
  *  colors with |R - G|, |B - G| <= FL_COLOR_RGB_EXACT (color.rgb_table).
  * Memory: fl_color_table_t, 254 KiB (chroma 128 KiB, patterns 64 KiB, RGB
  *  cells 56 KiB + 2 KiB index parts, build scratch 4.5 KiB).
- * Cost: build ~0.45 ms on the host (bench_scan "color_tables_build"); a class
+ * Cost: the build visits every table cell once (`make bench`, row
+ *  color_tables_build, measures it); a class
  *  lookup is 2 loads (YCbCr) or 5 loads + 2 subtractions + 2 adds (RGB).
  */
 #include "fieldloc/color.h"
