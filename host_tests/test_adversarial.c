@@ -1,6 +1,6 @@
 /*
  * host_tests/test_adversarial.c - hostile frames through the whole vision
- * path (issue 7): all green, all white, all yellow, black, saturated, random
+ * path: all green, all white, all yellow, black, saturated, random
  * noise, checkerboards of line-width and single-pixel squares, 1x1, width 1,
  * odd widths, stride larger than the width, in RGB888, YUYV422 and planar.
  * Every frame must come back with a valid status, at most FL_OBS_MAX
@@ -164,7 +164,7 @@ static void test_state_survives(void)
     free(fresh);
 }
 
-/* Localizer abuse (issue 7.4), end to end through the public API: a robot
+/* Localizer abuse, end to end through the public API: a robot
  * tracked at a known pose gets contradicting observations (a centre mark at
  * 200 mm when it stands 2.5 m from it, every frame) and absurd odometry.
  * The grid stays valid, the estimate stays on the carpet, reliability drops

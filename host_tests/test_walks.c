@@ -1,6 +1,6 @@
 /*
  * host_tests/test_walks.c - determinism of the localizer over the committed
- * walk fixtures (issue 7): each walk of fixtures/walks/ is replayed at the
+ * walk fixtures: each walk of fixtures/walks/ is replayed at the
  * feature level (simulator observations and odometry -> fuzzy grid, penalty
  * placements told as the rules do), and the integer estimate of every step
  * is hashed.  The hash is compared with fixtures/golden/walks.txt and, by

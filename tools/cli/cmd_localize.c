@@ -33,7 +33,7 @@
  * next to the belief grid (tools/eval/picture.h); every frame, or every Nth with
  * --picture-every N.
  *
- * --uva-spots (issue 6 part 7): the UvA 2013 qvga frames of the real-data
+ * --uva-spots: the UvA 2013 qvga frames of the real-data
  * folder (tools/io/realdata.h; skipped with a message when absent) grouped by
  * standing spot (x_cm, y_cm), ordered by heading, each spot run as its own
  * sequence from total ignorance: field uva2013, camera uva2013, odometry =
