@@ -246,6 +246,25 @@ static void test_include_circle(void)
 
 /* "#include <stdint.h>", a blank line, then a function of exactly `lines'
  * lines from its signature to its closing brace. */
+static void test_tools_through_interface(void)
+{
+    struct planted t[2];
+    t[0].path = "src/base/t.c";
+    t[0].text = clean_src;
+    t[1].path = "tools/loc/run.c";
+    t[1].text = "#include \"fieldloc/localizer.h\"\n"
+                "/* fl_fuzzy_init is named in a comment only */\n"
+                "int run(void) { return fl_localizer_count(); }\n";
+    expect_tree("tools_interface_ok", t, 2, 1, "through localizer.h only");
+    t[1].text = "#include \"fieldloc/fuzzy.h\"\nint run(void) { return 0; }\n";
+    expect_tree("tools_include_fuzzy", t, 2, 0,
+                "includes fieldloc/fuzzy.h: tools use a localizer through localizer.h only");
+    t[1].text = "#include \"fieldloc/fieldloc.h\"\n"
+                "int run(void *g) { return fl_fuzzy_check(g); }\n";
+    expect_tree("tools_call_fuzzy", t, 2, 0,
+                "calls fl_fuzzy_check: tools use a localizer through localizer.h only");
+}
+
 static const char *long_function(int lines)
 {
     static char buf[8192];
@@ -294,4 +313,5 @@ void suite_rules(void)
     t_run("rules.private_header_other_stage_or_tools", test_private_headers);
     t_run("rules.include_circles", test_include_circle);
     t_run("rules.function_length", test_function_length);
+    t_run("rules.tools_through_localizer_interface", test_tools_through_interface);
 }

@@ -24,7 +24,9 @@
 #   8. no include circles among src/ and include/ files, among tools/ files,
 #      nor among tools/ folders (io <- world <- eval <- loc <- bench <- cli);
 #   9. no src/ function longer than 150 lines, except those listed in
-#      tools/build/long_functions.txt (a listed one that got short fails too).
+#      tools/build/long_functions.txt (a listed one that got short fails too);
+#  10. tools/ reach a localizer only through localizer.h (no fuzzy.h, no
+#      fl_fuzzy_* calls), except the files check_layers.py lists with a reason.
 set -u
 CC=${CC:-cc}
 BUILD=${BUILD:-build}
@@ -108,7 +110,8 @@ for h in $inc; do
 done
 say "system headers: $(echo $inc | tr '\n' ' ')"
 
-# 6-9. layering, private headers, include circles, function length
+# 6-10. layering, private headers, include circles, function length, tools
+# through the localizer interface
 PY=${PYTHON:-python3}
 SRC_DIR="$SRC" INC_DIR="$INC" "$PY" "$(dirname "$0")/check_layers.py" || fail=1
 

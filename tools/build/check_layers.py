@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """tools/build/check_layers.py - the source-structure rules of `make check`
-(called by tools/build/check_firmware.sh; rules 6-9 there):
+(called by tools/build/check_firmware.sh; rules 6-10 there):
 
   6. include layering: every direct #include of a fieldloc header from a
      header in include/fieldloc/ or a file in src/<folder>/ goes from a layer
@@ -13,7 +13,10 @@
      nor among tools/ folders (tools/X/* including "Y/..." is an edge X -> Y);
   9. no function in src/ longer than MAX_FUNCTION_LINES lines (signature to
      closing brace), except those in tools/build/long_functions.txt; a listed
-     function that is no longer long fails too, so the list only shrinks.
+     function that is no longer long fails too, so the list only shrinks;
+ 10. tools/ reach a localizer only through localizer.h: no tools file
+     includes a localizer's own header (fuzzy.h) or calls its fl_<name>_*
+     functions, except the files in LOC_OWN_TOOLS (with the reason).
 
 Paths come from the environment (overridable so host_tests/test_rules.c can
 feed planted trees): SRC_DIR, INC_DIR, TOOLS_DIR, TESTS_DIR, LONG_FUNCTIONS.
@@ -58,6 +61,13 @@ EXCEPTIONS = {
     # e.g. ("x.h", "camera.h"): "why",
 }
 MAX_FUNCTION_LINES = 150
+# Rule 10: the tools reach a localizer only through localizer.h.  A loc-layer
+# header other than these is one localizer's own API (fuzzy.h: fl_fuzzy_*);
+# the tools may neither include it nor call its fl_<name>_ functions, except
+# the files listed here, which measure that localizer's internals.
+LOC_INTERFACE = {"localizer.h", "obs.h"}
+LOC_OWN_TOOLS = {"bench/bench_fuzzy.c": "the fuzzy grid's benchmark section "
+                                        "(worst-case cells, sizeof)"}
 # ---------------------------------------------------------------------------
 
 fails = []
@@ -307,6 +317,33 @@ def main():
     say("no include circles (src+include files, tools files, tools folders: %s)"
         % "; ".join("%s -> %s" % (x, ",".join(sorted(folders[x])) or "-")
                     for x in sorted(folders)))
+
+    # ---- 10. tools use localizers through the interface ----
+    own = sorted(h for h, lay in HEADER_LAYER.items()
+                 if lay == "loc" and h not in LOC_INTERFACE)
+    n10 = 0
+    for f in toolfiles:
+        rel = os.path.relpath(f, tools).replace(os.sep, "/")
+        if rel in LOC_OWN_TOOLS:
+            continue
+        with open(f, encoding="utf-8", errors="replace") as fh:
+            text = fh.read()
+        code = re.sub(r"/\*.*?\*/|//[^\n]*", " ", text, flags=re.S)
+        code = re.sub(r'"(?:\\.|[^"\\\n])*"', '""', code)
+        for h in own:
+            stem = h[:-2]
+            if re.search(r'#\s*include\s*[<"]fieldloc/%s[>"]' % re.escape(h), text):
+                bad("%s includes fieldloc/%s: tools use a localizer through "
+                    "localizer.h only" % (f, h))
+            m = re.search(r"\bfl_%s_\w+" % re.escape(stem), code)
+            if m:
+                bad("%s calls %s: tools use a localizer through localizer.h only "
+                    "(or list the file in LOC_OWN_TOOLS in %s, with why)"
+                    % (f, m.group(0), SCRIPT))
+        n10 += 1
+    say("%d tools files reach localizers (%s) through localizer.h only (%d own: %s)"
+        % (n10, " ".join(own) or "-", len(LOC_OWN_TOOLS),
+           ", ".join(sorted(LOC_OWN_TOOLS)) or "-"))
 
     # ---- 9. function length ----
     allow = {}
