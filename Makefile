@@ -19,6 +19,7 @@ SHELL := /bin/bash
 #   make fuzz-smoke every libFuzzer harness for FUZZ_SECONDS (default 20)
 #   make stack      worst-case stack depth of every public entry point
 #   make valgrind   test suite (quick mode) under valgrind memcheck
+#   make results    regenerate docs/RESULTS.md (tests, bench, walks, detection)
 #   make install    PREFIX=/usr/local: headers, library, pkg-config file
 #   make echo       print the effective flags
 #
@@ -82,7 +83,7 @@ TOOL_LIB_OBJ := $(TOOL_LIB_SRC:%.c=$(BUILD)/%.o) $(TOOL_CXX_OBJ)
 CLI      := $(BUILD)/fieldloc
 RUNNER   := $(BUILD)/run_tests
 
-.PHONY: demo perf golden fuzz-build fuzz-smoke stack valgrind fixtures all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
+.PHONY: results demo perf golden fuzz-build fuzz-smoke stack valgrind fixtures all test test-quick test-exhaustive check cross-test sanitize bench install uninstall clean echo
 
 all: $(LIB) $(CLI)
 
@@ -172,6 +173,10 @@ bench: $(CLI)
 DEMO_ARGS ?=
 demo: all
 	@$(CLI) demo --out $(BUILD)/demo $(DEMO_ARGS)
+
+# docs/RESULTS.md, generated (tools/build/results.sh); never edited by hand.
+results: test $(CLI)
+	@sh tools/build/results.sh $(BUILD) docs/RESULTS.md
 
 # Hot functions of the column scanner under perf record.
 perf: $(CLI)
