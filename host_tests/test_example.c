@@ -1,13 +1,14 @@
 /*
- * host_tests/test_example.c - the C API example of README.md ("The C API in
- * brief"), compiled and run on a rendered fixture, so that the README's code
- * stays true.  Keep the two in step.
+ * host_tests/test_example.c - the C API example of README.md ("The C API"),
+ * compiled and run on a rendered fixture, so that the README's code stays
+ * true; example.readme_text checks that the README shows exactly this code.
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
 #include "world/render.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 /* ---- the README example, verbatim from here ---- */
 #define LOCALIZER "fuzzy"   /* the one line that picks the filter (localizer.h catalogue) */
@@ -96,7 +97,52 @@ static void test_readme_example(void)
     free(r);
 }
 
+/* The text between the markers in README.md (less its #include line) and
+ * between the markers in this file must be the same, line for line. */
+static const char *between(const char *text, const char *begin, const char *end, size_t *len)
+{
+    const char *a = text ? strstr(text, begin) : NULL;
+    const char *b;
+    if (!a)
+        return NULL;
+    a = strchr(a + strlen(begin), '\n');
+    if (!a)
+        return NULL;
+    a++;
+    b = strstr(a, end);
+    if (!b)
+        return NULL;
+    while (b > a && b[-1] != '\n')   /* back to the start of the marker's line */
+        b--;
+    *len = (size_t)(b - a);
+    return a;
+}
+
+static void test_readme_text(void)
+{
+    size_t nr = 0, nt = 0, lr, lt;
+    char *readme = t_read_file("README.md", &nr);
+    char *self = t_read_file("host_tests/test_example.c", &nt);
+    const char *ex_r = between(readme, "<!-- example:begin -->", "<!-- example:end -->", &lr);
+    const char *ex_t = between(self, "/* ---- the README example, verbatim from here", "/* ---- end of the README example", &lt);
+    static const char head[] = "```c\n#include <fieldloc/fieldloc.h>\n\n";
+    CHECK(ex_r != NULL && ex_t != NULL);
+    if (ex_r && ex_t) {
+        CHECK(lr > sizeof head - 1 && memcmp(ex_r, head, sizeof head - 1) == 0);
+        ex_r += sizeof head - 1;
+        lr -= sizeof head - 1;
+        CHECK(lr >= 4 && memcmp(ex_r + lr - 4, "```\n", 4) == 0);
+        lr -= 4;
+        if (lr != lt || memcmp(ex_r, ex_t, lt) != 0)
+            t_fail_msg(__FILE__, __LINE__, "README.md's example differs from host_tests/test_example.c "
+                       "(%zu vs %zu bytes): keep the two in step", lr, lt);
+    }
+    free(readme);
+    free(self);
+}
+
 void suite_example(void)
 {
     t_run("example.readme_api", test_readme_example);
+    t_run("example.readme_text", test_readme_text);
 }
