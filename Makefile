@@ -204,7 +204,7 @@ stack:
 	  $(CC) $(FW_CFLAGS) -fcallgraph-info=su -c $$f -o $(BUILD)/stack/$$(basename $$f .c).o \
 	    -dumpbase $$(basename $$f .c) -dumpdir $(BUILD)/stack/ || exit 1; \
 	done
-	@python3 tools/build/stack_report.py --limit 4096 $(BUILD)/stack/*.ci
+	@python3 tools/build/stack_report.py --limit 4096 --indirect fl_loc_=src/loc/loc_ $(BUILD)/stack/*.ci
 
 # The test suite under valgrind memcheck (quick mode: the sweeps are long).
 valgrind: $(RUNNER)

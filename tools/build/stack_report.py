@@ -5,9 +5,17 @@ Reads the .ci files that gcc writes with -fcallgraph-info=su (one per
 firmware source: each function's own frame size and its direct calls),
 merges them, and for every exported fl_* function prints the deepest path:
 its own frame plus the deepest callee, recursively.  Fails (exit 1) on
-recursion, on a dynamic (VLA/alloca) frame, on an indirect call, on a call
-to an unknown non-library function, or when an entry point needs more than
---limit bytes (default 4096).  Usage: stack_report.py [--limit N] FILE.ci...
+recursion, on a dynamic (VLA/alloca) frame, on an indirect call that no
+--indirect rule covers, on a call to an unknown non-library function, or
+when an entry point needs more than --limit bytes (default 4096).
+
+--indirect CALLER_PREFIX=TARGET_PREFIX (repeatable): an indirect call in a
+function whose name starts with CALLER_PREFIX may reach any function whose
+node title starts with TARGET_PREFIX; it counts as the deepest of them (an
+upper bound).  The localizer interface calls its adapters' functions
+through the fl_localizer_t table: --indirect fl_loc_=src/loc/loc_.
+
+Usage: stack_report.py [--limit N] [--indirect C=T]... FILE.ci...
 """
 import re
 import sys
@@ -15,10 +23,14 @@ import sys
 def main(argv):
     limit = 4096
     files = []
+    indirect = []
     i = 0
     while i < len(argv):
         if argv[i] == "--limit":
             limit = int(argv[i + 1]); i += 2
+        elif argv[i] == "--indirect":
+            caller, target = argv[i + 1].split("=", 1)
+            indirect.append((caller, target)); i += 2
         else:
             files.append(argv[i]); i += 1
     frame, kind, edges, local = {}, {}, {}, set()
@@ -52,8 +64,18 @@ def main(argv):
             if fn in libc or fn.startswith("__builtin"):
                 return 0, [fn]
             if fn == "__indirect_call":
-                problems.append("indirect call in " + stack[-1])
-                return 0, [fn]
+                caller = stack[-1]
+                targets = [n for c, t in indirect if caller.startswith(c)
+                           for n in frame if n.startswith(t)]
+                if not targets:
+                    problems.append("indirect call in " + caller)
+                    return 0, [fn]
+                best, path = 0, ["(indirect)"]
+                for t in sorted(targets):
+                    d, p = depth(t, stack)
+                    if d > best:
+                        best, path = d, ["(indirect)"] + p
+                return best, path
             problems.append("unknown callee %s (from %s)" % (fn, stack[-1] if stack else "?"))
             return 0, [fn]
         if kind.get(fn) != "static":
