@@ -63,7 +63,7 @@ typedef struct {
 } fl_camera_t;
 
 /* Catalogue: NAO v3/v4/v6 top and bottom at 320x240 and 640x480, the AIBO
- * ERS-7 camera at 208x160, plus models added by later calibration.
+ * ERS-7 camera at 208x160, plus calibrated models.
  * Names: "nao3-top-320", "nao4-bottom-640", "aibo-ers7", ...,
  * "uva2013" (the UvA 2013 dataset's NAO v4 bottom camera at 320x240,
  * calibrated from the hand labels by `fieldloc calibrate`; use it with its
@@ -108,7 +108,7 @@ int32_t fl_camera_horizon_v_q4(const fl_camera_t *cam, int32_t u_q4);
 void fl_polar_from_point(fl_point_t p, int32_t *range_mm, fl_angle_t *bearing);
 fl_point_t fl_point_from_polar(int32_t range_mm, fl_angle_t bearing);
 
-/* ---- limits (added with src/model/camera.c) ----------------------------------
+/* ---- limits (see src/model/camera.c) -----------------------------------------
  * Validated by fl_camera_init (FL_ERR_RANGE beyond them) or enforced by the
  * projection calls (false beyond them), so that every 64-bit intermediate
  * stays in range; see "Scaling and overflow" in src/model/camera.c. */

@@ -1,7 +1,7 @@
 /*
  * fieldloc/common.h - status codes and small types shared by every stage.
  *
- * Conventions (see README.md, "Frames and units"):
+ * Conventions (see docs/DESIGN.md, "Frames, units and fixed-point formats"):
  *   image    origin top-left, u right, v down, pixels
  *   robot    x forward, y left, millimetres
  *   field    origin at the centre, x toward the opponent goal, y left, mm,

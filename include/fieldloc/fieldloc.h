@@ -1,6 +1,7 @@
 /*
  * fieldloc/fieldloc.h - umbrella header: every public stage of fieldloc.
- * See README.md for the data flow and the lifecycle of each stage.
+ * See docs/DESIGN.md for the data flow; each stage's header documents its
+ * lifecycle.
  */
 #ifndef FIELDLOC_FIELDLOC_H
 #define FIELDLOC_FIELDLOC_H

@@ -1,7 +1,7 @@
 /*
  * tools/bench/bench_fuzzy.c - the fuzzy position grid (include/fieldloc/fuzzy.h):
  * one predict plus an update with 5 observations on the SPL 2013 grid
- * (104 x 74 cells), the issue-6 speed goal being <= 0.5 ms on the host.
+ * (104 x 74 cells).
  *
  * States (each repetition starts from a saved copy, the copy is not timed):
  *   tracking   the grid after 10 s of the built-in spl2013 walk (a tracked

@@ -161,8 +161,8 @@ static void boxes_of(const fl_color_table_t *t, uint8_t boxes[3][6])
  * chain and fieldloc (both formats, both modes) and the memcpy once, and
  * each keeps its best round.  A slow stretch of the machine (another
  * process, a clock change) then hits both sides of a ratio alike instead
- * of one of them; before, the peer's 5 batches ran first and the ratio
- * moved by up to 35 % between runs. */
+ * of one of them (timing one side's batches first makes the ratio drift
+ * with the machine's load). */
 static void bench_frame(bench_ctx_t *ctx, const bench_frame_t *f, int noise)
 {
     int reps = ctx->quick ? 1 : 7;

@@ -19,7 +19,7 @@
  *   vision_worst           worst frame of all of the above (peer: its
  *                          worst frame, named in the description)
  * Instruction counts: run callgrind on the CLI, counting only inside
- * fl_vision_frame (README of the issue / report):
+ * fl_vision_frame (as tools/bench/callgrind_vision.sh does):
  *   valgrind --tool=callgrind --toggle-collect=fl_vision_frame \
  *     build/fieldloc detect --field spl2013 --camera nao4-top-640 \
  *     --repeat 10 fixtures/frames/spl2013_640_goal.ppm

@@ -21,10 +21,9 @@
  * render_frame: the renderer's defaults, RGB888, cluttered room, sensor
  * noise; camera pose = the step's head, exactly what the renderer used)
  * and runs it through the firmware vision path (fl_vision_frame with the
- * default color tables) into the grid.  Rendering is the slow part (about
- * 55 ms a frame on one core of the host; frames are rendered in batches
- * on lr_threads_default() threads, which does not change the results:
- * about 45 s for the 130 s spl2013 walk on 2 cores), so vision runs on
+ * default color tables) into the grid.  Rendering is the slow part (frames
+ * are rendered in batches on lr_threads_default() threads, which does not
+ * change the results), so vision runs on
  * every Nth simulator step only (--every N, default 3: 10 Hz for the 30 Hz
  * walks) and the
  * odometry of the steps between is composed (lr_odo_add) and given to one

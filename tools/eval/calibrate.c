@@ -14,7 +14,8 @@
  * Invariant: only parameters in fit_mask change; everything else in
  * cal_params_t is used as given.
  * Memory: one observation per label (malloc'd), a dense normal matrix of at
- * most CAL_NP^2 doubles on the stack.  Cost: a few ms for 160 labels.
+ * most CAL_NP^2 doubles on the stack.  Cost: O(labels x CAL_NP^2) per
+ * iteration plus one CAL_NP^3 solve.
  */
 #include "eval/calibrate.h"
 

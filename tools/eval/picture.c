@@ -4,7 +4,7 @@
  * Drawing is plain RGB888 with clipped pixel writes: lines by uniform
  * stepping (one pixel per step of the longer axis), rings by angle
  * stepping.  Cost: one pass over the cells plus a few hundred line pixels
- * per cell tick; about 1 ms for the SPL grid at 8 px per cell.
+ * per cell tick.
  */
 #include "eval/picture.h"
 

@@ -1,6 +1,6 @@
 /*
  * tools/world/adversarial.h - hostile frames for the robustness tests and the
- * worst-case timing (issue 7): all green, all white, all yellow, black,
+ * worst-case timing: all green, all white, all yellow, black,
  * saturated, random noise, checkerboards of line-width and single-pixel
  * squares, stripes; any size, any format, any row padding.
  */

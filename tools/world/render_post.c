@@ -18,7 +18,7 @@
  *
  * Invariant: deterministic from the scene (seed) and the input image.
  * Memory: one extra double image for blur, three double planes for JPEG.
- * Cost: a few ms per 320x240 frame; blur O(W H blur_px).
+ * Cost: a few passes over the frame; blur O(W H blur_px).
  */
 #include "world/render_int.h"
 #include "io/ppm.h"

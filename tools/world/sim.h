@@ -297,7 +297,7 @@ int sim_write_walk_fixtures(const char *out_dir);
 void sim_render_scene(const sim_scenario_t *sc, const sim_step_t *st,
                       render_scene_t *scene);
 
-/* Sequence file for `fieldloc localize` (issue 6 format): renders every
+/* Sequence file for `fieldloc localize` (the format below): renders every
  * `every`-th step (max_frames frames at most, 0 = all) as PPM images named
  * IMAGE_PREFIXnnnnn.ppm next to seq_path, and writes
  *     field NAME / camera NAME / [prior X_MM Y_MM THETA_DEG] /
