@@ -1,6 +1,7 @@
 /*
- * src/vision/lines_int.h - line stage internals shared by lines_points.c and
- * lines_segments.c (seed 000, section 3.6 and Algorithm 1); see lines.h for the method.
+ * src/vision/lines_int.h - line stage internals shared by lines.c,
+ * lines_points.c and lines_segments.c (seed 000, section 3.6 and Algorithm 1);
+ * see lines.h for the method.
  *
  * Algorithm.
  *   points   every m-th grid row of the scanner's class map is read 32
