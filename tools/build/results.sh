@@ -11,9 +11,10 @@
 #
 # The walks: every field (spl2013, uva2013, aibo2004) in feature mode
 # (seeds 1 2 3, about 1 s each) and in frames mode (rendered frames through
-# the vision path at 10 Hz; seeds $FRAME_SEEDS, default "1 2": rendering is
-# the slow part: 90 / 63 / 22 s for spl2013 / uva2013 / aibo2004 on 2
-# cores, so the whole `make results` stays near 9 minutes).  Seeds 1-3 are the ones the
+# the vision path at 10 Hz; seeds $FRAME_SEEDS, default "1 2 3": rendering
+# is the slow part, about 85 s for the three fields of one seed on 2 idle
+# cores, more under load; the whole `make results` takes about 7 minutes
+# there, `make bench` about 100 s of it).  Seeds 1-3 are the ones the
 # project's localization figures used.  FIELDLOC_THREADS sets the
 # rendering threads (default: the online CPUs).
 set -u
@@ -23,7 +24,7 @@ CLI=$B/fieldloc
 RD=../shared/realdata
 FIELDS="spl2013 uva2013 aibo2004"
 FEATURE_SEEDS=${FEATURE_SEEDS:-"1 2 3"}
-FRAME_SEEDS=${FRAME_SEEDS:-"1 2"}
+FRAME_SEEDS=${FRAME_SEEDS:-"1 2 3"}
 TMP=$OUT.tmp
 WORK=$B/results.work
 start=$(date +%s)
