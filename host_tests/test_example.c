@@ -1,7 +1,8 @@
 /*
  * host_tests/test_example.c - the C API example of README.md ("The C API"),
  * compiled and run on a rendered fixture, so that the README's code stays
- * true; example.readme_text checks that the README shows exactly this code.
+ * true; example.readme_text checks that the README shows exactly this code,
+ * example.readme_cxx that it compiles as C++ with C linkage.
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
@@ -10,57 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* ---- the README example, verbatim from here ---- */
-#define LOCALIZER "fuzzy"   /* the one line that picks the filter (localizer.h catalogue) */
-
-typedef struct {
-    fl_color_table_t colors;   /* ~230 KiB, built once */
-    fl_vision_t vision;        /* ~120 KiB, all buffers of the vision path */
-    const fl_localizer_t *loc; /* the localizer's functions */
-    const fl_field_t *field;
-    union { int64_t align; void *p; uint8_t b[72 * 1024]; } state;   /* the belief (fuzzy ~63 KiB) */
-    union { int64_t align; void *p; uint8_t b[512]; } params;
-} robot_loc_t;
-
-static fl_status_t loc_init(robot_loc_t *r, const char *field_name)
-{
-    fl_color_params_t cp;
-    fl_vision_params_t vp;
-    fl_status_t s;
-    r->loc = fl_localizer_find(LOCALIZER);
-    r->field = fl_field_find(field_name);
-    if (r->loc == NULL) return FL_ERR_NOT_FOUND;
-    if (r->loc->state_size > sizeof r->state || r->loc->params_size > sizeof r->params)
-        return FL_ERR_SIZE;
-    fl_color_params_default(&cp);               /* HSV boxes from the UvA 2013 images */
-    fl_vision_params_default(&vp);
-    /* parameters for vision's observations; the camera's width picks the preset */
-    r->loc->params_preset(r->params.b,
-                          fl_loc_preset_for_width(fl_camera_model_find("nao4-bottom-320")->width_px));
-    if ((s = fl_color_init(&r->colors, &cp)) != FL_OK) return s;
-    if ((s = fl_vision_init(&r->vision, &vp)) != FL_OK) return s;
-    return fl_loc_init(r->loc, r->state.b, r->field, r->params.b);   /* total ignorance */
-}
-
-/* once per camera frame: odometry since the last frame (robot frame, mm,
- * binary angle), the frame, the head joints */
-static void loc_frame(robot_loc_t *r, int32_t odo_dx_mm, int32_t odo_dy_mm, fl_angle_t odo_dtheta,
-                      const fl_image_t *img, fl_angle_t head_pitch, fl_angle_t head_yaw,
-                      fl_loc_estimate_t *est)
-{
-    const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-320");
-    fl_camera_pose_t pose = {m->default_neck_height_mm, head_pitch, head_yaw, m->default_pitch_offset};
-    fl_camera_t cam;
-    fl_obs_list_t obs;
-    fl_obs_view_t view;
-    fl_camera_init(&cam, m, &pose);
-    fl_vision_frame(&r->vision, &r->colors, img, &cam, r->field, &obs);  /* -> observations */
-    fl_vision_view(&cam, &view);   /* where landmarks would surely have been seen */
-    fl_loc_predict(r->loc, r->state.b, odo_dx_mm, odo_dy_mm, odo_dtheta);
-    fl_loc_update(r->loc, r->state.b, &obs, &view);   /* observations + negative information */
-    fl_loc_estimate(r->loc, r->state.b, est);   /* x_mm, y_mm, heading, reliability_q16 */
-}
-/* ---- end of the README example ---- */
+/* The README example (README.md, between the example markers, less its
+ * #include line), verbatim: also compiled as C++ by example.readme_cxx. */
+#include "readme_example.inc"
 
 static void test_readme_example(void)
 {
@@ -98,7 +51,7 @@ static void test_readme_example(void)
 }
 
 /* The text between the markers in README.md (less its #include line) and
- * between the markers in this file must be the same, line for line. */
+ * host_tests/readme_example.inc must be the same, byte for byte. */
 static const char *between(const char *text, const char *begin, const char *end, size_t *len)
 {
     const char *a = text ? strstr(text, begin) : NULL;
@@ -120,11 +73,10 @@ static const char *between(const char *text, const char *begin, const char *end,
 
 static void test_readme_text(void)
 {
-    size_t nr = 0, nt = 0, lr, lt;
+    size_t nr = 0, nt = 0, lr;
     char *readme = t_read_file("README.md", &nr);
-    char *self = t_read_file("host_tests/test_example.c", &nt);
+    char *ex_t = t_read_file("host_tests/readme_example.inc", &nt);
     const char *ex_r = between(readme, "<!-- example:begin -->", "<!-- example:end -->", &lr);
-    const char *ex_t = between(self, "/* ---- the README example, verbatim from here", "/* ---- end of the README example", &lt);
     static const char head[] = "```c\n#include <fieldloc/fieldloc.h>\n\n";
     CHECK(ex_r != NULL && ex_t != NULL);
     if (ex_r && ex_t) {
@@ -133,16 +85,53 @@ static void test_readme_text(void)
         lr -= sizeof head - 1;
         CHECK(lr >= 4 && memcmp(ex_r + lr - 4, "```\n", 4) == 0);
         lr -= 4;
-        if (lr != lt || memcmp(ex_r, ex_t, lt) != 0)
-            t_fail_msg(__FILE__, __LINE__, "README.md's example differs from host_tests/test_example.c "
-                       "(%zu vs %zu bytes): keep the two in step", lr, lt);
+        if (lr != nt || memcmp(ex_r, ex_t, nt) != 0)
+            t_fail_msg(__FILE__, __LINE__, "README.md's example differs from host_tests/readme_example.inc "
+                       "(%zu vs %zu bytes): keep the two in step", lr, nt);
     }
     free(readme);
-    free(self);
+    free(ex_t);
+}
+
+/* The README example compiled as C++ (host_tests/cxx/readme_example.cpp, to
+ * an object: not linked, so the same on every target): it must compile
+ * with warnings as errors, and every fl_ function it calls must keep C
+ * linkage (extern "C" in the headers): no mangled _Z...fl_ reference in the
+ * object.  Skipped, with a message, when no C++ compiler is installed. */
+static void test_readme_cxx(void)
+{
+    char cmd[1024];
+    size_t n = 0;
+    char *undef;
+    if (system("command -v c++ > /dev/null 2>&1") != 0) {
+        t_info("skipped: no C++ compiler (c++) on this machine");
+        return;
+    }
+    CHECK_EQ(system("mkdir -p build/cxx"), 0);
+    snprintf(cmd, sizeof cmd,
+             "c++ -std=c++11 -Wall -Wextra -Werror -Iinclude -c host_tests/cxx/readme_example.cpp "
+             "-o build/cxx/readme_example.o > build/cxx/log.txt 2>&1 && "
+             "nm -u build/cxx/readme_example.o > build/cxx/undef.txt");
+    if (system(cmd) != 0) {
+        char *log = t_read_file("build/cxx/log.txt", &n);
+        t_fail_msg(__FILE__, __LINE__, "the README example does not compile as C++:\n%s", log ? log : "");
+        free(log);
+        return;
+    }
+    undef = t_read_file("build/cxx/undef.txt", &n);
+    CHECK(undef != NULL);
+    if (undef) {
+        CHECK(strstr(undef, "fl_localizer_find") != NULL);   /* called, unmangled */
+        CHECK(strstr(undef, "fl_vision_frame") != NULL);
+        if (strstr(undef, "_Z") && strstr(undef, "fl_"))
+            t_fail_msg(__FILE__, __LINE__, "C++ references with mangled names (no extern \"C\"):\n%s", undef);
+    }
+    free(undef);
 }
 
 void suite_example(void)
 {
     t_run("example.readme_api", test_readme_example);
     t_run("example.readme_text", test_readme_text);
+    t_run("example.readme_cxx", test_readme_cxx);
 }

@@ -69,6 +69,10 @@
 #include "fieldloc/image.h"
 #include "fieldloc/scan.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Capacities FL_BEACON_MAX_RUNS, _BLOBS, _FOUND: config.h.  Runs and blobs
  * beyond a cap are counted (runs_dropped, blobs_dropped) and ignored;
  * results beyond FL_BEACON_MAX_FOUND in found_dropped. */
@@ -193,5 +197,9 @@ int32_t fl_beacon_find(fl_beacon_t *b, const fl_scan_t *scan,
  * or NONE (also outside the image, an invalid view, or NULL). */
 fl_color_t fl_beacon_pixel_color(const fl_beacon_params_t *p,
                                    const fl_image_t *img, int32_t u, int32_t v);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_BEACON_H */

@@ -20,6 +20,10 @@
 #include "fieldloc/common.h"
 #include "fieldloc/fixed.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Intrinsics and mounting of one camera at one resolution (catalogue data). */
 typedef struct {
     const char *name;      /* e.g. "nao4-bottom-320" */
@@ -143,5 +147,9 @@ fl_point_t fl_point_from_polar(int32_t range_mm, fl_angle_t bearing);
  * horizon (optical axis vertical, or the horizon more than 2^24 px away),
  * for columns beyond FL_CAMERA_MAX_OFFSET_Q4, and for a camera that failed
  * init (INT32_MAX).  The row is the same for every column (no roll). */
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_CAMERA_H */

@@ -43,6 +43,10 @@
 #include "fieldloc/fixed.h"
 #include "fieldloc/lines.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     int32_t x_mm, y_mm;     /* candidate centre, robot frame */
     int16_t seg_a, seg_b;   /* segments it came from (seg_b -1: single) */
@@ -80,5 +84,9 @@ typedef struct {
  * without a circle: not found.  Returns 1 when found, else 0. */
 int32_t fl_circle_find(fl_circle_t *c, fl_lines_t *lines,
                        const fl_camera_t *camera, const fl_field_t *field);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_CIRCLE_H */

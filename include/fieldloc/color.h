@@ -85,6 +85,10 @@
 
 #include "fieldloc/common.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* ---- HSV ----------------------------------------------------------------- */
 
 typedef struct {
@@ -232,5 +236,9 @@ fl_color_class_t fl_color_class_ycbcr_exact(const fl_color_table_t *t,
 
 /* Hue h (0..179) inside box b's hue range (wrapping ranges included). */
 bool fl_hsv_box_has_hue(const fl_hsv_box_t *b, int32_t h);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_COLOR_H */

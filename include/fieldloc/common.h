@@ -18,6 +18,10 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
     FL_OK = 0,
     FL_ERR_NULL = -1,      /* a required pointer was NULL */
@@ -37,5 +41,9 @@ typedef struct {
 
 /* Human-readable name of a status code (static string, never NULL). */
 const char *fl_status_str(fl_status_t s);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_COMMON_H */

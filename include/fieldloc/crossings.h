@@ -102,6 +102,10 @@
 #include "fieldloc/lines.h"
 #include "fieldloc/scan.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     fl_landmark_kind_t kind;  /* FL_LM_L, FL_LM_T, FL_LM_X,
                                  FL_LM_PENALTY_MARK or FL_LM_CENTRE_MARK */
@@ -187,5 +191,9 @@ int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
                                 const fl_lines_t *lines, const fl_scan_t *scan,
                                 const fl_camera_t *camera,
                                 const fl_field_t *field);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_CROSSINGS_H */

@@ -14,6 +14,10 @@
 #include "fieldloc/common.h"
 #include "fieldloc/fixed.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
     FL_LM_L = 0,            /* L crossing (2 arms) */
     FL_LM_T = 1,            /* T crossing (3 arms) */
@@ -114,5 +118,9 @@ const fl_field_t *fl_field_at(size_t i);            /* NULL if out of range */
 uint16_t fl_field_count_kind(const fl_field_t *f, fl_landmark_kind_t kind);
 const fl_landmark_t *fl_field_nth_kind(const fl_field_t *f,
                                        fl_landmark_kind_t kind, uint16_t i);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_FIELD_H */

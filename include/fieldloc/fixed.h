@@ -19,6 +19,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef int16_t fl_angle_t;
 
 #define FL_ANGLE_TURN   65536L   /* units per full turn (not representable) */
@@ -94,5 +98,9 @@ int32_t fl_floor_div(int32_t n, int32_t d);
 int32_t fl_mul_q15(int32_t a, int32_t b);
 /* a * b >> 30, rounded, saturated; a any int32, b Q30.  Intermediate 64 bit. */
 int32_t fl_mul_q30(int32_t a, int32_t b);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_FIXED_H */

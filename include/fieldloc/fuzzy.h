@@ -60,6 +60,10 @@
 #include "fieldloc/field.h"
 #include "fieldloc/obs.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Trapezoid widths in a cell are 8-bit codes in units of FL_FUZZY_AUNIT
  * binary angles (128 = 0.703 deg); code FL_FUZZY_WFULL means "180 degrees or
  * more" (a core of FL_FUZZY_WFULL covers every heading). */
@@ -491,5 +495,9 @@ void fl_fuzzy_trap_union(const fl_fuzzy_trap_t *a, const fl_fuzzy_trap_t *b,
  * offsets of *c are left unchanged. */
 void fl_fuzzy_trap_from_cell(const fl_fuzzy_cell_t *c, fl_fuzzy_trap_t *t);
 void fl_fuzzy_trap_to_cell(const fl_fuzzy_trap_t *t, fl_fuzzy_cell_t *c);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_FUZZY_H */

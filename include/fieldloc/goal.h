@@ -49,6 +49,10 @@
 #include "fieldloc/image.h"
 #include "fieldloc/scan.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     int32_t foot_u_q4, foot_v_q4; /* base centre, Q4 px (estimated from the
                                      width when !foot_visible) */
@@ -86,5 +90,9 @@ int32_t fl_goal_find(fl_posts_t *out, const fl_scan_t *scan,
 fl_color_class_t fl_goal_pixel_class(const fl_image_t *img,
                                      const fl_color_table_t *colors,
                                      int32_t u, int32_t v);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_GOAL_H */

@@ -19,6 +19,10 @@
 #include "fieldloc/common.h"
 #include "fieldloc/config.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
     FL_FMT_RGB888 = 1,
     FL_FMT_YUYV422 = 2,
@@ -60,5 +64,9 @@ bool fl_image_get_ycbcr(const fl_image_t *img, int32_t u, int32_t v,
  * rounded and clamped).  Outside the view: 0, 0, 0 and false. */
 bool fl_image_get_rgb(const fl_image_t *img, int32_t u, int32_t v,
                       uint8_t rgb[3]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_IMAGE_H */

@@ -89,6 +89,10 @@
 #include "fieldloc/image.h"
 #include "fieldloc/scan.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define FL_LINES_NONE 0xffffu   /* point not in a segment */
 #define FL_LINES_CANDIDATES 5   /* nearest points tried per growth step */
 #define FL_LINES_SEG_MAX_POINTS 1023 /* points per segment (overflow bound) */
@@ -283,5 +287,9 @@ int32_t fl_lines_points_near(const fl_lines_t *l, int32_t u_q1, int32_t v_q1,
  * i.e. toward smaller v for a segment pointing +u). */
 int32_t fl_segment_distance_q4(const fl_segment_t *s, int32_t u_q4,
                                int32_t v_q4);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_LINES_H */

@@ -33,6 +33,10 @@
 #include "fieldloc/field.h"
 #include "fieldloc/obs.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Vision-path presets (the caller decides from its camera). */
 typedef enum {
     FL_LOC_PRESET_DEFAULT = 0,      /* = params_default (feature-level obs) */
@@ -180,5 +184,9 @@ uint16_t fl_loc_update(const fl_localizer_t *loc, void *state,
 bool fl_loc_estimate(const fl_localizer_t *loc, void *state,
                      fl_loc_estimate_t *out);
 bool fl_loc_check(const fl_localizer_t *loc, const void *state);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_LOCALIZER_H */

@@ -13,6 +13,10 @@
 #include "fieldloc/fixed.h"
 #include "fieldloc/field.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* No observation is farther than this (mm): the camera's largest ground
  * range (camera.h FL_CAMERA_MAX_RANGE_MM, equal by a compile-time check in
  * src/vision/vision_view.c).  A localizer may treat a larger range as bad
@@ -77,5 +81,9 @@ bool fl_obs_list_push(fl_obs_list_t *list, const fl_obs_t *obs);
 /* Orientation of a map landmark by the conventions above (field frame);
  * false for kinds without one. */
 bool fl_landmark_orientation(const fl_landmark_t *lm, fl_angle_t *orientation);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_OBS_H */

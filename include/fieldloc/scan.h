@@ -82,6 +82,10 @@
 #include "fieldloc/config.h"
 #include "fieldloc/image.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define FL_SCAN_WORDS ((FL_SCAN_MAX_COLS + 31) / 32)
 #define FL_SCAN_COUNT_BITS 13   /* bit-sliced counter planes: up to 8191 */
 
@@ -163,5 +167,9 @@ uint32_t fl_scan_mask_word(const fl_scan_t *s, int32_t j, int32_t w,
 
 /* Number of cells of class c in the map. */
 int32_t fl_scan_count(const fl_scan_t *s, fl_color_class_t c);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_SCAN_H */

@@ -45,6 +45,10 @@
 #include "fieldloc/obs.h"
 #include "fieldloc/scan.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     fl_scan_params_t scan;        /* col_step / row_step 0 = auto: 1 up to
                                      320 px wide, else width / 320 (rounded
@@ -118,5 +122,9 @@ void fl_vision_view_from_camera(const fl_camera_t *cam, int32_t margin_px,
  * each kind that project that far inside the image, simulate --frames
  * "# vision" lines).  valid false for a NULL camera. */
 void fl_vision_view(const fl_camera_t *cam, fl_obs_view_t *view);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FIELDLOC_VISION_H */
