@@ -171,6 +171,7 @@ static fl_camera_pose_t make_pose(const fl_camera_model_t *m, int k, t_rng_t *rn
 {
     fl_camera_pose_t ps;
     int32_t nlo = is_aibo(m) ? 100 : 300, nhi = is_aibo(m) ? 200 : 600;
+    memset(&ps, 0, sizeof ps);
     if (k < 24) {
         ps.neck_height_mm = (k & 1) ? nhi : nlo;
         ps.head_pitch = (fl_angle_t)((k & 2) ? PITCH_MAX : PITCH_MIN);
@@ -267,7 +268,7 @@ static void test_catalogue(void)
         "nao6-top-320", "nao6-top-640", "nao6-bottom-320", "nao6-bottom-640", "aibo-ers7"};
     size_t i, j, n = fl_camera_model_count();
     const fl_camera_model_t *m;
-    fl_camera_pose_t ps = {450, 0, 0, 0};
+    fl_camera_pose_t ps = {450, 0, 0, 0, 0, 0, 0};
     fl_camera_t cam;
 
     CHECK(n >= sizeof required / sizeof required[0]);
@@ -314,6 +315,7 @@ static void test_catalogue(void)
         CHECK(m->default_pitch_offset > -2731 && m->default_pitch_offset < 2731); /* 15 deg */
         {
             fl_camera_pose_t dp;
+            memset(&dp, 0, sizeof dp);
             dp.neck_height_mm = m->default_neck_height_mm;
             dp.head_pitch = 0;
             dp.head_yaw = 0;
@@ -396,7 +398,7 @@ static void check_projects_nothing(const fl_camera_t *cam)
 static void expect_init(const fl_camera_model_t *m, const fl_camera_pose_t *ps, fl_status_t st)
 {
     fl_camera_t cam;
-    fl_camera_pose_t good = {450, 0, 0, 0};
+    fl_camera_pose_t good = {450, 0, 0, 0, 0, 0, 0};
     CHECK_EQ(fl_camera_init(&cam, fl_camera_model_find("nao4-bottom-320"), &good), FL_OK);
     CHECK_EQ(fl_camera_init(&cam, m, ps), st);
     if (st != FL_OK)
@@ -407,7 +409,7 @@ static void test_invalid(void)
 {
     const fl_camera_model_t *base = fl_camera_model_find("nao4-bottom-320");
     fl_camera_model_t m;
-    fl_camera_pose_t ps = {450, 0, 0, 0}, p2;
+    fl_camera_pose_t ps = {450, 0, 0, 0, 0, 0, 0}, p2;
     fl_camera_t cam;
     fl_point_t g = {1000, 0};
     int32_t u, v;
@@ -664,7 +666,7 @@ static void test_horizon(void)
     /* looking straight down / up: the whole column or none of it */
     {
         const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-640");
-        fl_camera_pose_t ps = {450, 0, 0, 0};
+        fl_camera_pose_t ps = {450, 0, 0, 0, 0, 0, 0};
         fl_camera_t cam;
         fl_point_t g;
         int32_t u = 0, v = 0;
@@ -700,7 +702,7 @@ static void test_extremes(void)
     uint32_t h = t_hash_init();
     for (mi = 0; mi < fl_camera_model_count(); mi++) {
         const fl_camera_model_t *m = fl_camera_model_at(mi);
-        fl_camera_pose_t ps = {450, 0, 0, 0};
+        fl_camera_pose_t ps = {450, 0, 0, 0, 0, 0, 0};
         fl_camera_t cam;
         ref_cam_t rc;
         int32_t u, v;
@@ -831,6 +833,7 @@ static void test_foot_to_centre(void)
     fl_point_t g, c = {7, 7};
     int32_t u = 160 * 16, v = 200 * 16, u0, v0;
     uint32_t rg, rcen;
+    memset(&ps, 0, sizeof ps);
     ps.neck_height_mm = m->default_neck_height_mm;
     ps.pitch_offset = m->default_pitch_offset;
     ps.head_pitch = 0;

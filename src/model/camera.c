@@ -177,27 +177,9 @@ static int64_t fl_cam_floor_div64(int64_t n, int64_t d)
 
 /* ---- init ------------------------------------------------------------------ */
 
-/* Scaling and overflow.  Angles are binary angles summed in int32 and wrapped
- * with fl_angle_wrap.  sin/cos are Q2.30 in [-2^30, 2^30]; the products in R
- * use fl_mul_q30 (64-bit intermediate, rounded, |result| <= 2^30).
- * Position: mount_x*cos(theta) + mount_z*sin(theta) is mm * Q30 in int64,
- * |.| <= 2 * 1000 * 2^30 < 2^41; it is rounded to Q16 mm (>> 14, |.| < 2^27),
- * multiplied by cos/sin(yaw) Q30 (|.| < 2^57) and rounded to Q4 (>> 42).
- * The vertical part is rounded straight to Q4 (>> 26).  Each step rounds to
- * nearest (fl_rshift_round); the position is within 1/16 mm of exact. */
-fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
-                           const fl_camera_pose_t *pose)
+/* The model checks shared by both inits. */
+static fl_status_t fl_cam_check_model(const fl_camera_model_t *model)
 {
-    fl_angle_t alpha, theta;
-    int32_t sa, ca, sy, cy, st, ct;
-    int64_t xh_q30, zh_q30;
-    int32_t xh_q16;
-
-    if (!cam)
-        return FL_ERR_NULL;
-    memset(cam, 0, sizeof *cam); /* projects nothing until fully valid */
-    if (!model || !pose)
-        return FL_ERR_NULL;
     if (model->width_px <= 0 || model->height_px <= 0 ||
         model->width_px > FL_IMAGE_MAX_DIM || model->height_px > FL_IMAGE_MAX_DIM)
         return FL_ERR_SIZE;
@@ -209,10 +191,103 @@ fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
     if (model->mount_x_mm < -FL_CAMERA_MAX_MOUNT_MM || model->mount_x_mm > FL_CAMERA_MAX_MOUNT_MM ||
         model->mount_z_mm < -FL_CAMERA_MAX_MOUNT_MM || model->mount_z_mm > FL_CAMERA_MAX_MOUNT_MM)
         return FL_ERR_RANGE;
+    return FL_OK;
+}
+
+static bool fl_cam_angle_ok(fl_angle_t a, int32_t limit) { return a >= -limit && a <= limit; }
+
+/* Q30 rotation matrices (right-handed; see camera.h for the signs). */
+static void fl_cam_rot_x(int32_t m[3][3], fl_angle_t a)
+{
+    int32_t s = fl_sin_q30(a), c = fl_cos_q30(a);
+    memset(m, 0, 9 * sizeof m[0][0]);
+    m[0][0] = (int32_t)1 << 30;
+    m[1][1] = c;
+    m[1][2] = -s;
+    m[2][1] = s;
+    m[2][2] = c;
+}
+
+static void fl_cam_rot_y(int32_t m[3][3], fl_angle_t a)
+{
+    int32_t s = fl_sin_q30(a), c = fl_cos_q30(a);
+    memset(m, 0, 9 * sizeof m[0][0]);
+    m[0][0] = c;
+    m[0][2] = s;
+    m[1][1] = (int32_t)1 << 30;
+    m[2][0] = -s;
+    m[2][2] = c;
+}
+
+/* out = a * b (Q30).  Scaling: |a_ij|, |b_ij| <= 2^30 (+1 after earlier
+ * roundings, clamped here), so each sum of 3 products is < 2^62; rounded to
+ * nearest and clamped to +-2^30.  A factor equal to the identity gives the
+ * other factor bit for bit (2^30 * x + 0 + 0, shifted back exactly). */
+static void fl_cam_mat_mul(int32_t out[3][3], const int32_t a[3][3], const int32_t b[3][3])
+{
+    int32_t t[3][3];
+    int i, j;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) {
+            int32_t v = fl_rshift_round((int64_t)a[i][0] * b[0][j] + (int64_t)a[i][1] * b[1][j] +
+                                            (int64_t)a[i][2] * b[2][j], 30);
+            t[i][j] = v > (1 << 30) ? (1 << 30) : (v < -(1 << 30) ? -(1 << 30) : v);
+        }
+    memcpy(out, t, sizeof t);
+}
+
+/* Camera roll limit check on a finished rotation: the camera's own roll
+ * (ZYX) is atan2(R21, R22), so |roll| <= 45 deg with the optical axis at
+ * most 90 deg below or above the horizontal is exactly |R21| <= R22.  It
+ * keeps the sky at the top of every column (R22 >= 0; the horizon
+ * convention) and the horizon's slope within +-1 row per column. */
+static bool fl_cam_roll_ok(const int32_t r[3][3])
+{
+    int32_t r21 = r[2][1] < 0 ? -r[2][1] : r[2][1];
+    return r21 <= r[2][2];
+}
+
+/* Scaling and overflow.  Angles are binary angles summed in int32 and wrapped
+ * with fl_angle_wrap.  sin/cos are Q2.30 in [-2^30, 2^30]; the products in R
+ * use fl_mul_q30 (64-bit intermediate, rounded, |result| <= 2^30).
+ * Position: mount_x*cos(theta) + mount_z*sin(theta) is mm * Q30 in int64,
+ * |.| <= 2 * 1000 * 2^30 < 2^41; it is rounded to Q16 mm (>> 14, |.| < 2^27),
+ * multiplied by cos/sin(yaw) Q30 (|.| < 2^57) and rounded to Q4 (>> 42).
+ * The vertical part is rounded straight to Q4 (>> 26).  Each step rounds to
+ * nearest (fl_rshift_round); the position is within 1/16 mm of exact.
+ * Torso and roll offset (only when one of them is non-zero, so that a pose
+ * without them gives today's integers bit for bit, and the products by an
+ * identity factor are exact anyway): R = T * R_head * Rx(roll_offset) with
+ * T = Ry(torso_pitch) * Rx(torso_roll) (fl_cam_mat_mul), and the head offset
+ * h (Q4 mm, |h| <= 1414 mm < 2^15 Q4) rotated by T: Q4 * Q30 < 2^47 per
+ * term, rounded back to Q4; |T h| = |h| up to 1/16 mm per coordinate. */
+fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
+                           const fl_camera_pose_t *pose)
+{
+    fl_angle_t alpha, theta;
+    int32_t sa, ca, sy, cy, st, ct;
+    int64_t xh_q30, zh_q30;
+    int32_t xh_q16, h[3];
+    int32_t r[3][3];
+    fl_status_t st_model;
+    int i;
+
+    if (!cam)
+        return FL_ERR_NULL;
+    memset(cam, 0, sizeof *cam); /* projects nothing until fully valid */
+    if (!model || !pose)
+        return FL_ERR_NULL;
+    st_model = fl_cam_check_model(model);
+    if (st_model != FL_OK)
+        return st_model;
     if (pose->neck_height_mm < FL_CAMERA_NECK_MIN_MM || pose->neck_height_mm > FL_CAMERA_NECK_MAX_MM)
         return FL_ERR_RANGE;
     alpha = fl_angle_wrap((int32_t)model->mount_tilt + pose->head_pitch + pose->pitch_offset);
     if (alpha < -FL_ANGLE_90 || alpha > FL_ANGLE_90)
+        return FL_ERR_RANGE;
+    if (!fl_cam_angle_ok(pose->roll_offset, FL_CAMERA_MAX_ROLL) ||
+        !fl_cam_angle_ok(pose->torso_pitch, FL_CAMERA_MAX_ROLL) ||
+        !fl_cam_angle_ok(pose->torso_roll, FL_CAMERA_MAX_ROLL))
         return FL_ERR_RANGE;
     theta = fl_angle_wrap((int32_t)pose->head_pitch + pose->pitch_offset);
 
@@ -223,25 +298,109 @@ fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
     st = fl_sin_q30(theta);
     ct = fl_cos_q30(theta);
 
-    cam->model = *model;
-    cam->pose = *pose;
-    cam->rot_q30[0][0] = fl_mul_q30(cy, ca);
-    cam->rot_q30[0][1] = -sy;
-    cam->rot_q30[0][2] = fl_mul_q30(cy, sa);
-    cam->rot_q30[1][0] = fl_mul_q30(sy, ca);
-    cam->rot_q30[1][1] = cy;
-    cam->rot_q30[1][2] = fl_mul_q30(sy, sa);
-    cam->rot_q30[2][0] = -sa;
-    cam->rot_q30[2][1] = 0;
-    cam->rot_q30[2][2] = ca;
+    /* head: R = Rz(yaw) * Ry(alpha) */
+    r[0][0] = fl_mul_q30(cy, ca);
+    r[0][1] = -sy;
+    r[0][2] = fl_mul_q30(cy, sa);
+    r[1][0] = fl_mul_q30(sy, ca);
+    r[1][1] = cy;
+    r[1][2] = fl_mul_q30(sy, sa);
+    r[2][0] = -sa;
+    r[2][1] = 0;
+    r[2][2] = ca;
 
-    /* camera centre: head pitch theta, then yaw, then up by the neck */
+    /* camera centre relative to the head pitch axis: head pitch theta, then yaw */
     xh_q30 = (int64_t)model->mount_x_mm * ct + (int64_t)model->mount_z_mm * st;
     zh_q30 = -(int64_t)model->mount_x_mm * st + (int64_t)model->mount_z_mm * ct;
     xh_q16 = fl_rshift_round(xh_q30, 14);
-    cam->pos_q4[0] = fl_rshift_round((int64_t)xh_q16 * cy, 42);
-    cam->pos_q4[1] = fl_rshift_round((int64_t)xh_q16 * sy, 42);
-    cam->pos_q4[2] = pose->neck_height_mm * 16 + fl_rshift_round(zh_q30, 26);
+    h[0] = fl_rshift_round((int64_t)xh_q16 * cy, 42);
+    h[1] = fl_rshift_round((int64_t)xh_q16 * sy, 42);
+    h[2] = fl_rshift_round(zh_q30, 26);
+
+    if (pose->roll_offset != 0) {
+        int32_t m[3][3];
+        fl_cam_rot_x(m, pose->roll_offset);
+        fl_cam_mat_mul(r, (const int32_t(*)[3])r, (const int32_t(*)[3])m);
+    }
+    if (pose->torso_pitch != 0 || pose->torso_roll != 0) {
+        int32_t ty[3][3], tx[3][3], t[3][3];
+        int32_t h2[3];
+        fl_cam_rot_y(ty, pose->torso_pitch);
+        fl_cam_rot_x(tx, pose->torso_roll);
+        fl_cam_mat_mul(t, (const int32_t(*)[3])ty, (const int32_t(*)[3])tx);
+        fl_cam_mat_mul(r, (const int32_t(*)[3])t, (const int32_t(*)[3])r);
+        for (i = 0; i < 3; i++)
+            h2[i] = fl_rshift_round((int64_t)t[i][0] * h[0] + (int64_t)t[i][1] * h[1] +
+                                        (int64_t)t[i][2] * h[2], 30);
+        memcpy(h, h2, sizeof h);
+    }
+    if (!fl_cam_roll_ok((const int32_t(*)[3])r))
+        return FL_ERR_RANGE;
+
+    cam->model = *model;
+    cam->pose = *pose;
+    memcpy(cam->rot_q30, r, sizeof r);
+    cam->pos_q4[0] = h[0];
+    cam->pos_q4[1] = h[1];
+    cam->pos_q4[2] = pose->neck_height_mm * 16 + h[2];
+    return FL_OK;
+}
+
+/* Scaling: x, y within +-FL_CAMERA_MAX_XY_MM (2000 mm = 32000 Q4 < 2^15) and
+ * z in [1, FL_CAMERA_MAX_Z_MM] (4000 mm = 64000 Q4 < 2^16): the bounds that
+ * pixel_to_ground's analysis assumes.  R = Rz(yaw) * Ry(pitch) * Rx(roll),
+ * the yaw-pitch part as in fl_camera_init (so yaw and pitch alone give the
+ * same matrix as a head pose with the same angles), then the roll product. */
+fl_status_t fl_camera_init_extrinsics(fl_camera_t *cam, const fl_camera_model_t *model,
+                                      const fl_camera_extrinsics_t *ext)
+{
+    int32_t sp, cp, sy, cy;
+    int32_t r[3][3];
+    fl_status_t st_model;
+
+    if (!cam)
+        return FL_ERR_NULL;
+    memset(cam, 0, sizeof *cam);
+    if (!model || !ext)
+        return FL_ERR_NULL;
+    st_model = fl_cam_check_model(model);
+    if (st_model != FL_OK)
+        return st_model;
+    if (ext->x_mm < -FL_CAMERA_MAX_XY_MM || ext->x_mm > FL_CAMERA_MAX_XY_MM ||
+        ext->y_mm < -FL_CAMERA_MAX_XY_MM || ext->y_mm > FL_CAMERA_MAX_XY_MM ||
+        ext->z_mm < 1 || ext->z_mm > FL_CAMERA_MAX_Z_MM)
+        return FL_ERR_RANGE;
+    if (!fl_cam_angle_ok(ext->pitch, FL_ANGLE_90) || !fl_cam_angle_ok(ext->roll, FL_CAMERA_MAX_ROLL))
+        return FL_ERR_RANGE;
+    sp = fl_sin_q30(ext->pitch);
+    cp = fl_cos_q30(ext->pitch);
+    sy = fl_sin_q30(ext->yaw);
+    cy = fl_cos_q30(ext->yaw);
+    r[0][0] = fl_mul_q30(cy, cp);
+    r[0][1] = -sy;
+    r[0][2] = fl_mul_q30(cy, sp);
+    r[1][0] = fl_mul_q30(sy, cp);
+    r[1][1] = cy;
+    r[1][2] = fl_mul_q30(sy, sp);
+    r[2][0] = -sp;
+    r[2][1] = 0;
+    r[2][2] = cp;
+    if (ext->roll != 0) {
+        int32_t m[3][3];
+        fl_cam_rot_x(m, ext->roll);
+        fl_cam_mat_mul(r, (const int32_t(*)[3])r, (const int32_t(*)[3])m);
+    }
+    if (!fl_cam_roll_ok((const int32_t(*)[3])r))
+        return FL_ERR_RANGE;
+    cam->model = *model;
+    cam->pose.neck_height_mm = ext->z_mm;
+    cam->pose.head_pitch = ext->pitch;
+    cam->pose.head_yaw = ext->yaw;
+    cam->pose.roll_offset = ext->roll;
+    memcpy(cam->rot_q30, r, sizeof r);
+    cam->pos_q4[0] = ext->x_mm * 16;
+    cam->pos_q4[1] = ext->y_mm * 16;
+    cam->pos_q4[2] = ext->z_mm * 16;
     return FL_OK;
 }
 
@@ -370,19 +529,24 @@ bool fl_camera_ground_to_pixel(const fl_camera_t *cam, fl_point_t ground,
 /* ---- horizon ------------------------------------------------------------------ */
 
 /* Scaling and overflow.  The ray test of pixel_to_ground is
- * d_z = R20 f + R22 (cy - v) < 0 (R21 = 0: no roll), i.e., with R22 > 0,
- * v - cy > R20 f / R22  <=>  v - cy > q = floor(R20 f / R22)  (v integer).
- * R20 f is Q30 * Q4 < 2^50 in int64; the floor division is exact.  So the
- * result cy + q is exact for the integer test, not just close: every
- * v_q4 > result (within the accepted pixel range) has a downward ray and
- * every v_q4 <= result has not.  When q is outside +-FL_CAMERA_MAX_OFFSET_Q4
- * (no accepted pixel of the column is on the other side), or when R22 = 0
- * (optical axis vertical), the result is INT32_MIN (the whole column looks
- * down) or INT32_MAX (none does).  Columns outside the accepted pixel range
- * and failed cameras give INT32_MAX.  The row does not depend on u_q4. */
+ * d_z = R20 f + R21 b + R22 (cy - v) < 0 with b = cx - u, i.e., with
+ * R22 > 0, v - cy > n / R22 with n = R20 f + R21 b  <=>  v - cy > q =
+ * floor(n / R22)  (v integer).  R20 f is Q30 * Q4 < 2^50 and |R21 b| <=
+ * 2^30 * 2^28 = 2^58 (the column is checked first), so n < 2^59 in int64;
+ * the floor division is exact.  So the result cy + q is exact for the
+ * integer test, not just close: every v_q4 > result (within the accepted
+ * pixel range) has a downward ray and every v_q4 <= result has not.  When
+ * q is outside +-FL_CAMERA_MAX_OFFSET_Q4 (no accepted pixel of the column
+ * is on the other side), or when R22 = 0 (optical axis vertical; init keeps
+ * |R21| <= R22, so R21 = 0 too), the result is INT32_MIN (the whole column
+ * looks down) or INT32_MAX (none does).  Columns outside the accepted pixel
+ * range and failed cameras give INT32_MAX.  Without roll R21 = 0 and the
+ * row does not depend on u_q4; with roll it is linear in u_q4 (slope
+ * -R21 / R22, at most one row per column), so the extremes over a span of
+ * columns are at its two ends. */
 int32_t fl_camera_horizon_v_q4(const fl_camera_t *cam, int32_t u_q4)
 {
-    int64_t r20, r22, du, q;
+    int64_t r20, r21, r22, du, q;
 
     if (!cam || cam->pos_q4[2] <= 0)
         return INT32_MAX;
@@ -390,15 +554,27 @@ int32_t fl_camera_horizon_v_q4(const fl_camera_t *cam, int32_t u_q4)
     if (du > FL_CAMERA_MAX_OFFSET_Q4 || du < -FL_CAMERA_MAX_OFFSET_Q4)
         return INT32_MAX;
     r20 = cam->rot_q30[2][0];
+    r21 = cam->rot_q30[2][1];
     r22 = cam->rot_q30[2][2];
     if (r22 <= 0) /* vertical axis (init keeps R22 >= 0) */
         return r20 < 0 ? INT32_MIN : INT32_MAX;
-    q = fl_cam_floor_div64(r20 * cam->model.focal_q4, r22);
+    q = fl_cam_floor_div64(r20 * cam->model.focal_q4 - r21 * du, r22);
     if (q >= FL_CAMERA_MAX_OFFSET_Q4)
         return INT32_MAX;
     if (q < -FL_CAMERA_MAX_OFFSET_Q4 - 1)
         return INT32_MIN;
     return (int32_t)(cam->model.cy_q4 + q);
+}
+
+/* Topmost horizon row over the columns u0_q4..u1_q4 (the smaller of the
+ * two ends, the row being linear in u): every pixel of those columns below
+ * it may see the ground.  INT32_MIN / INT32_MAX as fl_camera_horizon_v_q4
+ * (INT32_MIN when either end column looks down entirely). */
+int32_t fl_camera_horizon_top_v_q4(const fl_camera_t *cam, int32_t u0_q4, int32_t u1_q4)
+{
+    int32_t a = fl_camera_horizon_v_q4(cam, u0_q4);
+    int32_t b = fl_camera_horizon_v_q4(cam, u1_q4);
+    return a < b ? a : b;
 }
 
 /* ---- polar ------------------------------------------------------------------- */

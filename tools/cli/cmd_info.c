@@ -71,7 +71,7 @@ static int list_cameras(void)
 int cmd_project(int argc, char **argv)
 {
     const char *cam_name = "nao4-bottom-320";
-    fl_camera_pose_t pose = {0, 0, 0, 0};
+    fl_camera_pose_t pose = {0, 0, 0, 0, 0, 0, 0};
     int32_t neck_mm = -1;
     fl_camera_t cam;
     const fl_camera_model_t *m;
