@@ -1157,6 +1157,18 @@ int world_build(world_t *w, const render_scene_t *sc)
     w->cam_r[0] = xh * cy;
     w->cam_r[1] = xh * sy;
     w->cam_r[2] = sc->head.neck_height_mm + zh;
+    if (sc->head.roll_offset != 0 || sc->head.torso_pitch != 0 || sc->head.torso_roll != 0) {
+        /* a rolled or tilted camera: the firmware's rotation and centre
+         * (Q30 / Q4, within about 1e-9 and 1/32 mm of exact), so frames of
+         * a calibrated or leaning robot project as fl_camera_init says;
+         * without these angles the exact path above is kept (the bytes of
+         * every existing frame stay the same) */
+        for (i = 0; i < 3; i++) {
+            for (j = 0; j < 3; j++)
+                R[i][j] = fc.rot_q30[i][j] / 1073741824.0;
+            w->cam_r[i] = fc.pos_q4[i] / 16.0;
+        }
+    }
     w->rc = rcos(sc->robot_heading);
     w->rs = rsin(sc->robot_heading);
     w->P[0] = sc->robot_x_mm + w->rc * w->cam_r[0] - w->rs * w->cam_r[1];
@@ -1168,6 +1180,11 @@ int world_build(world_t *w, const render_scene_t *sc)
         w->M[2][j] = R[2][j];
     }
     w->horizon_v = ca > 1e-12 ? w->cy - w->f * sa / ca : (sa > 0 ? -1e9 : 1e9);
+    if (sc->head.roll_offset != 0 || sc->head.torso_pitch != 0 || sc->head.torso_roll != 0) {
+        /* the horizon is sloped: its row at the principal point's column */
+        int32_t hv = fl_camera_horizon_v_q4(&fc, sc->camera->cx_q4);
+        w->horizon_v = hv == INT32_MIN ? -1e9 : hv == INT32_MAX ? 1e9 : hv / 16.0;
+    }
 
     w->carpet_hx = fl_field_carpet_half_x_mm(w->field);
     w->carpet_hy = fl_field_carpet_half_y_mm(w->field);
