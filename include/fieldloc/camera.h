@@ -177,7 +177,7 @@ bool fl_camera_foot_to_centre(const fl_camera_t *cam, int32_t *u_q4, int32_t *v_
 /* Row (v, Q4) of the horizon at column u_q4: pixels with v below (greater
  * than) this can see the ground.  Returns INT32_MIN when the whole column
  * is below the horizon and INT32_MAX when none of it can be.  With roll the
- * row differs per column (a straight line, at most 45 deg steep). */
+ * row differs per column (a straight line). */
 int32_t fl_camera_horizon_v_q4(const fl_camera_t *cam, int32_t u_q4);
 
 /* Topmost (smallest) horizon row over the columns u0_q4..u1_q4: the min of
@@ -202,10 +202,9 @@ fl_point_t fl_point_from_polar(int32_t range_mm, fl_angle_t bearing);
 #define FL_CAMERA_MAX_FOCAL_Q4 (1L << 20)
 /* Largest |mount_x_mm| and |mount_z_mm| accepted by fl_camera_init. */
 #define FL_CAMERA_MAX_MOUNT_MM 1000
-/* Largest |roll| of the camera, and of torso_pitch, torso_roll and
- * roll_offset each (45 deg).  Beyond it FL_ERR_RANGE: a robot leaning that
- * far is falling, and the horizon stays less steep than the image
- * diagonal of a 4:3 image. */
+/* Largest |roll| of fl_camera_extrinsics_t, and of torso_pitch, torso_roll
+ * and roll_offset each (45 deg); FL_ERR_RANGE beyond it: a robot leaning
+ * that far is falling, and its frames are not worth localizing on. */
 #define FL_CAMERA_MAX_ROLL FL_ANGLE_45
 /* fl_camera_init_extrinsics: |x_mm|, |y_mm| <= FL_CAMERA_MAX_XY_MM, z_mm in
  * [1, FL_CAMERA_MAX_Z_MM] (Q4 positions below 2^15 and 2^16). */
@@ -213,11 +212,11 @@ fl_point_t fl_point_from_polar(int32_t range_mm, fl_angle_t bearing);
 #define FL_CAMERA_MAX_Z_MM 4000
 /* fl_camera_init also requires the total downward tilt of the head part,
  * mount_tilt + head_pitch + pitch_offset (wrapped to a turn), to lie in
- * [-90, +90] deg, and both inits require the finished camera to have
- * |roll| <= FL_CAMERA_MAX_ROLL with its optical axis within 90 deg of the
- * horizontal (exactly |R21| <= R22 of the rotation; the image is never
- * upside down, so the sky is always at the top and the horizon convention
- * below holds), and the principal point to lie in [0, 16*width_px] x
+ * [-90, +90] deg, and both inits require the finished camera to be upright:
+ * optical axis within 90 deg of the horizontal and roll within 90 deg (a
+ * torso lean can push a steep head past them; the image is never upside
+ * down, so the sky is always at the top and the horizon convention below
+ * holds), and the principal point to lie in [0, 16*width_px] x
  * [0, 16*height_px] (Q4). */
 
 /* Pixels farther than this from the principal point (|u_q4 - cx_q4| or
@@ -237,7 +236,7 @@ fl_point_t fl_point_from_polar(int32_t range_mm, fl_angle_t bearing);
  * horizon (optical axis vertical, or the horizon more than 2^24 px away),
  * for columns beyond FL_CAMERA_MAX_OFFSET_Q4, and for a camera that failed
  * init (INT32_MAX).  Without roll the row is the same for every column;
- * with roll it changes by at most one row per column. */
+ * with roll it is a straight line over the columns. */
 
 #ifdef __cplusplus
 }

@@ -236,15 +236,18 @@ static void fl_cam_mat_mul(int32_t out[3][3], const int32_t a[3][3], const int32
     memcpy(out, t, sizeof t);
 }
 
-/* Camera roll limit check on a finished rotation: the camera's own roll
- * (ZYX) is atan2(R21, R22), so |roll| <= 45 deg with the optical axis at
- * most 90 deg below or above the horizontal is exactly |R21| <= R22.  It
- * keeps the sky at the top of every column (R22 >= 0; the horizon
- * convention) and the horizon's slope within +-1 row per column. */
-static bool fl_cam_roll_ok(const int32_t r[3][3])
+/* The finished camera must be upright: R22 = cos(pitch) cos(roll) > 0 (ZYX
+ * angles of the camera), i.e. its optical axis within 90 deg of the
+ * horizontal and its roll within 90 deg, so that the sky is at the top of
+ * every column (the horizon convention of camera.h); R22 = 0 only with
+ * R21 = 0 (looking straight up or down without roll, a case the horizon
+ * handles).  The 45 deg limits on the input angles alone do not ensure it
+ * (a torso lean adds to a steep head pitch), and near a vertical optical
+ * axis a small lean turns the horizon line far outside the image a lot,
+ * so the composite is not limited further. */
+static bool fl_cam_upright(const int32_t r[3][3])
 {
-    int32_t r21 = r[2][1] < 0 ? -r[2][1] : r[2][1];
-    return r21 <= r[2][2];
+    return r[2][2] > 0 || (r[2][2] == 0 && r[2][1] == 0);
 }
 
 /* Scaling and overflow.  Angles are binary angles summed in int32 and wrapped
@@ -259,8 +262,9 @@ static bool fl_cam_roll_ok(const int32_t r[3][3])
  * without them gives today's integers bit for bit, and the products by an
  * identity factor are exact anyway): R = T * R_head * Rx(roll_offset) with
  * T = Ry(torso_pitch) * Rx(torso_roll) (fl_cam_mat_mul), and the head offset
- * h (Q4 mm, |h| <= 1414 mm < 2^15 Q4) rotated by T: Q4 * Q30 < 2^47 per
- * term, rounded back to Q4; |T h| = |h| up to 1/16 mm per coordinate. */
+ * h rotated by T: h in Q16 mm (|h_i| <= 1414 mm < 2^27 Q16, each within
+ * 2^-17 mm), times T (Q30) < 2^57 per term, sum < 2^59, rounded to Q4 once
+ * (>> 42), so the centre stays within 1/32 mm + 2^-15 mm of exact. */
 fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
                            const fl_camera_pose_t *pose)
 {
@@ -324,17 +328,20 @@ fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
     }
     if (pose->torso_pitch != 0 || pose->torso_roll != 0) {
         int32_t ty[3][3], tx[3][3], t[3][3];
-        int32_t h2[3];
+        int32_t h16[3];
         fl_cam_rot_y(ty, pose->torso_pitch);
         fl_cam_rot_x(tx, pose->torso_roll);
         fl_cam_mat_mul(t, (const int32_t(*)[3])ty, (const int32_t(*)[3])tx);
         fl_cam_mat_mul(r, (const int32_t(*)[3])t, (const int32_t(*)[3])r);
+        /* the head offset again in Q16, turned by T and rounded to Q4 once */
+        h16[0] = fl_rshift_round((int64_t)xh_q16 * cy, 30);
+        h16[1] = fl_rshift_round((int64_t)xh_q16 * sy, 30);
+        h16[2] = fl_rshift_round(zh_q30, 14);
         for (i = 0; i < 3; i++)
-            h2[i] = fl_rshift_round((int64_t)t[i][0] * h[0] + (int64_t)t[i][1] * h[1] +
-                                        (int64_t)t[i][2] * h[2], 30);
-        memcpy(h, h2, sizeof h);
+            h[i] = fl_rshift_round((int64_t)t[i][0] * h16[0] + (int64_t)t[i][1] * h16[1] +
+                                       (int64_t)t[i][2] * h16[2], 42);
     }
-    if (!fl_cam_roll_ok((const int32_t(*)[3])r))
+    if (!fl_cam_upright((const int32_t(*)[3])r))
         return FL_ERR_RANGE;
 
     cam->model = *model;
@@ -390,7 +397,7 @@ fl_status_t fl_camera_init_extrinsics(fl_camera_t *cam, const fl_camera_model_t 
         fl_cam_rot_x(m, ext->roll);
         fl_cam_mat_mul(r, (const int32_t(*)[3])r, (const int32_t(*)[3])m);
     }
-    if (!fl_cam_roll_ok((const int32_t(*)[3])r))
+    if (!fl_cam_upright((const int32_t(*)[3])r))
         return FL_ERR_RANGE;
     cam->model = *model;
     cam->pose.neck_height_mm = ext->z_mm;
@@ -538,12 +545,11 @@ bool fl_camera_ground_to_pixel(const fl_camera_t *cam, fl_point_t ground,
  * pixel range) has a downward ray and every v_q4 <= result has not.  When
  * q is outside +-FL_CAMERA_MAX_OFFSET_Q4 (no accepted pixel of the column
  * is on the other side), or when R22 = 0 (optical axis vertical; init keeps
- * |R21| <= R22, so R21 = 0 too), the result is INT32_MIN (the whole column
+ * R21 = 0 then), the result is INT32_MIN (the whole column
  * looks down) or INT32_MAX (none does).  Columns outside the accepted pixel
  * range and failed cameras give INT32_MAX.  Without roll R21 = 0 and the
  * row does not depend on u_q4; with roll it is linear in u_q4 (slope
- * -R21 / R22, at most one row per column), so the extremes over a span of
- * columns are at its two ends. */
+ * -R21 / R22), so the extremes over a span of columns are at its two ends. */
 int32_t fl_camera_horizon_v_q4(const fl_camera_t *cam, int32_t u_q4)
 {
     int64_t r20, r21, r22, du, q;
