@@ -10,7 +10,9 @@
  *                                   integer FL_CAMERA_NECK_MIN_MM..MAX_MM
  *     pitch_offset_deg D            extra downward tilt, decimal degrees
  *     roll_offset_deg D             roll about the optical axis, decimal
- *                                   degrees (positive = the image turned
+ *                                   degrees (fl_camera_pose_t.roll_offset:
+ *                                   positive = the camera's left side up,
+ *                                   the image content turned counter-
  *                                   clockwise, camera.h)
  * D: optional sign, digits, optional '.' and up to 9 decimals; |D| <=
  * FL_CALIB_MAX_OFFSET_DEG; rounded to the nearest binary angle.  Every key

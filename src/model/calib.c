@@ -33,11 +33,24 @@ typedef struct {
     const char *why;
 } fl_calib_err_t;
 
+/* Index of the first c in s[0..n-1], n when none (libc's memchr is not
+ * among the functions the firmware may call). */
+static size_t fl_calib_find(const char *s, size_t n, char c)
+{
+    size_t i = 0;
+    while (i < n && s[i] != c)
+        i++;
+    return i;
+}
+
+/* Length of a NUL-terminated string of at most max bytes (max when no NUL). */
+static size_t fl_calib_len(const char *s, size_t max) { return fl_calib_find(s, max, '\0'); }
+
 static bool fl_calib_is_space(char c) { return c == ' ' || c == '\t'; }
 
 static bool fl_calib_word_is(const fl_calib_word_t *w, const char *lit)
 {
-    size_t n = strlen(lit);
+    size_t n = fl_calib_len(lit, FL_CALIB_LINE_MAX);
     return w->n == n && memcmp(w->s, lit, n) == 0;
 }
 
@@ -204,16 +217,13 @@ static int fl_calib_split(const char *s, size_t n, fl_calib_word_t w[3])
 static fl_calib_err_t fl_calib_line(const char *s, size_t n, bool *seen_header, fl_calib_t *c)
 {
     fl_calib_word_t w[3];
-    const char *hash;
     int nw;
     int64_t ver = 0;
     if (n > FL_CALIB_LINE_MAX)
         return fl_calib_fail(FL_ERR_SIZE, "line too long");
-    if (n > 0 && memchr(s, '\0', n) != NULL)
+    if (fl_calib_find(s, n, '\0') < n)
         return fl_calib_fail(FL_ERR_FORMAT, "NUL byte");
-    hash = n > 0 ? (const char *)memchr(s, '#', n) : NULL;
-    if (hash != NULL)
-        n = (size_t)(hash - s);
+    n = fl_calib_find(s, n, '#');
     if (n > 0 && s[n - 1] == '\r')
         n--;
     nw = fl_calib_split(s, n, w);
@@ -254,8 +264,7 @@ fl_status_t fl_calib_parse(const char *text, size_t len, fl_calib_t *out, int32_
     } else {
         while (pos < len) {
             const char *s = text + pos;
-            const char *lf = (const char *)memchr(s, '\n', len - pos);
-            size_t n = lf != NULL ? (size_t)(lf - s) : len - pos;
+            size_t n = fl_calib_find(s, len - pos, '\n');
             line++;
             e = fl_calib_line(s, n, &seen_header, out);
             if (e.status != FL_OK)
@@ -309,13 +318,10 @@ static void fl_calib_put(fl_calib_out_t *o, const char *s, size_t n)
     o->buf[o->n] = '\0';
 }
 
-static void fl_calib_puts(fl_calib_out_t *o, const char *s) { fl_calib_put(o, s, strlen(s)); }
-
-/* Length of the camera name, FL_CALIB_NAME_MAX when it has no NUL. */
-static size_t fl_calib_name_len(const char *s)
+/* s: a literal or a checked camera name (NUL within FL_CALIB_NAME_MAX). */
+static void fl_calib_puts(fl_calib_out_t *o, const char *s)
 {
-    const char *z = (const char *)memchr(s, '\0', FL_CALIB_NAME_MAX);
-    return z != NULL ? (size_t)(z - s) : FL_CALIB_NAME_MAX;
+    fl_calib_put(o, s, fl_calib_len(s, FL_CALIB_LINE_MAX));
 }
 
 /* Non-negative v with at least min_digits digits. */
@@ -352,7 +358,7 @@ size_t fl_calib_format(const fl_calib_t *calib, char *buf, size_t cap)
         return 0;
     buf[0] = '\0';
     if (((calib->has & FL_CALIB_HAS_CAMERA) &&
-         !fl_calib_name_ok(calib->camera, fl_calib_name_len(calib->camera))) ||
+         !fl_calib_name_ok(calib->camera, fl_calib_len(calib->camera, FL_CALIB_NAME_MAX))) ||
         ((calib->has & FL_CALIB_HAS_NECK) && (calib->neck_height_mm < FL_CAMERA_NECK_MIN_MM ||
                                               calib->neck_height_mm > FL_CAMERA_NECK_MAX_MM)) ||
         ((calib->has & FL_CALIB_HAS_PITCH) &&

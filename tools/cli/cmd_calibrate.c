@@ -212,7 +212,7 @@ static int cal_usage(void)
 {
     fprintf(stderr,
             "usage: fieldloc calibrate --field NAME --camera NAME --frames FILE [--out CALIB]\n"
-            "                          [--no-roll]\n"
+            "                          [--no-roll] [--fit-heading]\n"
             "       fieldloc calibrate [--dir REALDATA_DIR] [--verbose] [--out CALIB]  (UvA 2013)\n"
             "  FILE: one frame per line, '#' comments, image paths relative to FILE:\n"
             "    IMAGE X_MM Y_MM HEADING_DEG HEAD_YAW_DEG HEAD_PITCH_DEG [TORSO_PITCH_DEG "
@@ -221,7 +221,9 @@ static int cal_usage(void)
             "  optional IMU torso angles).  Fits neck height, pitch offset and roll offset to\n"
             "  the detected field lines; CALIB (for detect/localize --calib, fl_calib_parse):\n"
             "    fieldloc-calibration 1 / camera NAME / neck_height_mm N / pitch_offset_deg D /\n"
-            "    roll_offset_deg D\n");
+            "    roll_offset_deg D\n"
+            "  --no-roll: roll offset stays 0; --fit-heading: each frame's heading is refitted\n"
+            "  too (prior 5 deg) for poses set by hand\n");
     return 2;
 }
 
@@ -260,16 +262,19 @@ static int cal_frames_run(const cf_frames_t *fr, const char *name, const fl_fiel
            "px\n",
            o->gate_px);
     if (per_frame) {
-        printf("%5s %-28s %6s | %5s %6s %6s | %5s %6s %6s\n", "line", "image", "points",
-               "in", "median", "rms", "in", "median", "rms");
+        printf("%5s %-28s %6s | %5s %6s %6s | %5s %6s %6s%s\n", "line", "image", "points",
+               "in", "median", "rms", "in", "median", "rms", res.dheading_deg ? " dheading" : "");
         printf("%5s %-28s %6s | %-19s | %-19s\n", "", "", "", "  start", "  fitted");
         for (k = 0; k < fr->n; k++) {
             const char *img = strrchr(fr->f[k].image, '/');
             const cf_stats_t *b = &res.before[k], *a = &res.after[k];
             img = img ? img + 1 : fr->f[k].image;
-            printf("%5d %-28.28s %6d | %5d %6.2f %6.2f | %5d %6.2f %6.2f\n", fr->f[k].line, img,
+            printf("%5d %-28.28s %6d | %5d %6.2f %6.2f | %5d %6.2f %6.2f", fr->f[k].line, img,
                    a->n_points, b->n_in, b->median_px, b->rms_px, a->n_in, a->median_px,
                    a->rms_px);
+            if (res.dheading_deg)
+                printf(" %+8.2f", res.dheading_deg[k]);
+            printf("\n");
         }
     }
     printf("total: %d frames (%d skipped), %d line points; start: %d in, median %.2f px, rms "
@@ -303,7 +308,7 @@ static int cal_write(const char *out, const char *camera, const cf_params_t *p, 
 }
 
 static int cal_frames_cmd(const char *frames, const char *field_name, const char *cam_name,
-                          const char *out, int roll)
+                          const char *out, int roll, int heading)
 {
     const fl_field_t *field = field_name ? fl_field_find(field_name) : NULL;
     const fl_camera_model_t *m = cam_name ? fl_camera_model_find(cam_name) : NULL;
@@ -330,6 +335,7 @@ static int cal_frames_cmd(const char *frames, const char *field_name, const char
            m->name);
     cf_options_default(&o);
     o.fit_roll = roll;
+    o.fit_heading = heading;
     p.neck_mm = m->default_neck_height_mm;
     p.pitch_offset_deg = m->default_pitch_offset * 360.0 / 65536.0;
     p.roll_offset_deg = 0;
@@ -360,6 +366,7 @@ static void cal_uva_frames(const rd_uva_set_t *set, const char *dir, const cal_p
         return;
     }
     cf_options_default(&o);
+    o.fit_heading = 1; /* the file-name poses are off by several degrees ([8]) */
     p.neck_mm = nominal->default_neck_height_mm;
     p.pitch_offset_deg = nominal->default_pitch_offset * 360.0 / 65536.0;
     p.roll_offset_deg = 0;
@@ -383,7 +390,7 @@ int cmd_calibrate(int argc, char **argv)
     const fl_camera_model_t *committed = fl_camera_model_find("uva2013");
     cal_params_t p, best;
     cal_result_t r;
-    int i, verbose = 0, n_per[5] = {0}, roll = 1;
+    int i, verbose = 0, n_per[5] = {0}, roll = 1, heading = 0;
     const char *frames = NULL, *field_name = NULL, *cam_name = NULL, *out = NULL;
 
     for (i = 0; i < argc; i++) {
@@ -401,15 +408,17 @@ int cmd_calibrate(int argc, char **argv)
             out = argv[++i];
         else if (!strcmp(argv[i], "--no-roll"))
             roll = 0;
+        else if (!strcmp(argv[i], "--fit-heading"))
+            heading = 1;
         else
             return cal_usage();
     }
     if (frames) {
         if (dir || verbose)
             return cal_usage();
-        return cal_frames_cmd(frames, field_name, cam_name, out, roll);
+        return cal_frames_cmd(frames, field_name, cam_name, out, roll, heading);
     }
-    if (field_name || cam_name || !roll)
+    if (field_name || cam_name || !roll || heading)
         return cal_usage();
     if (!dir)
         dir = rd_dir();

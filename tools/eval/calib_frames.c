@@ -209,6 +209,8 @@ void cf_options_default(cf_options_t *o)
     o->gate_px = 6.0;
     o->huber_px = 1.0;
     o->grid = 1;
+    o->fit_heading = 0;
+    o->sigma_heading_deg = 5.0;
 }
 
 static fl_angle_t cf_angle(double deg)
@@ -246,6 +248,7 @@ typedef struct {
     cf_fpts_t *pts;
     int n_total;      /* points over all frames */
     double gate, huber;
+    double *dth;      /* per-frame heading correction, deg (fit_heading) */
 } cf_prob_t;
 
 /* Distance (mm) of a field point to the nearest painted line. */
@@ -269,34 +272,43 @@ static double cf_line_dist(const fl_field_t *f, double x, double y)
     return best;
 }
 
-/* Residuals of every point for p into r (n_total entries; invalid points
- * get -1).  Returns the number of valid points. */
+/* Residuals of frame k's points for p and heading correction dth (deg)
+ * into r (the frame's n entries; invalid points get -1).  Returns the
+ * number of valid points. */
+static int cf_frame_res(const cf_prob_t *pb, int k, const cf_params_t *p, double dth, double *r)
+{
+    const cf_frame_t *fr = &pb->fr->f[k];
+    const cf_fpts_t *pt = &pb->pts[k];
+    fl_camera_pose_t pose;
+    fl_camera_t cam;
+    double f = pb->m->focal_q4 / 16.0;
+    double th = (fr->heading_deg + dth) * CF_PI / 180.0, c = cos(th), s = sin(th), h;
+    int i, ok, valid = 0;
+    cf_pose(fr, p, &pose);
+    ok = pt->used && fl_camera_init(&cam, pb->m, &pose) == FL_OK;
+    h = cam.pos_q4[2] / 16.0;
+    for (i = 0; i < pt->n; i++) {
+        fl_point_t g;
+        double fx, fy, d;
+        r[i] = -1;
+        if (!ok || !fl_camera_pixel_to_ground(&cam, pt->uv[2 * i], pt->uv[2 * i + 1], &g))
+            continue;
+        fx = fr->x_mm + c * g.x_mm - s * g.y_mm;
+        fy = fr->y_mm + s * g.x_mm + c * g.y_mm;
+        d = cf_line_dist(pb->field, fx, fy);
+        r[i] = d * f / sqrt((double)g.x_mm * g.x_mm + (double)g.y_mm * g.y_mm + h * h);
+        valid++;
+    }
+    return valid;
+}
+
+/* Residuals of every point for p into r (n_total entries). */
 static int cf_residuals(const cf_prob_t *pb, const cf_params_t *p, double *r)
 {
-    int k, i, n = 0, valid = 0;
-    double f = pb->m->focal_q4 / 16.0;
+    int k, n = 0, valid = 0;
     for (k = 0; k < pb->fr->n; k++) {
-        const cf_frame_t *fr = &pb->fr->f[k];
-        const cf_fpts_t *pt = &pb->pts[k];
-        fl_camera_pose_t pose;
-        fl_camera_t cam;
-        double th = fr->heading_deg * CF_PI / 180.0, c = cos(th), s = sin(th), h;
-        int ok;
-        cf_pose(fr, p, &pose);
-        ok = pt->used && fl_camera_init(&cam, pb->m, &pose) == FL_OK;
-        h = cam.pos_q4[2] / 16.0;
-        for (i = 0; i < pt->n; i++, n++) {
-            fl_point_t g;
-            double fx, fy, d;
-            r[n] = -1;
-            if (!ok || !fl_camera_pixel_to_ground(&cam, pt->uv[2 * i], pt->uv[2 * i + 1], &g))
-                continue;
-            fx = fr->x_mm + c * g.x_mm - s * g.y_mm;
-            fy = fr->y_mm + s * g.x_mm + c * g.y_mm;
-            d = cf_line_dist(pb->field, fx, fy);
-            r[n] = d * f / sqrt((double)g.x_mm * g.x_mm + (double)g.y_mm * g.y_mm + h * h);
-            valid++;
-        }
+        valid += cf_frame_res(pb, k, p, pb->dth ? pb->dth[k] : 0.0, r + n);
+        n += pb->pts[k].n;
     }
     return valid;
 }
@@ -510,6 +522,76 @@ static void cf_grid(const cf_prob_t *pb, const cf_options_t *o, cf_params_t *p, 
     *p = best;
 }
 
+/* Frame k's cost at heading correction d: Huber over the points within
+ * the gate at d0's residuals (act), or truncated at the gate when act is
+ * NULL, plus the prior (d / sigma)^2 (one pseudo-point of 1 px per sigma). */
+static double cf_frame_cost(const cf_prob_t *pb, int k, const cf_params_t *p, double d,
+                            double sigma, const unsigned char *act, double *r)
+{
+    int i, n = pb->pts[k].n;
+    double s = (d / sigma) * (d / sigma), g = pb->gate, h = pb->huber;
+    cf_frame_res(pb, k, p, d, r);
+    for (i = 0; i < n; i++) {
+        double e = r[i] < 0 ? g : r[i];
+        if (!act)
+            s += e > g ? g * g : e * e;
+        else if (act[i])
+            s += e <= h ? e * e : 2 * h * e - h * h;
+    }
+    return s;
+}
+
+/* Per-frame heading corrections for fixed camera parameters: a grid of
+ * +-10 deg (0.25 deg) on the truncated cost when grid is set, then a
+ * golden-section search of +-0.5 deg on the Huber cost of the points
+ * within the gate.  r and act: scratch of the largest frame's size. */
+static void cf_headings(const cf_prob_t *pb, const cf_params_t *p, double sigma, int grid,
+                        double *r, unsigned char *act)
+{
+    const double gr = 0.6180339887498949;
+    int k, i, it;
+    for (k = 0; k < pb->fr->n; k++) {
+        double a, b, x1, x2, f1, f2, d0 = pb->dth[k];
+        if (!pb->pts[k].used || pb->pts[k].n == 0)
+            continue;
+        if (grid) {
+            double bc = 1e300, d;
+            for (d = -10; d <= 10.0001; d += 0.25) {
+                double c = cf_frame_cost(pb, k, p, d, sigma, NULL, r);
+                if (c < bc) {
+                    bc = c;
+                    d0 = d;
+                }
+            }
+        }
+        cf_frame_res(pb, k, p, d0, r);
+        for (i = 0; i < pb->pts[k].n; i++)
+            act[i] = r[i] >= 0 && r[i] <= pb->gate;
+        a = d0 - 0.5;
+        b = d0 + 0.5;
+        x1 = b - gr * (b - a);
+        x2 = a + gr * (b - a);
+        f1 = cf_frame_cost(pb, k, p, x1, sigma, act, r);
+        f2 = cf_frame_cost(pb, k, p, x2, sigma, act, r);
+        for (it = 0; it < 30; it++) {
+            if (f1 < f2) {
+                b = x2;
+                x2 = x1;
+                f2 = f1;
+                x1 = b - gr * (b - a);
+                f1 = cf_frame_cost(pb, k, p, x1, sigma, act, r);
+            } else {
+                a = x1;
+                x1 = x2;
+                f1 = f2;
+                x2 = a + gr * (b - a);
+                f2 = cf_frame_cost(pb, k, p, x2, sigma, act, r);
+            }
+        }
+        pb->dth[k] = 0.5 * (a + b);
+    }
+}
+
 static int cf_cmp_d(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -595,7 +677,9 @@ void cf_result_free(cf_result_t *res)
 {
     free(res->before);
     free(res->after);
+    free(res->dheading_deg);
     res->before = res->after = NULL;
+    res->dheading_deg = NULL;
 }
 
 int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model_t *m,
@@ -624,7 +708,16 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
         cf_result_free(res);
         return -1;
     }
+    if (o->fit_heading) {
+        pb.dth = calloc((size_t)fr->n + 1, sizeof *pb.dth);
+        res->dheading_deg = calloc((size_t)fr->n + 1, sizeof *res->dheading_deg);
+        if (!pb.dth || !res->dheading_deg) {
+            cf_err(err, err_len, "out of memory");
+            goto out;
+        }
+    }
     for (pass = 0; pass < 2; pass++) {
+        int round;
         if (cf_detect(&pb, p, &ctx, pass == 0 ? warn : NULL, user, &res->n_skipped) != 0) {
             cf_err(err, err_len, "out of memory");
             goto out;
@@ -646,13 +739,21 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
         }
         if (pass == 0 && o->grid)
             cf_grid(&pb, o, p, w.r);
-        n = cf_lm(&pb, o, p, &w, res->sigma);
-        if (n < 0) {
-            cf_err(err, err_len, "too few line points near the field lines (fit failed)");
-            goto out;
+        /* alternate: headings for the camera, camera for the headings */
+        for (round = 0; round < (o->fit_heading ? 8 : 1); round++) {
+            if (o->fit_heading)
+                cf_headings(&pb, p, o->sigma_heading_deg, pass == 0 && round == 0, w.rp,
+                            w.act);
+            n = cf_lm(&pb, o, p, &w, res->sigma);
+            if (n < 0) {
+                cf_err(err, err_len, "too few line points near the field lines (fit failed)");
+                goto out;
+            }
+            res->iterations += n;
         }
-        res->iterations += n;
     }
+    if (pb.dth)
+        memcpy(res->dheading_deg, pb.dth, sizeof *pb.dth * (size_t)fr->n);
     res->fit = *p;
     res->n_frames = fr->n - res->n_skipped;
     /* before / after on the final points, per frame and in total */
@@ -660,7 +761,11 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
         const cf_params_t *q = pass == 0 ? &res->start : &res->fit;
         cf_stats_t *st = pass == 0 ? res->before : res->after;
         int off = 0;
+        double *dth = pb.dth;
+        if (pass == 0)
+            pb.dth = NULL; /* before: the poses as given */
         cf_residuals(&pb, q, w.r);
+        pb.dth = dth;
         for (k = 0; k < fr->n; k++) {
             cf_stats(w.r + off, pb.pts[k].n, pb.gate, &st[k], w.rp);
             off += pb.pts[k].n;
@@ -672,6 +777,7 @@ out:
     for (k = 0; k < fr->n; k++)
         free(pb.pts[k].uv);
     free(pb.pts);
+    free(pb.dth);
     free(w.r);
     det_ctx_free(&ctx);
     if (rc != 0)
