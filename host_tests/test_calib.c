@@ -229,7 +229,7 @@ static const shot_t shots[] = {
  * neck / pitch / roll are the true offsets from the model defaults. */
 static int render_set(const char *dir, const fl_field_t *field, const fl_camera_model_t *m,
                       int32_t dneck, double dpitch_deg, double roll_deg, int torso_deg,
-                      char *list, size_t list_len)
+                      int pose_err, char *list, size_t list_len)
 {
     FILE *fp;
     size_t i;
@@ -269,8 +269,13 @@ static int render_set(const char *dir, const fl_field_t *field, const fl_camera_
         }
         render_frame_free(&fr);
         /* the file's head angles: NAOqi degrees as the robot reports them */
-        fprintf(fp, "f%02d.ppm %d %d %d %d %d", (int)i, (int)shots[i].x, (int)shots[i].y,
-                (int)shots[i].heading_deg, (int)shots[i].yaw_deg, (int)shots[i].pitch_deg);
+        /* pose_err: the file's pose off by up to pose_err mm and pose_err / 20
+         * deg, as when a robot is put down by hand */
+        fprintf(fp, "f%02d.ppm %d %d %g %d %d", (int)i,
+                (int)shots[i].x + (int)(i % 3 == 0 ? pose_err : -pose_err / 2),
+                (int)shots[i].y + (int)(i % 2 == 0 ? -pose_err : pose_err / 3),
+                shots[i].heading_deg + (i % 2 == 0 ? 1.0 : -0.7) * pose_err / 20.0,
+                (int)shots[i].yaw_deg, (int)shots[i].pitch_deg);
         if (torso_deg != 0)
             fprintf(fp, " %d %d", i % 2 ? torso_deg : -torso_deg, i % 3 ? -torso_deg : torso_deg);
         fprintf(fp, "\n");
@@ -298,7 +303,7 @@ static void rm_set(const char *dir)
  * some 30 times the fitted 1-sigma on these frames (the log line prints
  * both), so a wrong model or a biased residual fails while the detector's
  * noise does not. */
-static void fit_case(int32_t dneck, double dpitch, double roll, int torso_deg)
+static void fit_case(int32_t dneck, double dpitch, double roll, int torso_deg, int pose_err)
 {
     const fl_field_t *field = fl_field_find("spl2013");
     const fl_camera_model_t *m = fl_camera_model_find("nao4-top-320");
@@ -312,7 +317,8 @@ static void fit_case(int32_t dneck, double dpitch, double roll, int torso_deg)
         CHECK(0);
         return;
     }
-    if (render_set(dir, field, m, dneck, dpitch, roll, torso_deg, list, sizeof list) != 0) {
+    if (render_set(dir, field, m, dneck, dpitch, roll, torso_deg, pose_err, list, sizeof list) !=
+        0) {
         CHECK(0);
         rm_set(dir);
         return;
@@ -326,13 +332,14 @@ static void fit_case(int32_t dneck, double dpitch, double roll, int torso_deg)
     p.pitch_offset_deg = m->default_pitch_offset * 360.0 / 65536.0;
     p.roll_offset_deg = 0;
     cf_options_default(&o);
+    o.fit_heading = pose_err != 0;
     if (cf_fit(&fr, field, m, &o, &p, &res, NULL, NULL, err, sizeof err) != 0) {
         t_fail_msg(__FILE__, __LINE__, "fit failed: %s", err);
     } else {
-        t_info("torso +-%d deg; true neck %.0f pitch %.3f roll %.3f; fitted %.1f +- %.1f mm, "
+        t_info("torso +-%d deg, pose errors %d mm; true neck %.0f pitch %.3f roll %.3f; fitted %.1f +- %.1f mm, "
                "%.3f +- %.3f deg, %.3f +- %.3f deg; %d points, in %d -> %d, median %.2f -> "
                "%.2f px",
-               torso_deg, truth.neck_mm, truth.pitch_offset_deg, truth.roll_offset_deg,
+               torso_deg, pose_err, truth.neck_mm, truth.pitch_offset_deg, truth.roll_offset_deg,
                p.neck_mm, res.sigma[0], p.pitch_offset_deg, res.sigma[1], p.roll_offset_deg,
                res.sigma[2], res.after_all.n_points, res.before_all.n_in, res.after_all.n_in,
                res.before_all.median_px, res.after_all.median_px);
@@ -348,11 +355,15 @@ static void fit_case(int32_t dneck, double dpitch, double roll, int torso_deg)
     rm_set(dir);
 }
 
-static void test_fit_recovers(void) { fit_case(35, 2.5, 1.5, 0); }
+static void test_fit_recovers(void) { fit_case(35, 2.5, 1.5, 0, 0); }
 
 /* The other signs, with the IMU's torso angles in the frames file (the
  * fit must not absorb them into the offsets). */
-static void test_fit_recovers_torso(void) { fit_case(-40, -3.0, -2.0, 3); }
+static void test_fit_recovers_torso(void) { fit_case(-40, -3.0, -2.0, 3, 0); }
+
+/* Poses in the file off by up to 60 mm and 3 deg, refitted per frame
+ * (fit_heading): the camera must still come out. */
+static void test_fit_pose_errors(void) { fit_case(25, 1.5, -1.0, 0, 60); }
 
 static void test_frames_errors(void)
 {
@@ -424,4 +435,5 @@ void suite_calib(void)
     t_run("calib.frames_errors", test_frames_errors);
     t_run("calib.fit_recovers", test_fit_recovers);
     t_run("calib.fit_recovers_torso", test_fit_recovers_torso);
+    t_run("calib.fit_pose_errors", test_fit_pose_errors);
 }

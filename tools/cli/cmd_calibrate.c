@@ -222,8 +222,8 @@ static int cal_usage(void)
             "  the detected field lines; CALIB (for detect/localize --calib, fl_calib_parse):\n"
             "    fieldloc-calibration 1 / camera NAME / neck_height_mm N / pitch_offset_deg D /\n"
             "    roll_offset_deg D\n"
-            "  --no-roll: roll offset stays 0; --fit-heading: each frame's heading is refitted\n"
-            "  too (prior 5 deg) for poses set by hand\n");
+            "  --no-roll: roll offset stays 0; --fit-heading: each frame's heading and x/y are\n"
+            "  refitted too (priors 5 deg, 100 mm) for poses set by hand\n");
     return 2;
 }
 
@@ -263,7 +263,7 @@ static int cal_frames_run(const cf_frames_t *fr, const char *name, const fl_fiel
            o->gate_px);
     if (per_frame) {
         printf("%5s %-28s %6s | %5s %6s %6s | %5s %6s %6s%s\n", "line", "image", "points",
-               "in", "median", "rms", "in", "median", "rms", res.dheading_deg ? " dheading" : "");
+               "in", "median", "rms", "in", "median", "rms", res.corr ? "   dth_deg  dx_mm  dy_mm" : "");
         printf("%5s %-28s %6s | %-19s | %-19s\n", "", "", "", "  start", "  fitted");
         for (k = 0; k < fr->n; k++) {
             const char *img = strrchr(fr->f[k].image, '/');
@@ -272,8 +272,9 @@ static int cal_frames_run(const cf_frames_t *fr, const char *name, const fl_fiel
             printf("%5d %-28.28s %6d | %5d %6.2f %6.2f | %5d %6.2f %6.2f", fr->f[k].line, img,
                    a->n_points, b->n_in, b->median_px, b->rms_px, a->n_in, a->median_px,
                    a->rms_px);
-            if (res.dheading_deg)
-                printf(" %+8.2f", res.dheading_deg[k]);
+            if (res.corr)
+                printf(" %+9.2f %+6.0f %+6.0f", res.corr[3 * k], res.corr[3 * k + 1],
+                       res.corr[3 * k + 2]);
             printf("\n");
         }
     }

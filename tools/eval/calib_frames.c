@@ -211,6 +211,7 @@ void cf_options_default(cf_options_t *o)
     o->grid = 1;
     o->fit_heading = 0;
     o->sigma_heading_deg = 5.0;
+    o->sigma_xy_mm = 100.0;
 }
 
 static fl_angle_t cf_angle(double deg)
@@ -248,7 +249,8 @@ typedef struct {
     cf_fpts_t *pts;
     int n_total;      /* points over all frames */
     double gate, huber;
-    double *dth;      /* per-frame heading correction, deg (fit_heading) */
+    double *corr;     /* per-frame pose correction (heading deg, x mm, y mm;
+                         fit_heading), NULL: the poses as given */
 } cf_prob_t;
 
 /* Distance (mm) of a field point to the nearest painted line. */
@@ -275,14 +277,17 @@ static double cf_line_dist(const fl_field_t *f, double x, double y)
 /* Residuals of frame k's points for p and heading correction dth (deg)
  * into r (the frame's n entries; invalid points get -1).  Returns the
  * number of valid points. */
-static int cf_frame_res(const cf_prob_t *pb, int k, const cf_params_t *p, double dth, double *r)
+static int cf_frame_res(const cf_prob_t *pb, int k, const cf_params_t *p, const double *corr,
+                        double *r)
 {
+    static const double zero[3] = {0, 0, 0};
     const cf_frame_t *fr = &pb->fr->f[k];
     const cf_fpts_t *pt = &pb->pts[k];
     fl_camera_pose_t pose;
     fl_camera_t cam;
     double f = pb->m->focal_q4 / 16.0;
-    double th = (fr->heading_deg + dth) * CF_PI / 180.0, c = cos(th), s = sin(th), h;
+    const double *cr = corr ? corr : zero;
+    double th = (fr->heading_deg + cr[0]) * CF_PI / 180.0, c = cos(th), s = sin(th), h;
     int i, ok, valid = 0;
     cf_pose(fr, p, &pose);
     ok = pt->used && fl_camera_init(&cam, pb->m, &pose) == FL_OK;
@@ -293,8 +298,8 @@ static int cf_frame_res(const cf_prob_t *pb, int k, const cf_params_t *p, double
         r[i] = -1;
         if (!ok || !fl_camera_pixel_to_ground(&cam, pt->uv[2 * i], pt->uv[2 * i + 1], &g))
             continue;
-        fx = fr->x_mm + c * g.x_mm - s * g.y_mm;
-        fy = fr->y_mm + s * g.x_mm + c * g.y_mm;
+        fx = fr->x_mm + cr[1] + c * g.x_mm - s * g.y_mm;
+        fy = fr->y_mm + cr[2] + s * g.x_mm + c * g.y_mm;
         d = cf_line_dist(pb->field, fx, fy);
         r[i] = d * f / sqrt((double)g.x_mm * g.x_mm + (double)g.y_mm * g.y_mm + h * h);
         valid++;
@@ -307,7 +312,7 @@ static int cf_residuals(const cf_prob_t *pb, const cf_params_t *p, double *r)
 {
     int k, n = 0, valid = 0;
     for (k = 0; k < pb->fr->n; k++) {
-        valid += cf_frame_res(pb, k, p, pb->dth ? pb->dth[k] : 0.0, r + n);
+        valid += cf_frame_res(pb, k, p, pb->corr ? pb->corr + 3 * k : NULL, r + n);
         n += pb->pts[k].n;
     }
     return valid;
@@ -384,6 +389,7 @@ static int cf_solve(int n, double A[3][3], double b[3], double x[3])
 
 typedef struct {
     double *r, *rp, *J[3];
+    double *K[3];           /* Jacobian columns of the pose corrections */
     unsigned char *act;
 } cf_work_t;
 
@@ -499,6 +505,224 @@ static int cf_lm(const cf_prob_t *pb, const cf_options_t *o, cf_params_t *p, cf_
     return it;
 }
 
+/* Joint Levenberg-Marquardt over the camera parameters and every frame's
+ * pose correction (fit_heading).  The normal matrix is block-arrow shaped
+ * (a camera block, a 3x3 block per frame, and camera x frame blocks), so
+ * each step eliminates the frames (Schur complement) and solves for the
+ * camera first.  Returns the iterations, -1 on failure; sigma[3] out (of
+ * the camera parameters, from the Schur complement). */
+static int cf_lm_joint(cf_prob_t *pb, const cf_options_t *o, const double *psig, cf_params_t *p,
+                       cf_work_t *w, double sigma[3])
+{
+    static const double cstep[3] = {0.05, 5.0, 5.0};
+    int id[3], np = 0, it, j, m, i, k, nf = pb->fr->n, used = 0, ret = -1;
+    double lambda = 1e-3, wssr = 0, Acc[3][3], gc[3];
+    /* per frame: Akk 9, gk 3, Ack 9 (np x 3; 3 rows kept), y 3 */
+    double *blk = malloc(sizeof(double) * 24 * (size_t)(nf + 1));
+    double *nc = malloc(sizeof(double) * 3 * (size_t)(nf + 1));
+    if (!blk || !nc)
+        goto out;
+    if (o->fit_neck)
+        id[np++] = 0;
+    if (o->fit_pitch)
+        id[np++] = 1;
+    if (o->fit_roll)
+        id[np++] = 2;
+    sigma[0] = sigma[1] = sigma[2] = 0;
+    for (it = 0; it < 100; it++) {
+        double cost = 0;
+        int improved = 0, off;
+        cf_residuals(pb, p, w->r);
+        cf_activate(pb, w);
+        /* camera columns */
+        for (j = 0; j < np; j++) {
+            cf_params_t q = *p;
+            double st = id[j] == 0 ? CF_MM_STEP : CF_DEG_STEP;
+            *cf_par(&q, id[j]) += st;
+            cf_residuals(pb, &q, w->J[j]);
+            q = *p;
+            *cf_par(&q, id[j]) -= st;
+            cf_residuals(pb, &q, w->rp);
+            for (i = 0; i < pb->n_total; i++)
+                w->J[j][i] = (w->J[j][i] < 0 || w->rp[i] < 0) ? 0 : (w->J[j][i] - w->rp[i]) / (2 * st);
+        }
+        /* correction columns, frame by frame */
+        for (k = 0, off = 0; k < nf; off += pb->pts[k].n, k++)
+            for (j = 0; j < 3; j++) {
+                double c[3];
+                memcpy(c, pb->corr + 3 * k, sizeof c);
+                c[j] += cstep[j];
+                cf_frame_res(pb, k, p, c, w->K[j] + off);
+                c[j] -= 2 * cstep[j];
+                cf_frame_res(pb, k, p, c, w->rp + off);
+                for (i = off; i < off + pb->pts[k].n; i++)
+                    w->K[j][i] = (w->K[j][i] < 0 || w->rp[i] < 0) ? 0
+                                 : (w->K[j][i] - w->rp[i]) / (2 * cstep[j]);
+            }
+        memset(Acc, 0, sizeof Acc);
+        memset(gc, 0, sizeof gc);
+        memset(blk, 0, sizeof(double) * 24 * (size_t)nf);
+        wssr = 0;
+        used = 0;
+        for (k = 0, off = 0; k < nf; off += pb->pts[k].n, k++) {
+            double *Akk = blk + 24 * k, *gk = Akk + 9, *Ack = Akk + 12;
+            for (j = 0; j < 3; j++) {
+                double ps = 1.0 / (psig[j] * psig[j]), cj = pb->corr[3 * k + j];
+                Akk[4 * j] += ps;
+                gk[j] += ps * cj;
+                cost += ps * cj * cj;
+            }
+            for (i = off; i < off + pb->pts[k].n; i++) {
+                double e = w->r[i], wt;
+                if (!w->act[i] || e < 0)
+                    continue;
+                wt = e <= pb->huber ? 1.0 : pb->huber / e;
+                cost += e <= pb->huber ? e * e : 2 * pb->huber * e - pb->huber * pb->huber;
+                for (j = 0; j < 3; j++) {
+                    for (m = 0; m < 3; m++) {
+                        Akk[3 * j + m] += wt * w->K[j][i] * w->K[m][i];
+                        if (j < np)
+                            Ack[3 * j + m] += wt * w->J[j][i] * w->K[m][i];
+                        if (j < np && m < np)
+                            Acc[j][m] += wt * w->J[j][i] * w->J[m][i];
+                    }
+                    gk[j] += wt * w->K[j][i] * e;
+                    if (j < np)
+                        gc[j] += wt * w->J[j][i] * e;
+                }
+                wssr += wt * e * e;
+                used++;
+            }
+        }
+        if (used <= np + 3)
+            goto out;
+        while (lambda < 1e10) {
+            double S[3][3], rhs[3], dc[3] = {0, 0, 0}, newcost;
+            cf_params_t q = *p;
+            int ok = 1;
+            for (j = 0; j < np; j++) {
+                for (m = 0; m < np; m++)
+                    S[j][m] = Acc[j][m];
+                S[j][j] += lambda * (Acc[j][j] > 0 ? Acc[j][j] : 1.0);
+                rhs[j] = -gc[j];
+            }
+            /* eliminate the frames: S -= Ack Akk^-1 Akc, rhs -= Ack Akk^-1 (-gk) */
+            for (k = 0; k < nf && ok; k++) {
+                double *Akk = blk + 24 * k, *gk = Akk + 9, *Ack = Akk + 12;
+                double D[3][3], X[3][3], b[3], y[3];
+                for (j = 0; j < 3; j++)
+                    for (m = 0; m < 3; m++)
+                        D[j][m] = Akk[3 * j + m] + (j == m ? lambda * Akk[4 * j] : 0);
+                /* X = D^-1 Akc (columns j: Ack row j), y = D^-1 (-gk) */
+                for (j = 0; j < np && ok; j++) {
+                    double Dc[3][3], col[3];
+                    memcpy(Dc, D, sizeof Dc);
+                    for (m = 0; m < 3; m++)
+                        col[m] = Ack[3 * j + m];
+                    ok = cf_solve(3, Dc, col, X[j]) == 0;
+                }
+                if (!ok)
+                    break;
+                {
+                    double Dc[3][3];
+                    memcpy(Dc, D, sizeof Dc);
+                    for (m = 0; m < 3; m++)
+                        b[m] = -gk[m];
+                    ok = cf_solve(3, Dc, b, y) == 0;
+                }
+                for (j = 0; j < np && ok; j++) {
+                    for (m = 0; m < np; m++)
+                        S[j][m] -= Ack[3 * j + 0] * X[m][0] + Ack[3 * j + 1] * X[m][1] +
+                                   Ack[3 * j + 2] * X[m][2];
+                    rhs[j] -= Ack[3 * j + 0] * y[0] + Ack[3 * j + 1] * y[1] + Ack[3 * j + 2] * y[2];
+                }
+                memcpy(blk + 24 * k + 21, y, sizeof y); /* for the back-substitution */
+            }
+            if (ok && np > 0)
+                ok = cf_solve(np, S, rhs, dc) == 0;
+            if (ok) {
+                /* back-substitute: dk = y - D^-1 Akc dc */
+                for (k = 0; k < nf && ok; k++) {
+                    double *Akk = blk + 24 * k, *Ack = Akk + 12, *y = Akk + 21;
+                    double D[3][3], b[3], dk[3];
+                    for (j = 0; j < 3; j++)
+                        for (m = 0; m < 3; m++)
+                            D[j][m] = Akk[3 * j + m] + (j == m ? lambda * Akk[4 * j] : 0);
+                    for (m = 0; m < 3; m++) {
+                        b[m] = 0;
+                        for (j = 0; j < np; j++)
+                            b[m] += Ack[3 * j + m] * dc[j];
+                    }
+                    ok = cf_solve(3, D, b, dk) == 0;
+                    for (m = 0; m < 3; m++)
+                        nc[3 * k + m] = pb->corr[3 * k + m] + y[m] - dk[m];
+                }
+            }
+            if (ok) {
+                double *old = pb->corr;
+                for (j = 0; j < np; j++)
+                    *cf_par(&q, id[j]) += dc[j];
+                pb->corr = nc;
+                cf_residuals(pb, &q, w->rp);
+                pb->corr = old;
+                newcost = 0;
+                for (k = 0; k < nf; k++)
+                    for (j = 0; j < 3; j++)
+                        newcost += (nc[3 * k + j] / psig[j]) * (nc[3 * k + j] / psig[j]);
+                for (i = 0; i < pb->n_total; i++) {
+                    double e;
+                    if (!w->act[i])
+                        continue;
+                    e = w->rp[i] < 0 ? pb->gate : w->rp[i];
+                    newcost += e <= pb->huber ? e * e : 2 * pb->huber * e - pb->huber * pb->huber;
+                }
+                if (newcost < cost) {
+                    improved = (cost - newcost) > 1e-9 * cost ? 1 : 2;
+                    *p = q;
+                    memcpy(pb->corr, nc, sizeof(double) * 3 * (size_t)nf);
+                    lambda = lambda > 1e-9 ? lambda * 0.3 : lambda;
+                    break;
+                }
+            }
+            lambda *= 10;
+        }
+        if (improved != 1)
+            break;
+    }
+    /* camera uncertainty: the inverse of the Schur complement (lambda 0)
+     * of the last normal equations, scaled by the residual variance */
+    if (np > 0) {
+        double S[3][3], s2 = wssr / (used - np);
+        for (j = 0; j < np; j++)
+            for (m = 0; m < np; m++)
+                S[j][m] = Acc[j][m];
+        for (k = 0; k < nf; k++) {
+            double *Akk = blk + 24 * k, *Ack = Akk + 12;
+            for (j = 0; j < np; j++) {
+                double D[3][3], col[3], x[3];
+                memcpy(D, Akk, sizeof D);
+                memcpy(col, Ack + 3 * j, sizeof col);
+                if (cf_solve(3, D, col, x) != 0)
+                    continue;
+                for (m = 0; m < np; m++)
+                    S[m][j] -= Ack[3 * m] * x[0] + Ack[3 * m + 1] * x[1] + Ack[3 * m + 2] * x[2];
+            }
+        }
+        for (j = 0; j < np; j++) {
+            double Si[3][3], e[3] = {0, 0, 0}, x[3];
+            memcpy(Si, S, sizeof Si);
+            e[j] = 1;
+            if (cf_solve(np, Si, e, x) == 0 && x[j] > 0)
+                sigma[id[j]] = sqrt(x[j] * s2);
+        }
+    }
+    ret = it;
+out:
+    free(blk);
+    free(nc);
+    return ret;
+}
+
 static void cf_grid(const cf_prob_t *pb, const cf_options_t *o, cf_params_t *p, double *r)
 {
     cf_params_t best = *p, q = *p;
@@ -522,15 +746,17 @@ static void cf_grid(const cf_prob_t *pb, const cf_options_t *o, cf_params_t *p, 
     *p = best;
 }
 
-/* Frame k's cost at heading correction d: Huber over the points within
- * the gate at d0's residuals (act), or truncated at the gate when act is
- * NULL, plus the prior (d / sigma)^2 (one pseudo-point of 1 px per sigma). */
-static double cf_frame_cost(const cf_prob_t *pb, int k, const cf_params_t *p, double d,
-                            double sigma, const unsigned char *act, double *r)
+/* Frame k's cost at pose correction c: Huber over the points marked in
+ * act (or truncated at the gate when act is NULL), plus the priors
+ * (c_j / sigma_j)^2 (one pseudo-point of 1 px per sigma each). */
+static double cf_frame_cost(const cf_prob_t *pb, int k, const cf_params_t *p, const double *c,
+                            const double *sigma, const unsigned char *act, double *r)
 {
-    int i, n = pb->pts[k].n;
-    double s = (d / sigma) * (d / sigma), g = pb->gate, h = pb->huber;
-    cf_frame_res(pb, k, p, d, r);
+    int i, j, n = pb->pts[k].n;
+    double s = 0, g = pb->gate, h = pb->huber;
+    for (j = 0; j < 3; j++)
+        s += (c[j] / sigma[j]) * (c[j] / sigma[j]);
+    cf_frame_res(pb, k, p, c, r);
     for (i = 0; i < n; i++) {
         double e = r[i] < 0 ? g : r[i];
         if (!act)
@@ -541,54 +767,92 @@ static double cf_frame_cost(const cf_prob_t *pb, int k, const cf_params_t *p, do
     return s;
 }
 
-/* Per-frame heading corrections for fixed camera parameters: a grid of
- * +-10 deg (0.25 deg) on the truncated cost when grid is set, then a
- * golden-section search of +-0.5 deg on the Huber cost of the points
- * within the gate.  r and act: scratch of the largest frame's size. */
-static void cf_headings(const cf_prob_t *pb, const cf_params_t *p, double sigma, int grid,
-                        double *r, unsigned char *act)
+/* Per-frame pose corrections for fixed camera parameters: on the first
+ * call a grid of +-10 deg (0.25 deg) over the heading on the truncated
+ * cost, then Levenberg-Marquardt over heading, x and y with the points
+ * within the gate (Huber, numeric Jacobian).  r, rp, J (3 columns) and
+ * act: scratch of the largest frame's size. */
+static void cf_poses(const cf_prob_t *pb, const cf_params_t *p, const double *sigma, int grid,
+                     double *r, double *rp, double *J[3], unsigned char *act)
 {
-    const double gr = 0.6180339887498949;
-    int k, i, it;
+    static const double step[3] = {0.05, 5.0, 5.0};
+    int k, i, j, m, it;
     for (k = 0; k < pb->fr->n; k++) {
-        double a, b, x1, x2, f1, f2, d0 = pb->dth[k];
-        if (!pb->pts[k].used || pb->pts[k].n == 0)
+        double *c = pb->corr + 3 * k, lambda = 1e-3, cost;
+        int n = pb->pts[k].n;
+        if (!pb->pts[k].used || n == 0)
             continue;
         if (grid) {
-            double bc = 1e300, d;
+            double bc = 1e300, d, t[3] = {0, 0, 0};
             for (d = -10; d <= 10.0001; d += 0.25) {
-                double c = cf_frame_cost(pb, k, p, d, sigma, NULL, r);
-                if (c < bc) {
-                    bc = c;
-                    d0 = d;
+                double cc;
+                t[0] = d;
+                cc = cf_frame_cost(pb, k, p, t, sigma, NULL, r);
+                if (cc < bc) {
+                    bc = cc;
+                    c[0] = d;
                 }
             }
+            c[1] = c[2] = 0;
         }
-        cf_frame_res(pb, k, p, d0, r);
-        for (i = 0; i < pb->pts[k].n; i++)
-            act[i] = r[i] >= 0 && r[i] <= pb->gate;
-        a = d0 - 0.5;
-        b = d0 + 0.5;
-        x1 = b - gr * (b - a);
-        x2 = a + gr * (b - a);
-        f1 = cf_frame_cost(pb, k, p, x1, sigma, act, r);
-        f2 = cf_frame_cost(pb, k, p, x2, sigma, act, r);
         for (it = 0; it < 30; it++) {
-            if (f1 < f2) {
-                b = x2;
-                x2 = x1;
-                f2 = f1;
-                x1 = b - gr * (b - a);
-                f1 = cf_frame_cost(pb, k, p, x1, sigma, act, r);
-            } else {
-                a = x1;
-                x1 = x2;
-                f1 = f2;
-                x2 = a + gr * (b - a);
-                f2 = cf_frame_cost(pb, k, p, x2, sigma, act, r);
+            double A[3][3], g[3];
+            int improved = 0;
+            cf_frame_res(pb, k, p, c, r);
+            for (i = 0; i < n; i++)
+                act[i] = r[i] >= 0 && r[i] <= pb->gate;
+            cost = cf_frame_cost(pb, k, p, c, sigma, act, rp);
+            for (j = 0; j < 3; j++) {
+                double q[3];
+                memcpy(q, c, sizeof q);
+                q[j] += step[j];
+                cf_frame_res(pb, k, p, q, J[j]);
+                q[j] -= 2 * step[j];
+                cf_frame_res(pb, k, p, q, rp);
+                for (i = 0; i < n; i++)
+                    J[j][i] = (J[j][i] < 0 || rp[i] < 0) ? 0 : (J[j][i] - rp[i]) / (2 * step[j]);
             }
+            for (j = 0; j < 3; j++) {
+                double ps = 1.0 / (sigma[j] * sigma[j]);
+                for (m = 0; m < 3; m++)
+                    A[j][m] = j == m ? ps : 0;
+                g[j] = ps * c[j];
+            }
+            for (i = 0; i < n; i++) {
+                double wt;
+                if (!act[i])
+                    continue;
+                wt = r[i] <= pb->huber ? 1.0 : pb->huber / r[i];
+                for (j = 0; j < 3; j++) {
+                    for (m = 0; m < 3; m++)
+                        A[j][m] += wt * J[j][i] * J[m][i];
+                    g[j] += wt * J[j][i] * r[i];
+                }
+            }
+            while (lambda < 1e10) {
+                double B[3][3], b[3], dx[3], q[3], nc;
+                for (j = 0; j < 3; j++) {
+                    for (m = 0; m < 3; m++)
+                        B[j][m] = A[j][m];
+                    B[j][j] += lambda * A[j][j];
+                    b[j] = -g[j];
+                }
+                if (cf_solve(3, B, b, dx) == 0) {
+                    for (j = 0; j < 3; j++)
+                        q[j] = c[j] + dx[j];
+                    nc = cf_frame_cost(pb, k, p, q, sigma, act, rp);
+                    if (nc < cost) {
+                        improved = (cost - nc) > 1e-9 * cost ? 1 : 2;
+                        memcpy(c, q, sizeof q);
+                        lambda = lambda > 1e-9 ? lambda * 0.3 : lambda;
+                        break;
+                    }
+                }
+                lambda *= 10;
+            }
+            if (improved != 1)
+                break;
         }
-        pb->dth[k] = 0.5 * (a + b);
     }
 }
 
@@ -677,9 +941,9 @@ void cf_result_free(cf_result_t *res)
 {
     free(res->before);
     free(res->after);
-    free(res->dheading_deg);
+    free(res->corr);
     res->before = res->after = NULL;
-    res->dheading_deg = NULL;
+    res->corr = NULL;
 }
 
 int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model_t *m,
@@ -709,29 +973,30 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
         return -1;
     }
     if (o->fit_heading) {
-        pb.dth = calloc((size_t)fr->n + 1, sizeof *pb.dth);
-        res->dheading_deg = calloc((size_t)fr->n + 1, sizeof *res->dheading_deg);
-        if (!pb.dth || !res->dheading_deg) {
+        pb.corr = calloc(3 * (size_t)fr->n + 1, sizeof *pb.corr);
+        res->corr = calloc(3 * (size_t)fr->n + 1, sizeof *res->corr);
+        if (!pb.corr || !res->corr) {
             cf_err(err, err_len, "out of memory");
             goto out;
         }
     }
     for (pass = 0; pass < 2; pass++) {
-        int round;
         if (cf_detect(&pb, p, &ctx, pass == 0 ? warn : NULL, user, &res->n_skipped) != 0) {
             cf_err(err, err_len, "out of memory");
             goto out;
         }
         free(w.r);
-        w.r = malloc(sizeof(double) * 5 * (size_t)(pb.n_total + 1) + (size_t)pb.n_total + 1);
+        w.r = malloc(sizeof(double) * 8 * (size_t)(pb.n_total + 1) + (size_t)pb.n_total + 1);
         if (!w.r) {
             cf_err(err, err_len, "out of memory");
             goto out;
         }
         w.rp = w.r + pb.n_total + 1;
-        for (k = 0; k < 3; k++)
+        for (k = 0; k < 3; k++) {
             w.J[k] = w.rp + (size_t)(k + 1) * (size_t)(pb.n_total + 1);
-        w.act = (unsigned char *)(w.J[2] + pb.n_total + 1);
+            w.K[k] = w.rp + (size_t)(k + 4) * (size_t)(pb.n_total + 1);
+        }
+        w.act = (unsigned char *)(w.K[2] + pb.n_total + 1);
         if (pb.n_total < 20) {
             cf_err(err, err_len, "only %d line points detected in %d usable frames (need 20)",
                    pb.n_total, fr->n - res->n_skipped);
@@ -739,21 +1004,25 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
         }
         if (pass == 0 && o->grid)
             cf_grid(&pb, o, p, w.r);
-        /* alternate: headings for the camera, camera for the headings */
-        for (round = 0; round < (o->fit_heading ? 8 : 1); round++) {
-            if (o->fit_heading)
-                cf_headings(&pb, p, o->sigma_heading_deg, pass == 0 && round == 0, w.rp,
-                            w.act);
+        /* with pose corrections: start them for the grid's camera frame by
+         * frame, then fit everything jointly */
+        if (o->fit_heading) {
+            double sig[3];
+            sig[0] = o->sigma_heading_deg;
+            sig[1] = sig[2] = o->sigma_xy_mm;
+            if (pass == 0)
+                cf_poses(&pb, p, sig, 1, w.r, w.rp, w.J, w.act);
+            n = cf_lm_joint(&pb, o, sig, p, &w, res->sigma);
+        } else
             n = cf_lm(&pb, o, p, &w, res->sigma);
-            if (n < 0) {
-                cf_err(err, err_len, "too few line points near the field lines (fit failed)");
-                goto out;
-            }
-            res->iterations += n;
+        if (n < 0) {
+            cf_err(err, err_len, "too few line points near the field lines (fit failed)");
+            goto out;
         }
+        res->iterations += n;
     }
-    if (pb.dth)
-        memcpy(res->dheading_deg, pb.dth, sizeof *pb.dth * (size_t)fr->n);
+    if (pb.corr)
+        memcpy(res->corr, pb.corr, sizeof *pb.corr * 3 * (size_t)fr->n);
     res->fit = *p;
     res->n_frames = fr->n - res->n_skipped;
     /* before / after on the final points, per frame and in total */
@@ -761,11 +1030,11 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
         const cf_params_t *q = pass == 0 ? &res->start : &res->fit;
         cf_stats_t *st = pass == 0 ? res->before : res->after;
         int off = 0;
-        double *dth = pb.dth;
+        double *corr = pb.corr;
         if (pass == 0)
-            pb.dth = NULL; /* before: the poses as given */
+            pb.corr = NULL; /* before: the poses as given */
         cf_residuals(&pb, q, w.r);
-        pb.dth = dth;
+        pb.corr = corr;
         for (k = 0; k < fr->n; k++) {
             cf_stats(w.r + off, pb.pts[k].n, pb.gate, &st[k], w.rp);
             off += pb.pts[k].n;
@@ -777,7 +1046,7 @@ out:
     for (k = 0; k < fr->n; k++)
         free(pb.pts[k].uv);
     free(pb.pts);
-    free(pb.dth);
+    free(pb.corr);
     free(w.r);
     det_ctx_free(&ctx);
     if (rc != 0)

@@ -44,12 +44,16 @@
  * Parameters move in the firmware's units (1 mm, 1/65536 turn).
  *
  * Pose errors (fit_heading): a robot put down by hand faces a few degrees
- * off, which shifts every point of its frame sideways and would bias the
- * camera.  With fit_heading each frame also gets a heading correction, a
- * nuisance parameter with a Gaussian prior (sigma_heading_deg, as one
- * pseudo-point of 1 px per sigma), fitted alternately with the camera
- * (8 rounds: headings by a +-10 deg grid then a golden-section search,
- * camera by LM); "before" residuals use the poses as given.
+ * off and stands some centimetres off, which moves every point of its
+ * frame and would bias the camera.  With fit_heading each frame also gets
+ * a heading and x/y correction, nuisance parameters with Gaussian priors
+ * (sigma_heading_deg, sigma_xy_mm; each as one pseudo-point of 1 px per
+ * sigma).  They start from a +-10 deg heading grid and a per-frame LM
+ * for the grid's camera, then everything is fitted jointly by LM (the
+ * normal matrix is block-arrow shaped; each step eliminates the frames'
+ * 3x3 blocks by the Schur complement; the camera's sigma comes from it,
+ * so it accounts for the freedom of the poses); "before" residuals use
+ * the poses as given.
  *
  * Memory: the frames array and the points of every frame (malloc'd).
  * Cost: 2 detections per frame; the grid evaluates every point about 900
@@ -101,9 +105,10 @@ typedef struct {
     double gate_px;                     /* default 6 */
     double huber_px;                    /* default 1 */
     int grid;                           /* 1: start with the grid (default) */
-    int fit_heading;                    /* 1: per-frame heading corrections
+    int fit_heading;                    /* 1: per-frame pose corrections
                                            (default 0: the poses are exact) */
-    double sigma_heading_deg;           /* their prior (default 5) */
+    double sigma_heading_deg;           /* their priors: heading (default 5) */
+    double sigma_xy_mm;                 /* and position (default 100) */
 } cf_options_t;
 
 void cf_options_default(cf_options_t *o);
@@ -124,7 +129,8 @@ typedef struct {
     cf_stats_t before_all, after_all;
     int n_frames, n_skipped;  /* frames used; frames not read / wrong size */
     int iterations;
-    double *dheading_deg;     /* per frame, with fit_heading (else NULL) */
+    double *corr;             /* per frame heading deg, x mm, y mm (3 per
+                                 frame), with fit_heading (else NULL) */
 } cf_result_t;
 
 /* Fit (start values in *p: usually the model's defaults, roll 0) to the
