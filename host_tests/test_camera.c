@@ -319,7 +319,8 @@ static void test_catalogue(void)
     static const char *const required[] = {
         "nao3-top-320", "nao3-top-640", "nao3-bottom-320", "nao3-bottom-640",
         "nao4-top-320", "nao4-top-640", "nao4-bottom-320", "nao4-bottom-640",
-        "nao6-top-320", "nao6-top-640", "nao6-bottom-320", "nao6-bottom-640", "aibo-ers7"};
+        "nao6-top-320", "nao6-top-640", "nao6-bottom-320", "nao6-bottom-640",
+        "nao6-top-1280", "nao6-bottom-1280", "aibo-ers7"};
     size_t i, j, n = fl_camera_model_count();
     const fl_camera_model_t *m;
     fl_camera_pose_t ps = {450, 0, 0, 0, 0, 0, 0};
@@ -386,6 +387,9 @@ static void test_catalogue(void)
         } else if (strstr(m->name, "-640")) {
             CHECK_EQ(m->width_px, 640);
             CHECK_EQ(m->height_px, 480);
+        } else if (strstr(m->name, "-1280")) {
+            CHECK_EQ(m->width_px, 1280);
+            CHECK_EQ(m->height_px, 960);
         }
         if (strstr(m->name, "-bottom-"))
             CHECK(m->mount_tilt > 7000 && m->mount_tilt < 7400); /* about 39-40.5 deg */

@@ -60,8 +60,19 @@
  *    tilt 0; bottom 48.8 forward, 23.81 up) are from memory of the v3.3
  *    kinematics page: uncertain by a few mm; the top tilt of 0 deg is
  *    uncertain by about 1 deg.
- *  - NAO v6: OV5640, HFOV 56.3 x VFOV 43.7 deg; same head geometry as v4:
- *    top 58.71 / 63.64 mm, 1.2 deg; bottom 50.71 / 17.74 mm, 39.7 deg.
+ *  - NAO v6: OV5640, HFOV 56.3 x VFOV 43.7 deg (67.4 deg diagonal); same
+ *    head geometry as v4: top 58.71 / 63.64 mm, 1.2 deg; bottom 50.71 /
+ *    17.74 mm, 39.7 deg.  Checked against the SoftBank Robotics
+ *    documentation: the OV5640 field of view on the NAOqi 2.8 "2D
+ *    Cameras" page (doc.aldebaran.com/2-8/family/pepper_technical/
+ *    video_2D_pep.html, the same sensor module), and the camera positions
+ *    (X, Z, WY of CameraTop / CameraBottom, composed as rotZ * rotY * rotX
+ *    like camera.h) on the NAO "Video camera" page
+ *    (doc.aldebaran.com/2-1/family/robots/video_robot.html, head 4.0).
+ *    The NAO v6 page itself was not available; that the v6 head keeps the
+ *    v4 placement is from memory of RoboCup team code.  1280x960 (the v6
+ *    camera's 30 fps mode): f = 640 / tan 28.15 deg = 1196.1 px; the
+ *    vertical field of view then comes out as 43.73 deg.
  *  - AIBO ERS-7: 208x160, HFOV 56.9 x VFOV 45.2 deg (f = 191.9 px).  The
  *    mounting is APPROXIMATE: the ERS-7 head has neck tilt, pan and a second
  *    (nod) tilt, which this model folds into one pitch; the camera sits in
@@ -70,7 +81,7 @@
  *    snout (tilt 0).  Expect errors of 5-10 mm and a few degrees: callers
  *    should fold the nod/neck-tilt split into neck_height and pitch_offset.
  * Integer values: f_q4 = round(16 f): nao3 5777 / 11554, nao4 4355 / 8709,
- * nao6 4784 / 9569 (320 / 640 wide), aibo 3071; cx_q4 = 8 (W - 1),
+ * nao6 4784 / 9569 / 19138 (320 / 640 / 1280 wide), aibo 3071; cx_q4 = 8 (W - 1),
  * cy_q4 = 8 (H - 1).
  */
 static const fl_camera_model_t fl_camera_catalogue[] = {
@@ -87,6 +98,8 @@ static const fl_camera_model_t fl_camera_catalogue[] = {
     {"nao6-bottom-320",  320, 240,  4784, 2552, 1912, 51,   18, 7227, 445, 0},
     {"nao6-top-640",     640, 480,  9569, 5112, 3832, 59,   64,  218, 445, 0},
     {"nao6-bottom-640",  640, 480,  9569, 5112, 3832, 51,   18, 7227, 445, 0},
+    {"nao6-top-1280",   1280, 960, 19138, 10232, 7672, 59,  64,  218, 445, 0},
+    {"nao6-bottom-1280",1280, 960, 19138, 10232, 7672, 51,  18, 7227, 445, 0},
     {"aibo-ers7",        208, 160,  3071, 1656, 1272, 81,  -15,    0, 160, 0},
     {"uva2013",          320, 240,  4405, 2552, 1912, 51,   18, 7227, 450, 1140},
 };
