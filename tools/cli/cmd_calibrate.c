@@ -371,10 +371,25 @@ static void cal_uva_frames(const rd_uva_set_t *set, const char *dir, const cal_p
     p.neck_mm = nominal->default_neck_height_mm;
     p.pitch_offset_deg = nominal->default_pitch_offset * 360.0 / 65536.0;
     p.roll_offset_deg = 0;
-    if (cal_frames_run(&fr, "uva2013 frames", field, m, &o, &p, 0) == 0)
+    if (cal_frames_run(&fr, "uva2013 frames", field, m, &o, &p, 0) == 0) {
+        cf_result_t res;
+        char err[256];
         printf("    hand-label fit [4] for comparison: neck_height_mm %.1f, pitch_offset_deg "
                "%.3f (roll not fitted)\n",
                label->p[CAL_NECK], label->p[CAL_PITCH] * CAL_DEG);
+        /* the label camera on the same residual: only the poses refitted */
+        o.fit_neck = o.fit_pitch = o.fit_roll = 0;
+        o.grid = 0;
+        p.neck_mm = label->p[CAL_NECK];
+        p.pitch_offset_deg = label->p[CAL_PITCH] * CAL_DEG;
+        p.roll_offset_deg = 0;
+        if (cf_fit(&fr, field, m, &o, &p, &res, NULL, NULL, err, sizeof err) == 0) {
+            printf("    that camera on this residual (poses refitted): %d in, median %.2f px, "
+                   "rms %.2f px\n",
+                   res.after_all.n_in, res.after_all.median_px, res.after_all.rms_px);
+            cf_result_free(&res);
+        }
+    }
     cf_frames_free(&fr);
 }
 
