@@ -115,6 +115,21 @@ static void t_legend(void)
     CHECK_EQ(pic_legend_inplace(&narrow, PIC_LEGEND_DETECT, cap), 0);
     CHECK_EQ(narrow.height, 50 + hn);
     host_image_free(&narrow);
+    /* a wide picture (frame | belief) gets the strip at twice the size */
+    {
+        host_image_t wide = host_image_new(1200, 20, 0, 0, 0), ref;
+        static const uint8_t fg[3] = {PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG};
+        int v, w = font_text_width("t 3.0 s", 2);
+        CHECK_EQ(pic_legend_inplace(&wide, PIC_LEGEND_BELIEF, "t 3.0 s"), 0);
+        ref = host_image_new(1200, 2 * FONT_LINE, PIC_LEGEND_BG, PIC_LEGEND_BG, PIC_LEGEND_BG);
+        font_draw(&ref, 4, 0, "t 3.0 s", fg, 2);
+        if (wide.rgb != NULL && ref.rgb != NULL)
+            for (v = 0; v < 2 * FONT_H; v++)
+                CHECK(memcmp(wide.rgb + 3 * ((size_t)(20 + 4 + v) * 1200 + 4),
+                             ref.rgb + 3 * ((size_t)v * 1200 + 4), 3 * (size_t)w) == 0);
+        host_image_free(&ref);
+        host_image_free(&wide);
+    }
     memset(&nout, 0, sizeof nout);
     CHECK_EQ(pic_add_legend(&nout, PIC_LEGEND_DETECT, NULL, &out), -1);
     host_image_free(&img);

@@ -80,7 +80,8 @@ static void demo_picture(demo_t *d, const lr_walk_step_t *ws, const char *name, 
     host_image_t belief, frame, both;
     pic_pose_t truth, ep;
     char caption[512];
-    const unsigned frame_sets = PIC_LEGEND_DETECT | PIC_LEGEND_MODEL;
+    const unsigned frame_sets = PIC_LEGEND_DETECT | PIC_LEGEND_MODEL,
+                   belief_sets = PIC_LEGEND_BELIEF | PIC_LEGEND_TRUTH;
     truth.x_mm = ws->st->true_x_mm;
     truth.y_mm = ws->st->true_y_mm;
     truth.heading_deg = ws->st->true_heading_rad * (180.0 / 3.14159265358979323846);
@@ -95,16 +96,16 @@ static void demo_picture(demo_t *d, const lr_walk_step_t *ws, const char *name, 
         pic_frame(&ws->lr->det, &ws->frame->view, &ws->lr->cam, ws->lr->field, &ep, 2, &frame) ==
             0) {
         if (pic_side_by_side(&frame, &belief, 8, &both) == 0) {
-            if (pic_legend_inplace(&both, frame_sets | PIC_LEGEND_BELIEF, caption) == 0)
+            if (pic_legend_inplace(&both, frame_sets | belief_sets, caption) == 0)
                 demo_save(d, &both, name);
             host_image_free(&both);
         }
         if (halves && pic_legend_inplace(&frame, frame_sets, caption) == 0)
             demo_save(d, &frame, "frame_final");
         host_image_free(&frame);
-        if (halves && pic_legend_inplace(&belief, PIC_LEGEND_BELIEF, caption) == 0)
+        if (halves && pic_legend_inplace(&belief, belief_sets, caption) == 0)
             demo_save(d, &belief, "belief_final");
-    } else if (pic_legend_inplace(&belief, PIC_LEGEND_BELIEF, caption) == 0) {
+    } else if (pic_legend_inplace(&belief, belief_sets, caption) == 0) {
         demo_save(d, &belief, name);
         if (halves)
             demo_save(d, &belief, "belief_final");

@@ -76,6 +76,7 @@ int pic_side_by_side(const host_image_t *a, const host_image_t *b, int gap,
 #define PIC_LEGEND_SCAN    0x20u  /* scantool_picture */
 #define PIC_LEGEND_EVAL    0x40u  /* eval-detect: truth rings */
 #define PIC_LEGEND_MASK    0x80u  /* render --mask: the renderer's pixel classes */
+#define PIC_LEGEND_TRUTH   0x100u /* pic_belief with a truth pose: its ring */
 
 /* Strip background; the caption and labels are drawn in PIC_LEGEND_FG. */
 #define PIC_LEGEND_BG 24

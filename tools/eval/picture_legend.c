@@ -3,13 +3,13 @@
  * of the tools' pictures (picture.h).
  *
  * Layout of the strip (width = the image's): PIC_PAD px margin, the caption
- * lines (FONT_LINE px each, twice that on pictures 1000 px wide or more;
- * wrapped at spaces), then the legend items in
+ * lines (FONT_LINE px each, wrapped at spaces), then the legend items in
  * rows of PIC_ROW px: an 11 x 11 swatch showing the mark as drawn in the
  * picture, 4 px, the label; items flow left to right and wrap.  The colors
  * of each set are those of the drawing code (det_draw, pic_belief,
  * pic_frame, scantool_picture, eval-detect, render --mask): keep them in
- * step.
+ * step.  On pictures 1000 px wide or more (frame | belief) everything is
+ * drawn at twice the size.
  */
 #include "eval/picture.h"
 #include "io/font.h"
@@ -57,10 +57,12 @@ static const pic_item_t set_belief[] = {
     {MK_RAMP, {0, 0, 0}, "belief low..high"},
     {MK_TICK, {0, 0, 0}, "cell heading"},
     {MK_LINE, {235, 235, 235}, "field lines"},
-    {MK_RING, {0, 230, 255}, "truth"},
     {MK_RING, {255, 40, 255}, "estimate (longer = more reliable)"},
     {MK_SQUARE, {255, 255, 255}, "observation from the estimate"},
     {MK_SQUARE, {255, 220, 0}, "post/beacon"},
+};
+static const pic_item_t set_truth[] = {
+    {MK_RING, {0, 230, 255}, "truth"},
 };
 static const pic_item_t set_classes[] = {
     {MK_FILL, {0, 170, 0}, "green cell"},
@@ -104,7 +106,8 @@ static const struct {
     PIC_SET(PIC_LEGEND_SCAN, set_scan),   PIC_SET(PIC_LEGEND_CLASSES, set_classes),
     PIC_SET(PIC_LEGEND_BORDER, set_border), PIC_SET(PIC_LEGEND_DETECT, set_detect),
     PIC_SET(PIC_LEGEND_EVAL, set_eval),   PIC_SET(PIC_LEGEND_MODEL, set_model),
-    PIC_SET(PIC_LEGEND_BELIEF, set_belief), PIC_SET(PIC_LEGEND_MASK, set_mask),
+    PIC_SET(PIC_LEGEND_BELIEF, set_belief), PIC_SET(PIC_LEGEND_TRUTH, set_truth),
+    PIC_SET(PIC_LEGEND_MASK, set_mask),
 #undef PIC_SET
 };
 
@@ -115,7 +118,16 @@ static void put(host_image_t *im, int u, int v, const uint8_t *c)
     memcpy(im->rgb + 3 * ((size_t)v * (size_t)im->width + (size_t)u), c, 3);
 }
 
-static void swatch(host_image_t *im, int x, int y, const pic_item_t *it)
+/* Swatch pixel (i, j) of the 11 x 11 grid at (x, y), sc x sc screen pixels. */
+static void sput(host_image_t *im, int x, int y, int sc, int i, int j, const uint8_t *c)
+{
+    int a, b;
+    for (b = 0; b < sc; b++)
+        for (a = 0; a < sc; a++)
+            put(im, x + i * sc + a, y + j * sc + b, c);
+}
+
+static void swatch(host_image_t *im, int x, int y, int sc, const pic_item_t *it)
 {
     static const uint8_t edge[3] = {100, 100, 100}, black[3] = {0, 0, 0},
                          tick_bg[3] = {250, 160, 30};
@@ -124,8 +136,8 @@ static void swatch(host_image_t *im, int x, int y, const pic_item_t *it)
     case MK_FILL:
         for (j = 0; j < PIC_SW; j++)
             for (i = 0; i < PIC_SW; i++)
-                put(im, x + i, y + j,
-                    (i == 0 || j == 0 || i == PIC_SW - 1 || j == PIC_SW - 1) ? edge : it->rgb);
+                sput(im, x, y, sc, i, j,
+                     (i == 0 || j == 0 || i == PIC_SW - 1 || j == PIC_SW - 1) ? edge : it->rgb);
         break;
     case MK_RAMP:
         for (i = 0; i < PIC_SW; i++) {
@@ -134,50 +146,51 @@ static void swatch(host_image_t *im, int x, int y, const pic_item_t *it)
                 {40, 10, 70}, {220, 60, 40}, {250, 160, 30}, {255, 250, 170}};
             const uint8_t *col = stop[i * 4 / PIC_SW];
             for (j = 0; j < PIC_SW; j++)
-                put(im, x + i, y + j, col);
+                sput(im, x, y, sc, i, j, col);
         }
         break;
     case MK_TICK:
         for (j = 0; j < PIC_SW; j++)
             for (i = 0; i < PIC_SW; i++)
-                put(im, x + i, y + j, tick_bg);
+                sput(im, x, y, sc, i, j, tick_bg);
         for (i = c; i < PIC_SW - 1; i++)
-            put(im, x + i, y + c, black);
+            sput(im, x, y, sc, i, c, black);
         break;
     case MK_BOX:
         for (i = -3; i <= 3; i++) {
-            put(im, x + c + i, y + c - 3, it->rgb);
-            put(im, x + c + i, y + c + 3, it->rgb);
-            put(im, x + c - 3, y + c + i, it->rgb);
-            put(im, x + c + 3, y + c + i, it->rgb);
+            sput(im, x, y, sc, c + i, c - 3, it->rgb);
+            sput(im, x, y, sc, c + i, c + 3, it->rgb);
+            sput(im, x, y, sc, c - 3, c + i, it->rgb);
+            sput(im, x, y, sc, c + 3, c + i, it->rgb);
         }
         break;
     case MK_LINE:
     case MK_DOTTED:
         for (i = 0; i < PIC_SW; i++)
             if (it->mark == MK_LINE || !(i & 2))
-                put(im, x + i, y + c, it->rgb);
+                sput(im, x, y, sc, i, c, it->rgb);
         break;
     case MK_DOTS:
-        put(im, x + 2, y + c + 1, it->rgb);
-        put(im, x + c, y + c - 1, it->rgb);
-        put(im, x + PIC_SW - 3, y + c + 1, it->rgb);
+        sput(im, x, y, sc, 2, c + 1, it->rgb);
+        sput(im, x, y, sc, c, c - 1, it->rgb);
+        sput(im, x, y, sc, PIC_SW - 3, c + 1, it->rgb);
         break;
     case MK_RING:
         for (i = 0; i < 32; i++)
-            put(im, x + c + (int)lround(4.5 * cos(i * 0.19635)),
-                y + c + (int)lround(4.5 * sin(i * 0.19635)), it->rgb);
+            sput(im, x, y, sc, c + (int)lround(4.5 * cos(i * 0.19635)),
+                 c + (int)lround(4.5 * sin(i * 0.19635)), it->rgb);
         break;
     case MK_CROSS:
         for (i = -3; i <= 3; i++) {
-            put(im, x + c + i, y + c, it->rgb);
-            put(im, x + c, y + c + i, it->rgb);
+            sput(im, x, y, sc, c + i, c, it->rgb);
+            sput(im, x, y, sc, c, c + i, it->rgb);
         }
         break;
     case MK_SQUARE:
         for (j = -3; j <= 3; j++)
             for (i = -3; i <= 3; i++)
-                put(im, x + c + i, y + c + j, (abs(i) == 3 || abs(j) == 3) ? black : it->rgb);
+                sput(im, x, y, sc, c + i, c + j,
+                     (abs(i) == 3 || abs(j) == 3) ? black : it->rgb);
         break;
     }
 }
@@ -188,7 +201,7 @@ static int pic_legend_layout(host_image_t *im, int W, int y0, unsigned sets,
                              const char *caption)
 {
     static const uint8_t fg[3] = {PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG};
-    /* wide pictures (frame | belief) get the caption at twice the size */
+    /* wide pictures (frame | belief) get the strip at twice the size */
     int cs = W >= 1000 ? 2 : 1;
     int y = y0 + PIC_PAD, x, k, i, max_chars = (W - 2 * PIC_PAD) / (FONT_ADVANCE * cs);
     char line[512];
@@ -228,20 +241,21 @@ static int pic_legend_layout(host_image_t *im, int W, int y0, unsigned sets,
             continue;
         for (i = 0; i < pic_sets[k].n; i++) {
             const pic_item_t *it = &pic_sets[k].items[i];
-            int w = PIC_SW + 4 + font_text_width(it->text, 1);
+            int w = (PIC_SW + 4) * cs + font_text_width(it->text, cs);
             if (x > PIC_PAD && x + w > W - PIC_PAD) {
                 x = PIC_PAD;
-                y += PIC_ROW;
+                y += PIC_ROW * cs;
             }
             if (im) {
-                swatch(im, x, y, it);
-                font_draw(im, x + PIC_SW + 4, y + (PIC_SW - FONT_H) / 2, it->text, fg, 1);
+                swatch(im, x, y, cs, it);
+                font_draw(im, x + (PIC_SW + 4) * cs, y + (PIC_SW - 7) / 2 * cs, it->text, fg,
+                          cs);
             }
-            x += w + PIC_GAP;
+            x += w + PIC_GAP * cs;
         }
     }
     if (x > PIC_PAD)
-        y += PIC_ROW;
+        y += PIC_ROW * cs;
     return y + PIC_PAD - y0;
 }
 
