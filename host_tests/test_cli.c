@@ -210,13 +210,14 @@ static int cli_run(const char *args, char *out, size_t nout, char *err, size_t n
 }
 
 /* args must fail with status 2 and exactly one stderr line equal to msg. */
-static void expect_error(const char *args, const char *msg)
+#define expect_error(args, msg) expect_error_at(__LINE__, args, msg)
+static void expect_error_at(int line_no, const char *args, const char *msg)
 {
     char err[2048], line[2048];
     int rc = cli_run(args, NULL, 0, err, sizeof err);
     snprintf(line, sizeof line, "%s\n", msg);
     if (rc != 2 || strcmp(err, line) != 0)
-        t_fail_msg(__FILE__, __LINE__, "fieldloc %s: status %d, stderr \"%s\" (want 2, \"%s\")",
+        t_fail_msg(__FILE__, line_no, "fieldloc %s: status %d, stderr \"%s\" (want 2, \"%s\")",
                    args, rc, err, msg);
     else
         CHECK(1);
@@ -340,7 +341,7 @@ static void t_pictures(void)
     CHECK_EQ(cli_run(args, NULL, 0, err, sizeof err), 0);
     if (read_pic("plain.ppm", &plain) != 0 || read_pic("classes.ppm", &classes) != 0 ||
         read_pic("border.ppm", &border) != 0) {
-        CHECK(!"detect pictures readable");
+        t_fail_msg(__FILE__, __LINE__, "detect pictures readable");
         return;
     }
     hplain = plain.height - 240;
@@ -382,7 +383,7 @@ static void t_pictures(void)
               200);
         host_image_free(&scan);
     } else
-        CHECK(!"scan picture readable");
+        t_fail_msg(__FILE__, __LINE__, "scan picture readable");
     snprintf(args, sizeof args, "render --out %s/r.ppm --mask %s/mask.ppm", t_dir, t_dir);
     CHECK_EQ(cli_run(args, NULL, 0, err, sizeof err), 0);
     if (read_pic("mask.ppm", &mask) == 0) {
@@ -390,7 +391,7 @@ static void t_pictures(void)
         CHECK(count_color(&mask, 240, mask.height, 255, 120, 0) > 0);   /* ball swatch */
         host_image_free(&mask);
     } else
-        CHECK(!"mask picture readable");
+        t_fail_msg(__FILE__, __LINE__, "mask picture readable");
     /* demo: the belief picture's strip has the time, error and reliability */
     snprintf(args, sizeof args, "demo --seconds 0.5 --picture-every-s 0 --no-png --out %s/demo",
              t_dir);
@@ -415,7 +416,7 @@ static void t_pictures(void)
         }
         host_image_free(&belief);
     } else
-        CHECK(!"demo belief picture readable");
+        t_fail_msg(__FILE__, __LINE__, "demo belief picture readable");
 }
 
 void suite_cli(void)
