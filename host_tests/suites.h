@@ -19,4 +19,5 @@ T_SUITE(adversarial);
 T_SUITE(walks);
 T_SUITE(example);
 T_SUITE(fuzz_regress);
+T_SUITE(cli);
 T_SUITE(rules);

@@ -10,6 +10,7 @@
  */
 #include "eval/calibrate.h"
 #include "fieldloc/fieldloc.h"
+#include "cli/args.h"
 #include "cli/registry.h"
 
 #include <math.h>
@@ -208,10 +209,11 @@ int cmd_calibrate(int argc, char **argv)
             dir = argv[++i];
         else if (!strcmp(argv[i], "--verbose"))
             verbose = 1;
-        else {
+        else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             fprintf(stderr, "usage: fieldloc calibrate [--dir REALDATA_DIR] [--verbose]\n");
-            return 2;
-        }
+            return 0;
+        } else
+            return arg_unknown("calibrate", argv[i], "--dir=1");
     }
     if (!dir)
         dir = rd_dir();
