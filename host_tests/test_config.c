@@ -220,7 +220,7 @@ static int cfg_file_has(const char *path, const char *needle)
  * headers with no -D matches, one with the in-tree default does not. */
 static void test_install_tree(void)
 {
-    char cwd[512], dest[700], cmd[3000], flags[1024], lib[800], path[900], want[64];
+    char cwd[512], dest[700], vars[1500], cmd[4096], flags[1024], lib[800], path[900], want[64];
     const char *log = CFG_DIR "/install.log";
     cfg_out_t inst, old;
     int obs_max = FL_OBS_MAX == 48 ? 40 : 48, cols = FL_SCAN_MAX_COLS == 320 ? 256 : 320;
@@ -233,13 +233,16 @@ static void test_install_tree(void)
         return;
     }
     snprintf(dest, sizeof dest, "%s/" CFG_DIR "/dest", cwd);
-    /* the caller's MAKEFLAGS (a jobserver of `make test`) do not apply */
-    snprintf(cmd, sizeof cmd,
-             "rm -rf %s && mkdir -p " CFG_DIR " && env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL "
-             "make -s --no-print-directory -j2 BUILD=" CFG_DIR "/tree CC='%s' OPT=-O1 "
-             "WITH_OPENCV=0 CONFIG_DEFS='-DFL_OBS_MAX=%d -DFL_SCAN_MAX_COLS=%d' "
-             "DESTDIR=%s PREFIX=/opt/fieldloc install > %s 2>&1",
-             dest, FL_TEST_CC, obs_max, cols, dest, log);
+    /* the caller's MAKEFLAGS (a jobserver of `make test`) do not apply;
+     * the same variables for install and uninstall, else the tree's flags
+     * stamp changes and the next run rebuilds it */
+    snprintf(vars, sizeof vars,
+             "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory -j2 "
+             "BUILD=" CFG_DIR "/tree CC='%s' OPT=-O1 WITH_OPENCV=0 "
+             "CONFIG_DEFS='-DFL_OBS_MAX=%d -DFL_SCAN_MAX_COLS=%d' DESTDIR=%s PREFIX=/opt/fieldloc",
+             FL_TEST_CC, obs_max, cols, dest);
+    snprintf(cmd, sizeof cmd, "rm -rf %s && mkdir -p " CFG_DIR " && %s install > %s 2>&1", dest,
+             vars, log);
     if (system(cmd) != 0) {
         cfg_show_log(log, "make install failed");
         return;
@@ -273,10 +276,8 @@ static void test_install_tree(void)
         CHECK(0);
 
     snprintf(cmd, sizeof cmd,
-             "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory "
-             "BUILD=" CFG_DIR "/tree DESTDIR=%s PREFIX=/opt/fieldloc uninstall >> %s 2>&1 && "
-             "! test -e %s/opt/fieldloc/include/fieldloc && ! test -e %s",
-             dest, log, dest, lib);
+             "%s uninstall >> %s 2>&1 && ! test -e %s/opt/fieldloc/include/fieldloc && ! test -e %s",
+             vars, log, dest, lib);
     CHECK_EQ(system(cmd), 0);
 }
 
