@@ -185,14 +185,16 @@ static int64_t fl_cam_floor_div64(int64_t n, int64_t d)
  * multiplied by cos/sin(yaw) Q30 (|.| < 2^57) and rounded to Q4 (>> 42).
  * The vertical part is rounded straight to Q4 (>> 26).  Each step rounds to
  * nearest (fl_rshift_round); the position is within 1/16 mm of exact. */
-fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
-                           const fl_camera_pose_t *pose)
+fl_status_t fl_camera_init_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
+                               const fl_camera_pose_t *pose, uint32_t caller_cfg)
 {
     fl_angle_t alpha, theta;
     int32_t sa, ca, sy, cy, st, ct;
     int64_t xh_q30, zh_q30;
     int32_t xh_q16;
 
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *cam may have another layout: no write is safe */
     if (!cam)
         return FL_ERR_NULL;
     memset(cam, 0, sizeof *cam); /* projects nothing until fully valid */

@@ -59,7 +59,7 @@ int lr_init(lr_t *r, const fl_localizer_t *loc, const fl_field_t *field,
     } else {
         loc->params_default(r->params);
     }
-    if (loc->init(r->state, field, params != NULL ? r->params : NULL) != FL_OK) {
+    if (fl_loc_init(loc, r->state, field, params != NULL ? r->params : NULL) != FL_OK) {
         if (err)
             snprintf(err, (size_t)err_len, "cannot size the %s localizer for field %s (or bad params)",
                      loc->name, field->name);
