@@ -87,6 +87,10 @@ int cmd_project(int argc, char **argv)
         else if (!strcmp(argv[i], "--head") && i + 2 < argc) {
             pose.head_pitch = angle_from_rad(atof(argv[++i]));
             pose.head_yaw = angle_from_rad(atof(argv[++i]));
+        } else if (!strcmp(argv[i], "--tilt") && i + 3 < argc) {
+            pose.torso_pitch = angle_from_rad(atof(argv[++i]));
+            pose.torso_roll = angle_from_rad(atof(argv[++i]));
+            pose.roll_offset = angle_from_rad(atof(argv[++i]));
         } else if (npos == 0) {
             u = atof(argv[i]);
             npos++;
@@ -99,8 +103,10 @@ int cmd_project(int argc, char **argv)
         }
     }
     if (npos != 2) {
-        fprintf(stderr, "usage: fieldloc project [--camera NAME] [--neck MM] [--head PITCH_RAD YAW_RAD] U V\n"
-                        "  (neck height and pitch offset default to the camera model's calibrated pose)\n");
+        fprintf(stderr, "usage: fieldloc project [--camera NAME] [--neck MM] [--head PITCH_RAD YAW_RAD]\n"
+                        "                        [--tilt TORSO_PITCH_RAD TORSO_ROLL_RAD ROLL_OFFSET_RAD] U V\n"
+                        "  (neck height and pitch offset default to the camera model's calibrated pose;\n"
+                        "  --tilt: the IMU's AngleY, AngleX and a calibration roll, camera.h's signs)\n");
         return 2;
     }
     m = fl_camera_model_find(cam_name);
