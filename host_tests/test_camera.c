@@ -21,8 +21,17 @@
  * polar: 2000 instead of 100000 random points.  Catalogue, invalid-input and
  * extreme-input cases are the same in both modes.
  *
- * Every input of the firmware is generated with integers (t_rng, firmware
- * outputs), never from the double reference, so the digests are
+ * Roll (camera.roll_*): the same sweeps with torso pitch and roll (+-10
+ * deg) and a roll offset (+-5 deg) added to every pose, the same
+ * tolerances; the horizon is checked per column against the reference's
+ * sloped line.  camera.roll_zero_is_head_only: without those angles the
+ * rotation and centre are the head-only model's integers, bit for bit.
+ * camera.extrinsics: fl_camera_init_extrinsics against a ZYX reference,
+ * and filled from a head pose's reference kinematics (not hashed: those
+ * inputs come from doubles).
+ *
+ * Every hashed input of the firmware is generated with integers (t_rng,
+ * firmware outputs), never from the double reference, so the digests are
  * bit-identical on every target.
  *
  * Tolerances:
