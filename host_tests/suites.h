@@ -13,6 +13,7 @@ T_SUITE(fuzzy);
 T_SUITE(localizer);
 T_SUITE(lines);
 T_SUITE(features);
+T_SUITE(camera_vision);
 T_SUITE(beacon);
 T_SUITE(localize);
 T_SUITE(adversarial);

@@ -83,6 +83,7 @@ static void test_hostile_frames(void)
     uint32_t h = t_hash_init();
     int k, si, fi, rejected = 0;
     int nsizes = t_quick ? 4 : (int)(sizeof sizes / sizeof sizes[0]);
+    memset(&pose, 0, sizeof pose);
     pose.neck_height_mm = m->default_neck_height_mm;
     pose.pitch_offset = m->default_pitch_offset;
     pose.head_pitch = 0;

@@ -161,7 +161,7 @@ static void test_bad_input(void)
     uint8_t px[208 * 160 * 3];
     fl_image_t img, small;
     fl_camera_t cam;
-    fl_camera_pose_t pose = {160, 0, 0, 0};
+    fl_camera_pose_t pose = {160, 0, 0, 0, 0, 0, 0};
     const fl_field_t *f = fl_field_find("aibo2004");
     int i;
     CHECK(bt_init());
@@ -431,7 +431,7 @@ static void test_adversarial(void)
                                               FL_FMT_YCBCR_PLANAR};
     const fl_field_t *field = fl_field_find("aibo2004");
     fl_camera_t cam;
-    fl_camera_pose_t pose = {160, 0, 0, 0};
+    fl_camera_pose_t pose = {160, 0, 0, 0, 0, 0, 0};
     uint32_t h = t_hash_init();
     int k, si, fi, frames = 0;
     int nsizes = t_quick ? 5 : (int)(sizeof sizes / sizeof sizes[0]);

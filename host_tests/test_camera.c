@@ -21,8 +21,17 @@
  * polar: 2000 instead of 100000 random points.  Catalogue, invalid-input and
  * extreme-input cases are the same in both modes.
  *
- * Every input of the firmware is generated with integers (t_rng, firmware
- * outputs), never from the double reference, so the digests are
+ * Roll (camera.roll_*): the same sweeps with torso pitch and roll (+-10
+ * deg) and a roll offset (+-5 deg) added to every pose, the same
+ * tolerances; the horizon is checked per column against the reference's
+ * sloped line.  camera.roll_zero_is_head_only: without those angles the
+ * rotation and centre are the head-only model's integers, bit for bit.
+ * camera.extrinsics: fl_camera_init_extrinsics against a ZYX reference,
+ * and filled from a head pose's reference kinematics (not hashed: those
+ * inputs come from doubles).
+ *
+ * Every hashed input of the firmware is generated with integers (t_rng,
+ * firmware outputs), never from the double reference, so the digests are
  * bit-identical on every target.
  *
  * Tolerances:
@@ -84,6 +93,19 @@ typedef struct {
 
 static double rad_of(int a) { return (double)a * (2.0 * PI_D / 65536.0); }
 
+/* v turned by the torso: first about x (roll: y turns up), then about y
+ * (pitch: x turns down), as camera.h describes. */
+static void ref_torso(double v[3], double tp, double tr)
+{
+    double x, y = v[1], z = v[2];
+    v[1] = cos(tr) * y - sin(tr) * z;
+    v[2] = sin(tr) * y + cos(tr) * z;
+    x = v[0];
+    z = v[2];
+    v[0] = cos(tp) * x + sin(tp) * z;
+    v[2] = -sin(tp) * x + cos(tp) * z;
+}
+
 static void ref_init(ref_cam_t *rc, const fl_camera_model_t *m, const fl_camera_pose_t *ps)
 {
     double psi = rad_of(ps->head_yaw);
@@ -108,13 +130,35 @@ static void ref_init(ref_cam_t *rc, const fl_camera_model_t *m, const fl_camera_
     rc->axis[2][0] = sin(alpha) * cos(psi);
     rc->axis[2][1] = sin(alpha) * sin(psi);
     rc->axis[2][2] = cos(alpha);
+    /* roll offset about the optical axis: the left axis turns up */
+    {
+        double ro = rad_of(ps->roll_offset), l[3], u[3];
+        for (i = 0; i < 3; i++) {
+            l[i] = cos(ro) * rc->axis[1][i] + sin(ro) * rc->axis[2][i];
+            u[i] = -sin(ro) * rc->axis[1][i] + cos(ro) * rc->axis[2][i];
+        }
+        for (i = 0; i < 3; i++) {
+            rc->axis[1][i] = l[i];
+            rc->axis[2][i] = u[i];
+        }
+    }
     for (i = 0; i < 3; i++)
         rc->p[i] = m->mount_x_mm * hf[i] + m->mount_z_mm * hu[i];
+    /* the torso turns everything about the head pitch axis */
+    for (i = 0; i < 3; i++)
+        ref_torso(rc->axis[i], rad_of(ps->torso_pitch), rad_of(ps->torso_roll));
+    ref_torso(rc->p, rad_of(ps->torso_pitch), rad_of(ps->torso_roll));
     rc->p[2] += ps->neck_height_mm;
     rc->f = m->focal_q4 / 16.0;
     rc->cx = m->cx_q4 / 16.0;
     rc->cy = m->cy_q4 / 16.0;
     rc->tilt = alpha;
+}
+
+/* Horizon row (px) at column u (px): where the ray's vertical part is 0. */
+static double ref_horizon_v(const ref_cam_t *rc, double u)
+{
+    return rc->cy + (rc->f * rc->axis[0][2] - (u - rc->cx) * rc->axis[1][2]) / rc->axis[2][2];
 }
 
 enum { REF_HIT, REF_ABOVE, REF_FAR };
@@ -164,13 +208,22 @@ static int ref_ground_to_pixel(const ref_cam_t *rc, double gx, double gy, double
 #define YAW_MAX 20861     /* 2 rad */
 #define OFFSET_MAX 910    /* 5 deg */
 
+#define TORSO_MAX 1820      /* 10 deg: a walking NAO rolls a few degrees */
+#define ROLL_OFFSET_MAX 910 /* 5 deg */
+
 static int is_aibo(const fl_camera_model_t *m) { return strncmp(m->name, "aibo", 4) == 0; }
+
+/* Set by the camera.roll_* tests: make_pose adds torso pitch and roll and a
+ * roll offset (extra random draws only then, so the sweeps without roll
+ * are unchanged). */
+static int g_roll_mode;
 
 /* Pose k of a sweep: k < 24 corners, then random. */
 static fl_camera_pose_t make_pose(const fl_camera_model_t *m, int k, t_rng_t *rng)
 {
     fl_camera_pose_t ps;
     int32_t nlo = is_aibo(m) ? 100 : 300, nhi = is_aibo(m) ? 200 : 600;
+    memset(&ps, 0, sizeof ps);
     if (k < 24) {
         ps.neck_height_mm = (k & 1) ? nhi : nlo;
         ps.head_pitch = (fl_angle_t)((k & 2) ? PITCH_MAX : PITCH_MIN);
@@ -181,6 +234,17 @@ static fl_camera_pose_t make_pose(const fl_camera_model_t *m, int k, t_rng_t *rn
         ps.head_pitch = (fl_angle_t)t_rng_range(rng, PITCH_MIN, PITCH_MAX);
         ps.pitch_offset = (fl_angle_t)t_rng_range(rng, -OFFSET_MAX, OFFSET_MAX);
         ps.head_yaw = (fl_angle_t)t_rng_range(rng, -YAW_MAX, YAW_MAX);
+    }
+    if (g_roll_mode) {
+        if (k < 24) {
+            ps.torso_pitch = (fl_angle_t)((k & 1) ? TORSO_MAX : -TORSO_MAX);
+            ps.torso_roll = (fl_angle_t)((k & 2) ? TORSO_MAX : -TORSO_MAX);
+            ps.roll_offset = (fl_angle_t)((k & 4) ? -ROLL_OFFSET_MAX : ROLL_OFFSET_MAX);
+        } else {
+            ps.torso_pitch = (fl_angle_t)t_rng_range(rng, -TORSO_MAX, TORSO_MAX);
+            ps.torso_roll = (fl_angle_t)t_rng_range(rng, -TORSO_MAX, TORSO_MAX);
+            ps.roll_offset = (fl_angle_t)t_rng_range(rng, -ROLL_OFFSET_MAX, ROLL_OFFSET_MAX);
+        }
     }
     return ps;
 }
@@ -264,10 +328,11 @@ static void test_catalogue(void)
     static const char *const required[] = {
         "nao3-top-320", "nao3-top-640", "nao3-bottom-320", "nao3-bottom-640",
         "nao4-top-320", "nao4-top-640", "nao4-bottom-320", "nao4-bottom-640",
-        "nao6-top-320", "nao6-top-640", "nao6-bottom-320", "nao6-bottom-640", "aibo-ers7"};
+        "nao6-top-320", "nao6-top-640", "nao6-bottom-320", "nao6-bottom-640",
+        "nao6-top-1280", "nao6-bottom-1280", "aibo-ers7"};
     size_t i, j, n = fl_camera_model_count();
     const fl_camera_model_t *m;
-    fl_camera_pose_t ps = {450, 0, 0, 0};
+    fl_camera_pose_t ps = {450, 0, 0, 0, 0, 0, 0};
     fl_camera_t cam;
 
     CHECK(n >= sizeof required / sizeof required[0]);
@@ -314,6 +379,7 @@ static void test_catalogue(void)
         CHECK(m->default_pitch_offset > -2731 && m->default_pitch_offset < 2731); /* 15 deg */
         {
             fl_camera_pose_t dp;
+            memset(&dp, 0, sizeof dp);
             dp.neck_height_mm = m->default_neck_height_mm;
             dp.head_pitch = 0;
             dp.head_yaw = 0;
@@ -330,6 +396,9 @@ static void test_catalogue(void)
         } else if (strstr(m->name, "-640")) {
             CHECK_EQ(m->width_px, 640);
             CHECK_EQ(m->height_px, 480);
+        } else if (strstr(m->name, "-1280")) {
+            CHECK_EQ(m->width_px, 1280);
+            CHECK_EQ(m->height_px, 960);
         }
         if (strstr(m->name, "-bottom-"))
             CHECK(m->mount_tilt > 7000 && m->mount_tilt < 7400); /* about 39-40.5 deg */
@@ -396,7 +465,7 @@ static void check_projects_nothing(const fl_camera_t *cam)
 static void expect_init(const fl_camera_model_t *m, const fl_camera_pose_t *ps, fl_status_t st)
 {
     fl_camera_t cam;
-    fl_camera_pose_t good = {450, 0, 0, 0};
+    fl_camera_pose_t good = {450, 0, 0, 0, 0, 0, 0};
     CHECK_EQ(fl_camera_init(&cam, fl_camera_model_find("nao4-bottom-320"), &good), FL_OK);
     CHECK_EQ(fl_camera_init(&cam, m, ps), st);
     if (st != FL_OK)
@@ -407,7 +476,7 @@ static void test_invalid(void)
 {
     const fl_camera_model_t *base = fl_camera_model_find("nao4-bottom-320");
     fl_camera_model_t m;
-    fl_camera_pose_t ps = {450, 0, 0, 0}, p2;
+    fl_camera_pose_t ps = {450, 0, 0, 0, 0, 0, 0}, p2;
     fl_camera_t cam;
     fl_point_t g = {1000, 0};
     int32_t u, v;
@@ -503,8 +572,11 @@ static void test_pixel_to_ground(void)
             if (hz > INT32_MIN && hz < 16 * m->height_px)
                 for (i = 0; i < ncol; i++) {
                     int32_t u = t_rng_range(&rng, 0, 16 * (m->width_px - 1));
+                    int32_t hu = fl_camera_horizon_v_q4(&cam, u); /* = hz without roll */
+                    if (hu == INT32_MIN || hu == INT32_MAX)
+                        continue;
                     for (j = 0; j < (int)(sizeof rows / sizeof rows[0]); j++)
-                        check_p2g(&cam, &rc, u, hz + rows[j], &st, &h);
+                        check_p2g(&cam, &rc, u, hu + rows[j], &st, &h);
                 }
         }
     }
@@ -517,7 +589,7 @@ static void test_pixel_to_ground(void)
            "max range; %ld in the +-%.0f mm band at max range",
            st.n_above, st.n_beyond, st.n_band, BAND_MM);
     CHECK(st.n_near > 0 && st.n_far > 0 && st.n_above > 0 && st.n_beyond > 0);
-    t_digest("camera.pixel_to_ground", h);
+    t_digest(g_roll_mode ? "camera.roll_pixel_to_ground" : "camera.pixel_to_ground", h);
 }
 
 static void test_ground_to_pixel(void)
@@ -616,7 +688,39 @@ static void test_ground_to_pixel(void)
     t_info("round trip ground->pixel->ground <= 6 m: %ld points, max %.2f mm, max %.3f mm beyond "
            "the Q4 pixel quantization", n_rt, max_rt, max_rt_excess);
     CHECK(n_pix > 0 && n_rt > 0 && n_behind > 0);
-    t_digest("camera.ground_to_pixel", h);
+    t_digest(g_roll_mode ? "camera.roll_ground_to_pixel" : "camera.ground_to_pixel", h);
+}
+
+/* With roll: the horizon of several columns against the reference line,
+ * the topmost row over the image, and no ground point at or above it. */
+static void check_horizon_line(const fl_camera_t *cam, const ref_cam_t *rc, t_rng_t *rng,
+                               uint32_t *h, double *max_err)
+{
+    const fl_camera_model_t *m = &cam->model;
+    int32_t w16 = 16 * (m->width_px - 1), top, lo = INT32_MAX;
+    fl_point_t g;
+    int c, k;
+    for (c = 0; c < 8; c++) {
+        int32_t u = c == 0 ? 0 : c == 1 ? w16 : t_rng_range(rng, -16 * 1000, 16 * 2000);
+        int32_t hz = fl_camera_horizon_v_q4(cam, u);
+        double vref = 16.0 * ref_horizon_v(rc, u / 16.0);
+        *h = t_hash_i32(*h, hz);
+        CHECK(hz != INT32_MIN && hz != INT32_MAX);
+        if (fabs(hz - floor(vref)) > *max_err)
+            *max_err = fabs(hz - floor(vref));
+        if (fabs(vref - floor(vref + 0.5)) > 1e-3)
+            CHECK_EQ(hz, (long long)floor(vref)); /* exact */
+        else
+            CHECK_LE(fabs(hz - floor(vref)), 1.0);
+        if (u >= 0 && u <= w16) {
+            lo = hz < lo ? hz : lo;
+            for (k = 0; k < 4; k++)
+                CHECK(!fl_camera_pixel_to_ground(cam, u, hz - k * 37, &g));
+        }
+    }
+    top = fl_camera_horizon_top_v_q4(cam, 0, w16);
+    CHECK_LE(top, lo); /* no column of the image has its horizon above it */
+    CHECK(top == fl_camera_horizon_v_q4(cam, 0) || top == fl_camera_horizon_v_q4(cam, w16));
 }
 
 static void test_horizon(void)
@@ -638,10 +742,18 @@ static void test_horizon(void)
             int32_t hz, hz0;
             double vref;
             fl_point_t g;
-            CHECK_EQ(fl_camera_init(&cam, m, &ps), FL_OK);
+            if (fl_camera_init(&cam, m, &ps) != FL_OK)
+                t_fail_msg(__FILE__, __LINE__, "%s pose %d (%d %d %d %d %d %d %d): init failed", m->name, k,
+                           (int)ps.neck_height_mm, ps.head_pitch, ps.head_yaw, ps.pitch_offset,
+                           ps.roll_offset, ps.torso_pitch, ps.torso_roll);
             ref_init(&rc, m, &ps);
             hz0 = fl_camera_horizon_v_q4(&cam, 0);
             h = t_hash_i32(h, hz0);
+            if (g_roll_mode) {
+                check_horizon_line(&cam, &rc, &rng, &h, &max_err);
+                n++;
+                continue;
+            }
             for (c = 0; c < 4; c++) {
                 hz = fl_camera_horizon_v_q4(&cam, t_rng_range(&rng, -16 * 1000, 16 * 2000));
                 CHECK_EQ(hz, hz0);
@@ -664,7 +776,7 @@ static void test_horizon(void)
     /* looking straight down / up: the whole column or none of it */
     {
         const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-640");
-        fl_camera_pose_t ps = {450, 0, 0, 0};
+        fl_camera_pose_t ps = {450, 0, 0, 0, 0, 0, 0};
         fl_camera_t cam;
         fl_point_t g;
         int32_t u = 0, v = 0;
@@ -686,7 +798,7 @@ static void test_horizon(void)
         }
     }
     t_info("horizon: %ld poses, max |h - floor(16 v_ref)| = %.0f Q4", n, max_err);
-    t_digest("camera.horizon", h);
+    t_digest(g_roll_mode ? "camera.roll_horizon" : "camera.horizon", h);
 }
 
 /* Odd and far inputs: no crash, documented false results, no overflow. */
@@ -700,7 +812,7 @@ static void test_extremes(void)
     uint32_t h = t_hash_init();
     for (mi = 0; mi < fl_camera_model_count(); mi++) {
         const fl_camera_model_t *m = fl_camera_model_at(mi);
-        fl_camera_pose_t ps = {450, 0, 0, 0};
+        fl_camera_pose_t ps = {450, 0, 0, 0, 0, 0, 0};
         fl_camera_t cam;
         ref_cam_t rc;
         int32_t u, v;
@@ -831,6 +943,7 @@ static void test_foot_to_centre(void)
     fl_point_t g, c = {7, 7};
     int32_t u = 160 * 16, v = 200 * 16, u0, v0;
     uint32_t rg, rcen;
+    memset(&ps, 0, sizeof ps);
     ps.neck_height_mm = m->default_neck_height_mm;
     ps.pitch_offset = m->default_pitch_offset;
     ps.head_pitch = 0;
@@ -855,6 +968,333 @@ static void test_foot_to_centre(void)
     CHECK(u == u0 && v == -400 * 16 && c.x_mm == 7 && c.y_mm == 7);
 }
 
+/* ---- roll, torso, extrinsics ------------------------------------------------ */
+
+/* The sweeps above with torso pitch / roll (+-10 deg) and a roll offset
+ * (+-5 deg) on every pose, against the same reference and tolerances. */
+static void test_roll_pixel_to_ground(void)
+{
+    g_roll_mode = 1;
+    test_pixel_to_ground();
+    g_roll_mode = 0;
+}
+
+static void test_roll_ground_to_pixel(void)
+{
+    g_roll_mode = 1;
+    test_ground_to_pixel();
+    g_roll_mode = 0;
+}
+
+static void test_roll_horizon(void)
+{
+    g_roll_mode = 1;
+    test_horizon();
+    g_roll_mode = 0;
+}
+
+/* Zero torso angles and roll offset: the rotation and the centre are the
+ * integers of the head-only model (its formulas written out here), bit for
+ * bit, for every catalogue camera and random head poses. */
+static void test_roll_zero_is_head_only(void)
+{
+    size_t mi;
+    int k, i, j;
+    long n = 0;
+    t_rng_t rng;
+    t_rng_seed(&rng, 0x2e70u);
+    for (mi = 0; mi < fl_camera_model_count(); mi++) {
+        const fl_camera_model_t *m = fl_camera_model_at(mi);
+        for (k = 0; k < (t_quick ? 20 : 300); k++) {
+            fl_camera_pose_t ps = make_pose(m, k, &rng);
+            fl_camera_t cam;
+            fl_angle_t alpha = fl_angle_wrap((int32_t)m->mount_tilt + ps.head_pitch + ps.pitch_offset);
+            fl_angle_t theta = fl_angle_wrap((int32_t)ps.head_pitch + ps.pitch_offset);
+            int32_t sa = fl_sin_q30(alpha), ca = fl_cos_q30(alpha);
+            int32_t sy = fl_sin_q30(ps.head_yaw), cy = fl_cos_q30(ps.head_yaw);
+            int32_t st = fl_sin_q30(theta), ct = fl_cos_q30(theta);
+            int32_t r[3][3], p[3], xh;
+            int same = 1;
+            r[0][0] = fl_mul_q30(cy, ca); r[0][1] = -sy; r[0][2] = fl_mul_q30(cy, sa);
+            r[1][0] = fl_mul_q30(sy, ca); r[1][1] = cy;  r[1][2] = fl_mul_q30(sy, sa);
+            r[2][0] = -sa;                r[2][1] = 0;   r[2][2] = ca;
+            xh = fl_rshift_round((int64_t)m->mount_x_mm * ct + (int64_t)m->mount_z_mm * st, 14);
+            p[0] = fl_rshift_round((int64_t)xh * cy, 42);
+            p[1] = fl_rshift_round((int64_t)xh * sy, 42);
+            p[2] = ps.neck_height_mm * 16 +
+                   fl_rshift_round(-(int64_t)m->mount_x_mm * st + (int64_t)m->mount_z_mm * ct, 26);
+            CHECK_EQ(fl_camera_init(&cam, m, &ps), FL_OK);
+            for (i = 0; i < 3; i++) {
+                same &= cam.pos_q4[i] == p[i];
+                for (j = 0; j < 3; j++)
+                    same &= cam.rot_q30[i][j] == r[i][j];
+            }
+            if (!same)
+                t_fail_msg(__FILE__, __LINE__, "%s pose %d: not the head-only integers", m->name, k);
+            n++;
+        }
+    }
+    t_info("%ld poses without torso angles or roll offset: rotation and centre bit-identical to "
+           "the head-only model", n);
+}
+
+static void expect_init_ext(const fl_camera_model_t *m, const fl_camera_extrinsics_t *e,
+                            fl_status_t st)
+{
+    fl_camera_t cam;
+    fl_camera_pose_t good = {450, 0, 0, 0, 0, 0, 0};
+    CHECK_EQ(fl_camera_init(&cam, fl_camera_model_find("nao4-bottom-320"), &good), FL_OK);
+    CHECK_EQ(fl_camera_init_extrinsics(&cam, m, e), st);
+    if (st != FL_OK)
+        check_projects_nothing(&cam);
+}
+
+static void test_roll_invalid(void)
+{
+    const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-320");
+    fl_camera_pose_t ps = {450, 0, 0, 0, 0, 0, 0}, p2;
+    fl_camera_extrinsics_t e = {0, 0, 480, 0, 5000, 0}, e2;
+    fl_camera_model_t bad;
+    fl_camera_t cam;
+    CHECK(m != NULL);
+    if (!m)
+        return;
+    /* each new angle: |a| <= 45 deg */
+    p2 = ps; p2.torso_roll = FL_CAMERA_MAX_ROLL; expect_init(m, &p2, FL_OK);
+    p2.torso_roll = -FL_CAMERA_MAX_ROLL; expect_init(m, &p2, FL_OK);
+    p2 = ps; p2.torso_roll = FL_CAMERA_MAX_ROLL + 1; expect_init(m, &p2, FL_ERR_RANGE);
+    p2 = ps; p2.torso_roll = INT16_MIN; expect_init(m, &p2, FL_ERR_RANGE);
+    p2 = ps; p2.torso_pitch = -FL_CAMERA_MAX_ROLL - 1; expect_init(m, &p2, FL_ERR_RANGE);
+    p2 = ps; p2.roll_offset = FL_CAMERA_MAX_ROLL + 1; expect_init(m, &p2, FL_ERR_RANGE);
+    p2 = ps; p2.roll_offset = -FL_CAMERA_MAX_ROLL; expect_init(m, &p2, FL_OK);
+    /* the finished camera must be upright: a level camera rolled by 45 + 45
+     * deg is on its side */
+    p2 = ps; p2.head_pitch = (fl_angle_t)-m->mount_tilt;
+    p2.roll_offset = FL_CAMERA_MAX_ROLL; p2.torso_roll = FL_CAMERA_MAX_ROLL;
+    expect_init(m, &p2, FL_ERR_RANGE);
+    p2.torso_roll = fl_angle_from_mdeg(44000); expect_init(m, &p2, FL_OK);
+    /* optical axis pushed past the vertical by the torso */
+    p2 = ps; p2.head_pitch = (fl_angle_t)(FL_ANGLE_90 - m->mount_tilt - 100);
+    p2.torso_pitch = 200; expect_init(m, &p2, FL_ERR_RANGE);
+    p2.torso_pitch = 50; expect_init(m, &p2, FL_OK);
+    /* extrinsics */
+    CHECK_EQ(fl_camera_init_extrinsics(NULL, m, &e), FL_ERR_NULL);
+    expect_init_ext(m, NULL, FL_ERR_NULL);
+    expect_init_ext(NULL, &e, FL_ERR_NULL);
+    expect_init_ext(m, &e, FL_OK);
+    bad = *m; bad.width_px = 0; expect_init_ext(&bad, &e, FL_ERR_SIZE);
+    bad = *m; bad.focal_q4 = 0; expect_init_ext(&bad, &e, FL_ERR_RANGE);
+    e2 = e; e2.roll = FL_CAMERA_MAX_ROLL; expect_init_ext(m, &e2, FL_OK);
+    e2 = e; e2.roll = -FL_CAMERA_MAX_ROLL; expect_init_ext(m, &e2, FL_OK);
+    e2 = e; e2.roll = FL_CAMERA_MAX_ROLL + 1; expect_init_ext(m, &e2, FL_ERR_RANGE);
+    e2 = e; e2.roll = INT16_MIN; expect_init_ext(m, &e2, FL_ERR_RANGE);
+    e2 = e; e2.pitch = FL_ANGLE_90; expect_init_ext(m, &e2, FL_OK);
+    e2 = e; e2.pitch = FL_ANGLE_90 + 1; expect_init_ext(m, &e2, FL_ERR_RANGE);
+    e2 = e; e2.pitch = -FL_ANGLE_90 - 1; expect_init_ext(m, &e2, FL_ERR_RANGE);
+    e2 = e; e2.z_mm = 0; expect_init_ext(m, &e2, FL_ERR_RANGE);
+    e2 = e; e2.z_mm = FL_CAMERA_MAX_Z_MM; expect_init_ext(m, &e2, FL_OK);
+    e2 = e; e2.z_mm = FL_CAMERA_MAX_Z_MM + 1; expect_init_ext(m, &e2, FL_ERR_RANGE);
+    e2 = e; e2.x_mm = FL_CAMERA_MAX_XY_MM + 1; expect_init_ext(m, &e2, FL_ERR_RANGE);
+    e2 = e; e2.y_mm = -FL_CAMERA_MAX_XY_MM - 1; expect_init_ext(m, &e2, FL_ERR_RANGE);
+    e2 = e; e2.y_mm = INT32_MIN; expect_init_ext(m, &e2, FL_ERR_RANGE);
+    /* extremes still project without overflow: far corner, steep roll */
+    e2.x_mm = -FL_CAMERA_MAX_XY_MM; e2.y_mm = FL_CAMERA_MAX_XY_MM; e2.z_mm = FL_CAMERA_MAX_Z_MM;
+    e2.yaw = 12345; e2.pitch = 200; e2.roll = FL_CAMERA_MAX_ROLL;
+    CHECK_EQ(fl_camera_init_extrinsics(&cam, m, &e2), FL_OK);
+    {
+        fl_point_t g;
+        int32_t u, v, i;
+        static const int32_t ex[] = {INT32_MIN, -FL_CAMERA_MAX_OFFSET_Q4, 0, 1912,
+                                     FL_CAMERA_MAX_OFFSET_Q4, INT32_MAX};
+        for (i = 0; i < 36; i++) {
+            (void)fl_camera_pixel_to_ground(&cam, ex[i % 6], ex[i / 6], &g);
+            (void)fl_camera_horizon_v_q4(&cam, ex[i % 6]);
+        }
+        g.x_mm = FL_CAMERA_MAX_GROUND_MM;
+        g.y_mm = -FL_CAMERA_MAX_GROUND_MM;
+        (void)fl_camera_ground_to_pixel(&cam, g, &u, &v);
+        CHECK(fl_camera_pixel_to_ground(&cam, 2552, 3800, &g));
+    }
+}
+
+/* The sign conventions of camera.h, on the nao4 top camera looking ahead. */
+static void test_roll_signs(void)
+{
+    const fl_camera_model_t *m = fl_camera_model_find("nao4-top-640");
+    fl_camera_pose_t ps = {450, 0, 0, 0, 0, 0, 0};
+    fl_camera_t c0, c1;
+    fl_point_t g0, g1;
+    int32_t w16;
+    CHECK(m != NULL);
+    if (!m)
+        return;
+    w16 = 16 * (m->width_px - 1);
+    ps.head_pitch = fl_angle_from_mdeg(15000);
+    CHECK_EQ(fl_camera_init(&c0, m, &ps), FL_OK);
+    /* leaning right (NAO AngleX > 0): the horizon rises towards the right
+     * edge, the camera moves to the right (y < 0) */
+    ps.torso_roll = fl_angle_from_mdeg(5000);
+    CHECK_EQ(fl_camera_init(&c1, m, &ps), FL_OK);
+    CHECK_EQ(fl_camera_horizon_v_q4(&c0, 0), fl_camera_horizon_v_q4(&c0, w16));
+    CHECK_LE(fl_camera_horizon_v_q4(&c1, w16) + 16 * 40 + 1, fl_camera_horizon_v_q4(&c1, 0));
+    CHECK_LE(c1.pos_q4[1] + 1, -16 * 3);
+    /* roll offset of the same sign turns the image the same way */
+    ps.torso_roll = 0;
+    ps.roll_offset = fl_angle_from_mdeg(5000);
+    CHECK_EQ(fl_camera_init(&c1, m, &ps), FL_OK);
+    CHECK_LE(fl_camera_horizon_v_q4(&c1, w16) + 16 * 40 + 1, fl_camera_horizon_v_q4(&c1, 0));
+    CHECK_EQ(c1.pos_q4[1], c0.pos_q4[1]); /* about the optical axis: no shift */
+    /* leaning forward: the image centre sees the ground nearer */
+    ps.roll_offset = 0;
+    ps.torso_pitch = fl_angle_from_mdeg(5000);
+    CHECK_EQ(fl_camera_init(&c1, m, &ps), FL_OK);
+    CHECK(fl_camera_pixel_to_ground(&c0, m->cx_q4, m->cy_q4, &g0));
+    CHECK(fl_camera_pixel_to_ground(&c1, m->cx_q4, m->cy_q4, &g1));
+    CHECK_LE(g1.x_mm + 100 + 1, g0.x_mm);
+}
+
+/* ZYX reference of camera.h: R = Rz(yaw) Ry(pitch) Rx(roll); axis i = column i. */
+static void ref_init_ext(ref_cam_t *rc, const fl_camera_model_t *m, const fl_camera_extrinsics_t *e)
+{
+    double y = rad_of(e->yaw), p = rad_of(e->pitch), r = rad_of(e->roll);
+    double cy = cos(y), sy = sin(y), cp = cos(p), sp = sin(p), cr = cos(r), sr = sin(r);
+    double R[3][3];
+    int i;
+    R[0][0] = cy * cp; R[0][1] = cy * sp * sr - sy * cr; R[0][2] = cy * sp * cr + sy * sr;
+    R[1][0] = sy * cp; R[1][1] = sy * sp * sr + cy * cr; R[1][2] = sy * sp * cr - cy * sr;
+    R[2][0] = -sp;     R[2][1] = cp * sr;                R[2][2] = cp * cr;
+    for (i = 0; i < 3; i++) {
+        rc->axis[i][0] = R[0][i];
+        rc->axis[i][1] = R[1][i];
+        rc->axis[i][2] = R[2][i];
+    }
+    rc->p[0] = e->x_mm;
+    rc->p[1] = e->y_mm;
+    rc->p[2] = e->z_mm;
+    rc->f = m->focal_q4 / 16.0;
+    rc->cx = m->cx_q4 / 16.0;
+    rc->cy = m->cy_q4 / 16.0;
+    rc->tilt = p;
+}
+
+/* fl_camera_init_extrinsics against the ZYX reference (random positions,
+ * yaw, pitch -20..80 deg, roll +-45 deg), and filled from a head pose's
+ * reference kinematics (centre rounded to mm, angles from the reference
+ * axes): it must see the ground where the pose camera does. */
+static void test_extrinsics(void)
+{
+    size_t mi;
+    int k, i, j, nu = t_quick ? 5 : 11, nv = t_quick ? 4 : 9;
+    gstat_t st;
+    uint32_t h = t_hash_init();
+    t_rng_t rng;
+    double max_pose = 0, max_hz = 0;
+    long n_pose = 0;
+
+    memset(&st, 0, sizeof st);
+    t_rng_seed(&rng, 0xe7e7u);
+    for (mi = 0; mi < fl_camera_model_count(); mi++) {
+        const fl_camera_model_t *m = fl_camera_model_at(mi);
+        for (k = 0; k < (t_quick ? 4 : 60); k++) {
+            fl_camera_extrinsics_t e;
+            fl_camera_t cam;
+            ref_cam_t rc;
+            e.x_mm = t_rng_range(&rng, -300, 300);
+            e.y_mm = t_rng_range(&rng, -300, 300);
+            e.z_mm = t_rng_range(&rng, 100, 1000);
+            e.yaw = (fl_angle_t)t_rng_range(&rng, -32768, 32767);
+            e.pitch = (fl_angle_t)t_rng_range(&rng, -3641, 14563);
+            e.roll = (fl_angle_t)t_rng_range(&rng, -FL_CAMERA_MAX_ROLL, FL_CAMERA_MAX_ROLL);
+            CHECK_EQ(fl_camera_init_extrinsics(&cam, m, &e), FL_OK);
+            ref_init_ext(&rc, m, &e);
+            for (j = 0; j < nv; j++)
+                for (i = 0; i < nu; i++) {
+                    int32_t u = (int32_t)(16 * (m->width_px - 1) * i / (nu - 1));
+                    int32_t v = (int32_t)(16 * (m->height_px - 1) * j / (nv - 1));
+                    check_p2g(&cam, &rc, u, v, &st, &h);
+                }
+            for (i = 0; i < 3; i++) {
+                int32_t u = t_rng_range(&rng, 0, 16 * (m->width_px - 1));
+                int32_t hz = fl_camera_horizon_v_q4(&cam, u);
+                double vref = 16.0 * ref_horizon_v(&rc, u / 16.0);
+                h = t_hash_i32(h, hz);
+                if (hz == INT32_MIN || hz == INT32_MAX)
+                    continue;
+                if (fabs(hz - floor(vref)) > max_hz)
+                    max_hz = fabs(hz - floor(vref));
+                CHECK_LE(fabs(hz - floor(vref)), 1.0);
+            }
+        }
+        /* from a head pose with torso and roll, through the reference */
+        g_roll_mode = 1;
+        for (k = 0; k < (t_quick ? 4 : 40); k++) {
+            fl_camera_pose_t ps = make_pose(m, 24 + k, &rng);
+            fl_camera_extrinsics_t e;
+            fl_camera_t cp, ce;
+            ref_cam_t rc;
+            ref_init(&rc, m, &ps);
+            e.x_mm = (int32_t)lround(rc.p[0]);
+            e.y_mm = (int32_t)lround(rc.p[1]);
+            e.z_mm = (int32_t)lround(rc.p[2]);
+            /* ZYX angles of the reference axes (optical axis = column 0) */
+            e.yaw = fl_angle_from_urad((int32_t)lround(1e6 * atan2(rc.axis[0][1], rc.axis[0][0])));
+            e.pitch = fl_angle_from_urad((int32_t)lround(1e6 * asin(-rc.axis[0][2])));
+            e.roll = fl_angle_from_urad((int32_t)lround(1e6 * atan2(rc.axis[1][2], rc.axis[2][2])));
+            CHECK_EQ(fl_camera_init(&cp, m, &ps), FL_OK);
+            CHECK_EQ(fl_camera_init_extrinsics(&ce, m, &e), FL_OK);
+            for (i = 0; i < 9; i++) {
+                int32_t u = (int32_t)(16 * (m->width_px - 1) * (i % 3) / 2);
+                int32_t v = (int32_t)(16 * (m->height_px - 1) * (2 + i / 3) / 4);
+                fl_point_t g1, g2;
+                double r, d, tol;
+                if (!fl_camera_pixel_to_ground(&cp, u, v, &g1) ||
+                    !fl_camera_pixel_to_ground(&ce, u, v, &g2))
+                    continue;
+                r = hypot(g1.x_mm, g1.y_mm);
+                if (r > 6000)
+                    continue;
+                /* both cameras' own tolerance against the reference (1 mm
+                 * + 0.1% of range each), the centre rounded to mm (0.9 mm)
+                 * and 3 angles to binary units (each within 4.8e-5 rad),
+                 * which moves a ground point by up to 1.5e-4 * D^2 / z (D
+                 * camera-to-point distance, z camera height) */
+                d = hypot(g1.x_mm - g2.x_mm, g1.y_mm - g2.y_mm);
+                tol = 3.0 + 0.002 * r + 1.5e-4 * (r * r + rc.p[2] * rc.p[2]) / rc.p[2];
+                n_pose++;
+                if (d / tol > max_pose)
+                    max_pose = d / tol;
+                if (!(d <= tol))
+                    t_fail_msg(__FILE__, __LINE__, "%s pose %d: extrinsics camera %.1f mm off at %.0f mm",
+                               m->name, k, d, r);
+            }
+        }
+        g_roll_mode = 0;
+    }
+    t_info("extrinsics: %ld ground points <= 6 m, max error %.3f mm, max / (1 mm + 0.1%%) %.3f; "
+           "horizon max |h - floor(16 v_ref)| %.0f Q4", st.n_near, st.max_err_near, st.max_frac, max_hz);
+    t_info("extrinsics filled from head poses (torso, roll): %ld points, max |diff| / tolerance "
+           "%.3f", n_pose, max_pose);
+    CHECK(st.n_near > 0 && st.n_above > 0 && n_pose > 0);
+    t_digest("camera.extrinsics", h);
+}
+
+/* The own-model example of camera.h, as written there. */
+static void test_own_model_example(void)
+{
+    fl_camera_t cam;
+    fl_camera_model_t m = {"mycam", 640, 480, 8868, 5112, 3832, 0, 0, 0, 450, 0};
+    fl_camera_extrinsics_t e = {20, 0, 480, 0, fl_angle_from_mdeg(25000), fl_angle_from_mdeg(-2000)};
+    fl_point_t g;
+    CHECK_LE(fabs(m.focal_q4 - 16.0 * 320.0 / tan(30.0 * PI_D / 180.0)), 0.5);
+    CHECK_EQ(fl_camera_init_extrinsics(&cam, &m, &e), FL_OK);
+    /* the image centre looks 25 deg down from 480 mm: 1029 mm ahead */
+    CHECK(fl_camera_pixel_to_ground(&cam, m.cx_q4, m.cy_q4, &g));
+    CHECK_LE(fabs(g.x_mm - (20 + 480.0 / tan(25.0 * PI_D / 180.0))), 2.0);
+    CHECK_LE(abs(g.y_mm), 1);
+    /* rolled 2 deg to the right (left side down): the horizon falls towards the right */
+    CHECK_LE(fl_camera_horizon_v_q4(&cam, 0) + 16 * 10, fl_camera_horizon_v_q4(&cam, 16 * 639));
+}
+
 void suite_camera(void)
 {
     t_run("camera.catalogue", test_catalogue);
@@ -862,6 +1302,14 @@ void suite_camera(void)
     t_run("camera.pixel_to_ground", test_pixel_to_ground);
     t_run("camera.ground_to_pixel", test_ground_to_pixel);
     t_run("camera.horizon", test_horizon);
+    t_run("camera.roll_pixel_to_ground", test_roll_pixel_to_ground);
+    t_run("camera.roll_ground_to_pixel", test_roll_ground_to_pixel);
+    t_run("camera.roll_horizon", test_roll_horizon);
+    t_run("camera.roll_zero_is_head_only", test_roll_zero_is_head_only);
+    t_run("camera.roll_invalid", test_roll_invalid);
+    t_run("camera.roll_signs", test_roll_signs);
+    t_run("camera.extrinsics", test_extrinsics);
+    t_run("camera.own_model_example", test_own_model_example);
     t_run("camera.extremes", test_extremes);
     t_run("camera.polar", test_polar);
     t_run("camera.foot_to_centre", test_foot_to_centre);

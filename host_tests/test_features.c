@@ -188,7 +188,7 @@ static fl_camera_t cam;
 
 static void camera_down(const char *model, double pitch_deg)
 {
-    fl_camera_pose_t pose = {450, 0, 0, 0};
+    fl_camera_pose_t pose = {450, 0, 0, 0, 0, 0, 0};
     pose.head_pitch = fl_angle_from_mdeg((int32_t)lround(pitch_deg * 1000));
     CHECK_EQ(fl_camera_init(&cam, fl_camera_model_find(model), &pose), FL_OK);
 }

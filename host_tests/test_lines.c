@@ -385,7 +385,7 @@ static void test_width_check(void)
     enum { W = 320, H = 240 };
     uint8_t *rgb = malloc((size_t)W * H * 3);
     const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-320");
-    fl_camera_pose_t pose = {450, 0, 0, 0};
+    fl_camera_pose_t pose = {450, 0, 0, 0, 0, 0, 0};
     fl_camera_t cam;
     int k, i, in_wide = 0, in_line = 0;
     int32_t wq4;
@@ -444,7 +444,7 @@ static void test_luma(void)
     static const uint8_t FAINT[3] = {146, 186, 146}, YEL[3] = {186, 176, 60},
                          BACK[3] = {96, 92, 90}, BRIGHT[3] = {220, 220, 220};
     const fl_camera_model_t *m = fl_camera_model_find("nao4-top-320");
-    fl_camera_pose_t pose = {450, 0, 0, 0};
+    fl_camera_pose_t pose = {450, 0, 0, 0, 0, 0, 0};
     fl_camera_t cam;
     fl_lines_params_t lp;
     uint8_t *rgb = malloc((size_t)W * H * 3);

@@ -316,6 +316,7 @@ static int synth_labels(const fl_field_t *f, const fl_camera_model_t *m, int32_t
     fl_camera_pose_t pose;
     fl_camera_t cam;
     uint16_t i;
+    memset(&pose, 0, sizeof pose);
     pose.neck_height_mm = neck;
     pose.head_pitch = fl_angle_from_urad((int32_t)lround(rec->head_pitch_rad * 1e6));
     pose.head_yaw = fl_angle_from_urad((int32_t)lround(rec->head_yaw_rad * 1e6));

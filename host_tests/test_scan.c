@@ -175,7 +175,7 @@ static void test_border_painted(void)
         fl_image_t img;
         fl_camera_t cam;
         fl_camera_model_t m = *fl_camera_model_find("nao4-top-320");
-        fl_camera_pose_t pose = {460, 0, 0, 0};
+        fl_camera_pose_t pose = {460, 0, 0, 0, 0, 0, 0};
         int32_t hv;
         fl_image_init_packed(&img, FL_FMT_RGB888, rgb, PW, PH, 3 * PW);
         scan_init(1, 1);

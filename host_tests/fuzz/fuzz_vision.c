@@ -54,6 +54,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         m = &model;
     }
     field = fl_field_at((size_t)data[11] % fl_field_count());
+    memset(&pose, 0, sizeof pose);
     pose.neck_height_mm = m->default_neck_height_mm;
     pose.pitch_offset = m->default_pitch_offset;
     pose.head_pitch = (fl_angle_t)(int16_t)(data[7] | (data[8] << 8));

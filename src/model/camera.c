@@ -60,8 +60,19 @@
  *    tilt 0; bottom 48.8 forward, 23.81 up) are from memory of the v3.3
  *    kinematics page: uncertain by a few mm; the top tilt of 0 deg is
  *    uncertain by about 1 deg.
- *  - NAO v6: OV5640, HFOV 56.3 x VFOV 43.7 deg; same head geometry as v4:
- *    top 58.71 / 63.64 mm, 1.2 deg; bottom 50.71 / 17.74 mm, 39.7 deg.
+ *  - NAO v6: OV5640, HFOV 56.3 x VFOV 43.7 deg (67.4 deg diagonal); same
+ *    head geometry as v4: top 58.71 / 63.64 mm, 1.2 deg; bottom 50.71 /
+ *    17.74 mm, 39.7 deg.  Checked against the SoftBank Robotics
+ *    documentation: the OV5640 field of view on the NAOqi 2.8 "2D
+ *    Cameras" page (doc.aldebaran.com/2-8/family/pepper_technical/
+ *    video_2D_pep.html, the same sensor module), and the camera positions
+ *    (X, Z, WY of CameraTop / CameraBottom, composed as rotZ * rotY * rotX
+ *    like camera.h) on the NAO "Video camera" page
+ *    (doc.aldebaran.com/2-1/family/robots/video_robot.html, head 4.0).
+ *    The NAO v6 page itself was not available; that the v6 head keeps the
+ *    v4 placement is from memory of RoboCup team code.  1280x960 (the v6
+ *    camera's 30 fps mode): f = 640 / tan 28.15 deg = 1196.1 px; the
+ *    vertical field of view then comes out as 43.73 deg.
  *  - AIBO ERS-7: 208x160, HFOV 56.9 x VFOV 45.2 deg (f = 191.9 px).  The
  *    mounting is APPROXIMATE: the ERS-7 head has neck tilt, pan and a second
  *    (nod) tilt, which this model folds into one pitch; the camera sits in
@@ -70,7 +81,7 @@
  *    snout (tilt 0).  Expect errors of 5-10 mm and a few degrees: callers
  *    should fold the nod/neck-tilt split into neck_height and pitch_offset.
  * Integer values: f_q4 = round(16 f): nao3 5777 / 11554, nao4 4355 / 8709,
- * nao6 4784 / 9569 (320 / 640 wide), aibo 3071; cx_q4 = 8 (W - 1),
+ * nao6 4784 / 9569 / 19138 (320 / 640 / 1280 wide), aibo 3071; cx_q4 = 8 (W - 1),
  * cy_q4 = 8 (H - 1).
  */
 static const fl_camera_model_t fl_camera_catalogue[] = {
@@ -87,6 +98,8 @@ static const fl_camera_model_t fl_camera_catalogue[] = {
     {"nao6-bottom-320",  320, 240,  4784, 2552, 1912, 51,   18, 7227, 445, 0},
     {"nao6-top-640",     640, 480,  9569, 5112, 3832, 59,   64,  218, 445, 0},
     {"nao6-bottom-640",  640, 480,  9569, 5112, 3832, 51,   18, 7227, 445, 0},
+    {"nao6-top-1280",   1280, 960, 19138, 10232, 7672, 59,  64,  218, 445, 0},
+    {"nao6-bottom-1280",1280, 960, 19138, 10232, 7672, 51,  18, 7227, 445, 0},
     {"aibo-ers7",        208, 160,  3071, 1656, 1272, 81,  -15,    0, 160, 0},
     {"uva2013",          320, 240,  4405, 2552, 1912, 51,   18, 7227, 450, 1140},
 };
@@ -177,29 +190,9 @@ static int64_t fl_cam_floor_div64(int64_t n, int64_t d)
 
 /* ---- init ------------------------------------------------------------------ */
 
-/* Scaling and overflow.  Angles are binary angles summed in int32 and wrapped
- * with fl_angle_wrap.  sin/cos are Q2.30 in [-2^30, 2^30]; the products in R
- * use fl_mul_q30 (64-bit intermediate, rounded, |result| <= 2^30).
- * Position: mount_x*cos(theta) + mount_z*sin(theta) is mm * Q30 in int64,
- * |.| <= 2 * 1000 * 2^30 < 2^41; it is rounded to Q16 mm (>> 14, |.| < 2^27),
- * multiplied by cos/sin(yaw) Q30 (|.| < 2^57) and rounded to Q4 (>> 42).
- * The vertical part is rounded straight to Q4 (>> 26).  Each step rounds to
- * nearest (fl_rshift_round); the position is within 1/16 mm of exact. */
-fl_status_t fl_camera_init_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
-                               const fl_camera_pose_t *pose, uint32_t caller_cfg)
+/* The model checks shared by both inits. */
+static fl_status_t fl_cam_check_model(const fl_camera_model_t *model)
 {
-    fl_angle_t alpha, theta;
-    int32_t sa, ca, sy, cy, st, ct;
-    int64_t xh_q30, zh_q30;
-    int32_t xh_q16;
-
-    if (caller_cfg != FL_CONFIG_FINGERPRINT)
-        return FL_ERR_CONFIG;   /* *cam may have another layout: no write is safe */
-    if (!cam)
-        return FL_ERR_NULL;
-    memset(cam, 0, sizeof *cam); /* projects nothing until fully valid */
-    if (!model || !pose)
-        return FL_ERR_NULL;
     if (model->width_px <= 0 || model->height_px <= 0 ||
         model->width_px > FL_IMAGE_MAX_DIM || model->height_px > FL_IMAGE_MAX_DIM)
         return FL_ERR_SIZE;
@@ -211,10 +204,109 @@ fl_status_t fl_camera_init_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
     if (model->mount_x_mm < -FL_CAMERA_MAX_MOUNT_MM || model->mount_x_mm > FL_CAMERA_MAX_MOUNT_MM ||
         model->mount_z_mm < -FL_CAMERA_MAX_MOUNT_MM || model->mount_z_mm > FL_CAMERA_MAX_MOUNT_MM)
         return FL_ERR_RANGE;
+    return FL_OK;
+}
+
+static bool fl_cam_angle_ok(fl_angle_t a, int32_t limit) { return a >= -limit && a <= limit; }
+
+/* Q30 rotation matrices (right-handed; see camera.h for the signs). */
+static void fl_cam_rot_x(int32_t m[3][3], fl_angle_t a)
+{
+    int32_t s = fl_sin_q30(a), c = fl_cos_q30(a);
+    memset(m, 0, 9 * sizeof m[0][0]);
+    m[0][0] = (int32_t)1 << 30;
+    m[1][1] = c;
+    m[1][2] = -s;
+    m[2][1] = s;
+    m[2][2] = c;
+}
+
+static void fl_cam_rot_y(int32_t m[3][3], fl_angle_t a)
+{
+    int32_t s = fl_sin_q30(a), c = fl_cos_q30(a);
+    memset(m, 0, 9 * sizeof m[0][0]);
+    m[0][0] = c;
+    m[0][2] = s;
+    m[1][1] = (int32_t)1 << 30;
+    m[2][0] = -s;
+    m[2][2] = c;
+}
+
+/* out = a * b (Q30).  Scaling: |a_ij|, |b_ij| <= 2^30 (+1 after earlier
+ * roundings, clamped here), so each sum of 3 products is < 2^62; rounded to
+ * nearest and clamped to +-2^30.  A factor equal to the identity gives the
+ * other factor bit for bit (2^30 * x + 0 + 0, shifted back exactly). */
+static void fl_cam_mat_mul(int32_t out[3][3], const int32_t a[3][3], const int32_t b[3][3])
+{
+    int32_t t[3][3];
+    int i, j;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) {
+            int32_t v = fl_rshift_round((int64_t)a[i][0] * b[0][j] + (int64_t)a[i][1] * b[1][j] +
+                                            (int64_t)a[i][2] * b[2][j], 30);
+            t[i][j] = v > (1 << 30) ? (1 << 30) : (v < -(1 << 30) ? -(1 << 30) : v);
+        }
+    memcpy(out, t, sizeof t);
+}
+
+/* The finished camera must be upright: R22 = cos(pitch) cos(roll) > 0 (ZYX
+ * angles of the camera), i.e. its optical axis within 90 deg of the
+ * horizontal and its roll within 90 deg, so that the sky is at the top of
+ * every column (the horizon convention of camera.h); R22 = 0 only with
+ * R21 = 0 (looking straight up or down without roll, a case the horizon
+ * handles).  The 45 deg limits on the input angles alone do not ensure it
+ * (a torso lean adds to a steep head pitch), and near a vertical optical
+ * axis a small lean turns the horizon line far outside the image a lot,
+ * so the composite is not limited further. */
+static bool fl_cam_upright(const int32_t r[3][3])
+{
+    return r[2][2] > 0 || (r[2][2] == 0 && r[2][1] == 0);
+}
+
+/* Scaling and overflow.  Angles are binary angles summed in int32 and wrapped
+ * with fl_angle_wrap.  sin/cos are Q2.30 in [-2^30, 2^30]; the products in R
+ * use fl_mul_q30 (64-bit intermediate, rounded, |result| <= 2^30).
+ * Position: mount_x*cos(theta) + mount_z*sin(theta) is mm * Q30 in int64,
+ * |.| <= 2 * 1000 * 2^30 < 2^41; it is rounded to Q16 mm (>> 14, |.| < 2^27),
+ * multiplied by cos/sin(yaw) Q30 (|.| < 2^57) and rounded to Q4 (>> 42).
+ * The vertical part is rounded straight to Q4 (>> 26).  Each step rounds to
+ * nearest (fl_rshift_round); the position is within 1/16 mm of exact.
+ * Torso and roll offset (only when one of them is non-zero, so that a pose
+ * without them gives today's integers bit for bit, and the products by an
+ * identity factor are exact anyway): R = T * R_head * Rx(roll_offset) with
+ * T = Ry(torso_pitch) * Rx(torso_roll) (fl_cam_mat_mul), and the head offset
+ * h rotated by T: h in Q16 mm (|h_i| <= 1414 mm < 2^27 Q16, each within
+ * 2^-17 mm), times T (Q30) < 2^57 per term, sum < 2^59, rounded to Q4 once
+ * (>> 42), so the centre stays within 1/32 mm + 2^-15 mm of exact. */
+fl_status_t fl_camera_init_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
+                               const fl_camera_pose_t *pose, uint32_t caller_cfg)
+{
+    fl_angle_t alpha, theta;
+    int32_t sa, ca, sy, cy, st, ct;
+    int64_t xh_q30, zh_q30;
+    int32_t xh_q16, h[3];
+    int32_t r[3][3];
+    fl_status_t st_model;
+    int i;
+
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *cam may have another layout: no write is safe */
+    if (!cam)
+        return FL_ERR_NULL;
+    memset(cam, 0, sizeof *cam); /* projects nothing until fully valid */
+    if (!model || !pose)
+        return FL_ERR_NULL;
+    st_model = fl_cam_check_model(model);
+    if (st_model != FL_OK)
+        return st_model;
     if (pose->neck_height_mm < FL_CAMERA_NECK_MIN_MM || pose->neck_height_mm > FL_CAMERA_NECK_MAX_MM)
         return FL_ERR_RANGE;
     alpha = fl_angle_wrap((int32_t)model->mount_tilt + pose->head_pitch + pose->pitch_offset);
     if (alpha < -FL_ANGLE_90 || alpha > FL_ANGLE_90)
+        return FL_ERR_RANGE;
+    if (!fl_cam_angle_ok(pose->roll_offset, FL_CAMERA_MAX_ROLL) ||
+        !fl_cam_angle_ok(pose->torso_pitch, FL_CAMERA_MAX_ROLL) ||
+        !fl_cam_angle_ok(pose->torso_roll, FL_CAMERA_MAX_ROLL))
         return FL_ERR_RANGE;
     theta = fl_angle_wrap((int32_t)pose->head_pitch + pose->pitch_offset);
 
@@ -225,25 +317,114 @@ fl_status_t fl_camera_init_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
     st = fl_sin_q30(theta);
     ct = fl_cos_q30(theta);
 
-    cam->model = *model;
-    cam->pose = *pose;
-    cam->rot_q30[0][0] = fl_mul_q30(cy, ca);
-    cam->rot_q30[0][1] = -sy;
-    cam->rot_q30[0][2] = fl_mul_q30(cy, sa);
-    cam->rot_q30[1][0] = fl_mul_q30(sy, ca);
-    cam->rot_q30[1][1] = cy;
-    cam->rot_q30[1][2] = fl_mul_q30(sy, sa);
-    cam->rot_q30[2][0] = -sa;
-    cam->rot_q30[2][1] = 0;
-    cam->rot_q30[2][2] = ca;
+    /* head: R = Rz(yaw) * Ry(alpha) */
+    r[0][0] = fl_mul_q30(cy, ca);
+    r[0][1] = -sy;
+    r[0][2] = fl_mul_q30(cy, sa);
+    r[1][0] = fl_mul_q30(sy, ca);
+    r[1][1] = cy;
+    r[1][2] = fl_mul_q30(sy, sa);
+    r[2][0] = -sa;
+    r[2][1] = 0;
+    r[2][2] = ca;
 
-    /* camera centre: head pitch theta, then yaw, then up by the neck */
+    /* camera centre relative to the head pitch axis: head pitch theta, then yaw */
     xh_q30 = (int64_t)model->mount_x_mm * ct + (int64_t)model->mount_z_mm * st;
     zh_q30 = -(int64_t)model->mount_x_mm * st + (int64_t)model->mount_z_mm * ct;
     xh_q16 = fl_rshift_round(xh_q30, 14);
-    cam->pos_q4[0] = fl_rshift_round((int64_t)xh_q16 * cy, 42);
-    cam->pos_q4[1] = fl_rshift_round((int64_t)xh_q16 * sy, 42);
-    cam->pos_q4[2] = pose->neck_height_mm * 16 + fl_rshift_round(zh_q30, 26);
+    h[0] = fl_rshift_round((int64_t)xh_q16 * cy, 42);
+    h[1] = fl_rshift_round((int64_t)xh_q16 * sy, 42);
+    h[2] = fl_rshift_round(zh_q30, 26);
+
+    if (pose->roll_offset != 0) {
+        int32_t m[3][3];
+        fl_cam_rot_x(m, pose->roll_offset);
+        fl_cam_mat_mul(r, (const int32_t(*)[3])r, (const int32_t(*)[3])m);
+    }
+    if (pose->torso_pitch != 0 || pose->torso_roll != 0) {
+        int32_t ty[3][3], tx[3][3], t[3][3];
+        int32_t h16[3];
+        fl_cam_rot_y(ty, pose->torso_pitch);
+        fl_cam_rot_x(tx, pose->torso_roll);
+        fl_cam_mat_mul(t, (const int32_t(*)[3])ty, (const int32_t(*)[3])tx);
+        fl_cam_mat_mul(r, (const int32_t(*)[3])t, (const int32_t(*)[3])r);
+        /* the head offset again in Q16, turned by T and rounded to Q4 once */
+        h16[0] = fl_rshift_round((int64_t)xh_q16 * cy, 30);
+        h16[1] = fl_rshift_round((int64_t)xh_q16 * sy, 30);
+        h16[2] = fl_rshift_round(zh_q30, 14);
+        for (i = 0; i < 3; i++)
+            h[i] = fl_rshift_round((int64_t)t[i][0] * h16[0] + (int64_t)t[i][1] * h16[1] +
+                                       (int64_t)t[i][2] * h16[2], 42);
+    }
+    if (!fl_cam_upright((const int32_t(*)[3])r))
+        return FL_ERR_RANGE;
+
+    cam->model = *model;
+    cam->pose = *pose;
+    memcpy(cam->rot_q30, r, sizeof r);
+    cam->pos_q4[0] = h[0];
+    cam->pos_q4[1] = h[1];
+    cam->pos_q4[2] = pose->neck_height_mm * 16 + h[2];
+    return FL_OK;
+}
+
+/* Scaling: x, y within +-FL_CAMERA_MAX_XY_MM (2000 mm = 32000 Q4 < 2^15) and
+ * z in [1, FL_CAMERA_MAX_Z_MM] (4000 mm = 64000 Q4 < 2^16): the bounds that
+ * pixel_to_ground's analysis assumes.  R = Rz(yaw) * Ry(pitch) * Rx(roll),
+ * the yaw-pitch part as in fl_camera_init (so yaw and pitch alone give the
+ * same matrix as a head pose with the same angles), then the roll product. */
+fl_status_t fl_camera_init_extrinsics_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
+                                          const fl_camera_extrinsics_t *ext, uint32_t caller_cfg)
+{
+    int32_t sp, cp, sy, cy;
+    int32_t r[3][3];
+    fl_status_t st_model;
+
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *cam may have another layout: no write is safe */
+    if (!cam)
+        return FL_ERR_NULL;
+    memset(cam, 0, sizeof *cam);
+    if (!model || !ext)
+        return FL_ERR_NULL;
+    st_model = fl_cam_check_model(model);
+    if (st_model != FL_OK)
+        return st_model;
+    if (ext->x_mm < -FL_CAMERA_MAX_XY_MM || ext->x_mm > FL_CAMERA_MAX_XY_MM ||
+        ext->y_mm < -FL_CAMERA_MAX_XY_MM || ext->y_mm > FL_CAMERA_MAX_XY_MM ||
+        ext->z_mm < 1 || ext->z_mm > FL_CAMERA_MAX_Z_MM)
+        return FL_ERR_RANGE;
+    if (!fl_cam_angle_ok(ext->pitch, FL_ANGLE_90) || !fl_cam_angle_ok(ext->roll, FL_CAMERA_MAX_ROLL))
+        return FL_ERR_RANGE;
+    sp = fl_sin_q30(ext->pitch);
+    cp = fl_cos_q30(ext->pitch);
+    sy = fl_sin_q30(ext->yaw);
+    cy = fl_cos_q30(ext->yaw);
+    r[0][0] = fl_mul_q30(cy, cp);
+    r[0][1] = -sy;
+    r[0][2] = fl_mul_q30(cy, sp);
+    r[1][0] = fl_mul_q30(sy, cp);
+    r[1][1] = cy;
+    r[1][2] = fl_mul_q30(sy, sp);
+    r[2][0] = -sp;
+    r[2][1] = 0;
+    r[2][2] = cp;
+    if (ext->roll != 0) {
+        int32_t m[3][3];
+        fl_cam_rot_x(m, ext->roll);
+        fl_cam_mat_mul(r, (const int32_t(*)[3])r, (const int32_t(*)[3])m);
+    }
+    if (!fl_cam_upright((const int32_t(*)[3])r))
+        return FL_ERR_RANGE;
+    cam->model = *model;
+    cam->pose.neck_height_mm = ext->z_mm;
+    cam->pose.head_pitch = ext->pitch;
+    cam->pose.head_yaw = ext->yaw;
+    cam->pose.roll_offset = ext->roll;
+    memcpy(cam->rot_q30, r, sizeof r);
+    cam->pos_q4[0] = ext->x_mm * 16;
+    cam->pos_q4[1] = ext->y_mm * 16;
+    cam->pos_q4[2] = ext->z_mm * 16;
     return FL_OK;
 }
 
@@ -372,19 +553,23 @@ bool fl_camera_ground_to_pixel(const fl_camera_t *cam, fl_point_t ground,
 /* ---- horizon ------------------------------------------------------------------ */
 
 /* Scaling and overflow.  The ray test of pixel_to_ground is
- * d_z = R20 f + R22 (cy - v) < 0 (R21 = 0: no roll), i.e., with R22 > 0,
- * v - cy > R20 f / R22  <=>  v - cy > q = floor(R20 f / R22)  (v integer).
- * R20 f is Q30 * Q4 < 2^50 in int64; the floor division is exact.  So the
- * result cy + q is exact for the integer test, not just close: every
- * v_q4 > result (within the accepted pixel range) has a downward ray and
- * every v_q4 <= result has not.  When q is outside +-FL_CAMERA_MAX_OFFSET_Q4
- * (no accepted pixel of the column is on the other side), or when R22 = 0
- * (optical axis vertical), the result is INT32_MIN (the whole column looks
- * down) or INT32_MAX (none does).  Columns outside the accepted pixel range
- * and failed cameras give INT32_MAX.  The row does not depend on u_q4. */
+ * d_z = R20 f + R21 b + R22 (cy - v) < 0 with b = cx - u, i.e., with
+ * R22 > 0, v - cy > n / R22 with n = R20 f + R21 b  <=>  v - cy > q =
+ * floor(n / R22)  (v integer).  R20 f is Q30 * Q4 < 2^50 and |R21 b| <=
+ * 2^30 * 2^28 = 2^58 (the column is checked first), so n < 2^59 in int64;
+ * the floor division is exact.  So the result cy + q is exact for the
+ * integer test, not just close: every v_q4 > result (within the accepted
+ * pixel range) has a downward ray and every v_q4 <= result has not.  When
+ * q is outside +-FL_CAMERA_MAX_OFFSET_Q4 (no accepted pixel of the column
+ * is on the other side), or when R22 = 0 (optical axis vertical; init keeps
+ * R21 = 0 then), the result is INT32_MIN (the whole column
+ * looks down) or INT32_MAX (none does).  Columns outside the accepted pixel
+ * range and failed cameras give INT32_MAX.  Without roll R21 = 0 and the
+ * row does not depend on u_q4; with roll it is linear in u_q4 (slope
+ * -R21 / R22), so the extremes over a span of columns are at its two ends. */
 int32_t fl_camera_horizon_v_q4(const fl_camera_t *cam, int32_t u_q4)
 {
-    int64_t r20, r22, du, q;
+    int64_t r20, r21, r22, du, q;
 
     if (!cam || cam->pos_q4[2] <= 0)
         return INT32_MAX;
@@ -392,15 +577,27 @@ int32_t fl_camera_horizon_v_q4(const fl_camera_t *cam, int32_t u_q4)
     if (du > FL_CAMERA_MAX_OFFSET_Q4 || du < -FL_CAMERA_MAX_OFFSET_Q4)
         return INT32_MAX;
     r20 = cam->rot_q30[2][0];
+    r21 = cam->rot_q30[2][1];
     r22 = cam->rot_q30[2][2];
     if (r22 <= 0) /* vertical axis (init keeps R22 >= 0) */
         return r20 < 0 ? INT32_MIN : INT32_MAX;
-    q = fl_cam_floor_div64(r20 * cam->model.focal_q4, r22);
+    q = fl_cam_floor_div64(r20 * cam->model.focal_q4 - r21 * du, r22);
     if (q >= FL_CAMERA_MAX_OFFSET_Q4)
         return INT32_MAX;
     if (q < -FL_CAMERA_MAX_OFFSET_Q4 - 1)
         return INT32_MIN;
     return (int32_t)(cam->model.cy_q4 + q);
+}
+
+/* Topmost horizon row over the columns u0_q4..u1_q4 (the smaller of the
+ * two ends, the row being linear in u): every pixel of those columns below
+ * it may see the ground.  INT32_MIN / INT32_MAX as fl_camera_horizon_v_q4
+ * (INT32_MIN when either end column looks down entirely). */
+int32_t fl_camera_horizon_top_v_q4(const fl_camera_t *cam, int32_t u0_q4, int32_t u1_q4)
+{
+    int32_t a = fl_camera_horizon_v_q4(cam, u0_q4);
+    int32_t b = fl_camera_horizon_v_q4(cam, u1_q4);
+    return a < b ? a : b;
 }
 
 /* ---- polar ------------------------------------------------------------------- */

@@ -196,10 +196,15 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
     s->start_v = 0;
     s->below_horizon = false;
     if (camera != NULL) {
-        int32_t hv = fl_camera_horizon_v_q4(camera, (img->width - 1) * 8);
+        /* the topmost horizon row over the width (the same row everywhere
+         * without roll), so that no column's ground is cut off; the whole
+         * image sees ground when the lowest one is above it */
+        int32_t h0 = fl_camera_horizon_v_q4(camera, 0);
+        int32_t h1 = fl_camera_horizon_v_q4(camera, (img->width - 1) * 16);
+        int32_t hv = h0 < h1 ? h0 : h1, hlow = h0 < h1 ? h1 : h0;
         if (hv == INT32_MAX)
             s->start_v = img->height;
-        else if (hv == INT32_MIN || hv < -16)
+        else if (hlow == INT32_MIN || hlow < -16)
             s->below_horizon = true;
         if (hv != INT32_MAX && hv != INT32_MIN) {
             int32_t v = (hv >> 4) + 1 - s->params.horizon_margin_px;

@@ -39,9 +39,13 @@ void fl_vision_view_from_camera(const fl_camera_t *cam, int32_t margin_px,
     u1 = (w - 1) * 16 - m;
     v0 = m;
     v1 = (h - 1) * 16 - m;
-    hz = fl_camera_horizon_v_q4(cam, (u0 + u1) / 2);
-    if (hz == INT32_MAX)
+    /* the lowest horizon row over u0..u1 (one row without roll; with roll
+     * the line's lower end), so that the whole top edge sees ground */
+    hz = fl_camera_horizon_v_q4(cam, u0);
+    i = fl_camera_horizon_v_q4(cam, u1);
+    if (hz == INT32_MAX || i == INT32_MAX)
         return;
+    hz = i > hz ? i : hz;
     if (hz != INT32_MIN && hz + m > v0)
         v0 = hz + m;
     if (v0 >= v1)

@@ -33,7 +33,7 @@ void bench_adversarial(bench_ctx_t *ctx)
         goto out;
     for (si = 0; si < 2; si++) {
         const fl_camera_model_t *m = fl_camera_model_find(cams[si]);
-        fl_camera_pose_t pose = {m->default_neck_height_mm, 0, 0, m->default_pitch_offset};
+        fl_camera_pose_t pose = {m->default_neck_height_mm, 0, 0, m->default_pitch_offset, 0, 0, 0};
         fl_camera_t cam;
         fl_camera_init(&cam, m, &pose);
         for (k = 0; k < ADV_COUNT; k++) {

@@ -90,7 +90,7 @@ static double bench_isqrt_libm(void)
 static double bench_project_fl(void)
 {
     fl_camera_t cam;
-    fl_camera_pose_t pose = {450, 0, 0, 0};
+    fl_camera_pose_t pose = {450, 0, 0, 0, 0, 0, 0};
     int64_t acc = 0;
     uint32_t i;
     double t0;

@@ -121,7 +121,7 @@ static int bv_make_noise(bv_frame_t *f, const char *name, int w, int h, int clas
     uint64_t s = 0x9E3779B97F4A7C15ULL;
     size_t i, n = (size_t)w * (size_t)h;
     const char *camn = w == 640 ? "nao4-top-640" : "nao4-top-320";
-    fl_camera_pose_t pose = {450, 0, 0, 0};
+    fl_camera_pose_t pose = {450, 0, 0, 0, 0, 0, 0};
     memset(f, 0, sizeof *f);
     snprintf(f->name, sizeof f->name, "%s", name);
     f->w = w;

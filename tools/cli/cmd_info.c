@@ -85,8 +85,11 @@ static int list_cameras(void)
 static int project_usage(void)
 {
     fprintf(stderr,
-            "usage: fieldloc project [--camera NAME] [--neck MM] [--head PITCH_RAD YAW_RAD] U V\n"
-            "  (neck height and pitch offset default to the camera model's calibrated pose)\n"
+            "usage: fieldloc project [--camera NAME] [--neck MM] [--head PITCH_RAD YAW_RAD]\n"
+            "                        [--tilt TORSO_PITCH_RAD TORSO_ROLL_RAD ROLL_OFFSET_RAD] U V\n"
+            "  (neck height and pitch offset default to the camera model's calibrated pose;\n"
+            "  --tilt: the IMU's AngleY, AngleX and a calibration roll, camera.h's signs,\n"
+            "  each -0.7854..0.7854 rad)\n"
             "  --neck 50..2000 mm; --head within the NAO head joints (HeadPitch\n"
             "  -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad; non-NAO camera: its\n"
             "  tilt limit); U V a pixel of the image (-0.5..width-0.5, -0.5..height-0.5)\n");
@@ -96,7 +99,7 @@ static int project_usage(void)
 int cmd_project(int argc, char **argv)
 {
     const char *cam_name = "nao4-bottom-320";
-    fl_camera_pose_t pose = {0, 0, 0, 0};
+    fl_camera_pose_t pose = {0, 0, 0, 0, 0, 0, 0};
     int32_t neck_mm = -1;
     fl_camera_t cam;
     const fl_camera_model_t *m;
@@ -118,12 +121,26 @@ int cmd_project(int argc, char **argv)
             if (arg_double("project", "--head pitch", head_text[0], -1e9, 1e9, NULL, &pitch) ||
                 arg_double("project", "--head yaw", head_text[1], -1e9, 1e9, NULL, &yaw))
                 return 2;
+        } else if (!strcmp(argv[i], "--tilt") && i + 3 < argc) {
+            /* the IMU's AngleY and AngleX and a calibration roll (camera.h's
+             * signs), each within the camera model's limit */
+            double t[3];
+            int k;
+            for (k = 0; k < 3; k++) {
+                static const char *const what[3] = {"--tilt torso pitch", "--tilt torso roll",
+                                                    "--tilt roll offset"};
+                if (arg_double("project", what[k], argv[++i], -0.7854, 0.7854, "rad", &t[k]) != 0)
+                    return 2;
+            }
+            pose.torso_pitch = angle_from_rad(t[0]);
+            pose.torso_roll = angle_from_rad(t[1]);
+            pose.roll_offset = angle_from_rad(t[2]);
         } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             project_usage();
             return 0;
         } else if (argv[i][0] == '-' && argv[i][1] != '.' &&
                    !(argv[i][1] >= '0' && argv[i][1] <= '9'))
-            return arg_unknown("project", argv[i], "--camera=1 --neck=1 --head=2");
+            return arg_unknown("project", argv[i], "--camera=1 --neck=1 --head=2 --tilt=3");
         else if (npos < 2)
             uv_text[npos++] = argv[i];
         else

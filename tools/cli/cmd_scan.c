@@ -83,7 +83,7 @@ int cmd_scan(int argc, char **argv)
     static fl_color_table_t colors;
     static fl_scan_t scan;
     fl_camera_t cam;
-    fl_camera_pose_t pose = {460, 0, 0, 0};
+    fl_camera_pose_t pose = {460, 0, 0, 0, 0, 0, 0};
     int use_cam = 0, uva = 0, adapt = 0, quiet = 0, repeat = 1, k, i;
     double pitch = 0, yaw = 0;
     const char *head_text[2] = {NULL, NULL};

@@ -54,6 +54,7 @@ fl_status_t det_camera(fl_camera_t *cam, const fl_camera_model_t *m,
     fl_camera_pose_t pose;
     if (!m)
         return FL_ERR_NULL;
+    memset(&pose, 0, sizeof pose);
     pose.neck_height_mm = m->default_neck_height_mm;
     pose.pitch_offset = m->default_pitch_offset;
     pose.head_pitch = fl_angle_from_urad((int32_t)lround(head_pitch_rad * 1e6));

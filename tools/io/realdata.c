@@ -456,6 +456,7 @@ void rd_uva_camera_pose(const rd_uva_record_t *r, const fl_camera_model_t *m,
 {
     if (!r || !m || !pose)
         return;
+    memset(pose, 0, sizeof *pose);
     pose->neck_height_mm = m->default_neck_height_mm;
     pose->head_pitch = rd_angle_from_rad(r->head_pitch_rad);
     pose->head_yaw = rd_angle_from_rad(r->head_yaw_rad);

@@ -1113,6 +1113,37 @@ static void build_aibo_walls(world_t *w)
 
 /* ---- world: build ---------------------------------------------------------------- */
 
+/* The torso and roll offset of camera.h on the head-only camera: R (camera
+ * -> robot) becomes T R Rx(roll_offset) and the centre offset from the
+ * head pitch axis c becomes T c, T = Ry(torso_pitch) Rx(torso_roll). */
+static void world_tilt(const render_scene_t *sc, double R[3][3], double c[3])
+{
+    double cr = rcos(sc->head.roll_offset), sr = rsin(sc->head.roll_offset);
+    double tp = rcos(sc->head.torso_pitch), sp = rsin(sc->head.torso_pitch);
+    double tr = rcos(sc->head.torso_roll), st = rsin(sc->head.torso_roll);
+    double T[3][3], A[3][3], v[3];
+    int i, j, k;
+    for (i = 0; i < 3; i++) { /* R Rx(roll_offset): columns y, z turn */
+        double y = R[i][1], z = R[i][2];
+        R[i][1] = cr * y + sr * z;
+        R[i][2] = -sr * y + cr * z;
+    }
+    /* T = Ry(tp) Rx(tr) */
+    T[0][0] = tp; T[0][1] = sp * st;  T[0][2] = sp * tr;
+    T[1][0] = 0;  T[1][1] = tr;       T[1][2] = -st;
+    T[2][0] = -sp; T[2][1] = tp * st; T[2][2] = tp * tr;
+    for (i = 0; i < 3; i++) {
+        for (j = 0; j < 3; j++) {
+            A[i][j] = 0;
+            for (k = 0; k < 3; k++)
+                A[i][j] += T[i][k] * R[k][j];
+        }
+        v[i] = T[i][0] * c[0] + T[i][1] * c[1] + T[i][2] * c[2];
+    }
+    memcpy(R, A, sizeof A);
+    memcpy(c, v, sizeof v);
+}
+
 int world_build(world_t *w, const render_scene_t *sc)
 {
     fl_camera_t fc;
@@ -1156,7 +1187,10 @@ int world_build(world_t *w, const render_scene_t *sc)
     zh = -m->mount_x_mm * st + m->mount_z_mm * ct;
     w->cam_r[0] = xh * cy;
     w->cam_r[1] = xh * sy;
-    w->cam_r[2] = sc->head.neck_height_mm + zh;
+    w->cam_r[2] = zh;
+    if (sc->head.roll_offset != 0 || sc->head.torso_pitch != 0 || sc->head.torso_roll != 0)
+        world_tilt(sc, R, w->cam_r);
+    w->cam_r[2] += sc->head.neck_height_mm;
     w->rc = rcos(sc->robot_heading);
     w->rs = rsin(sc->robot_heading);
     w->P[0] = sc->robot_x_mm + w->rc * w->cam_r[0] - w->rs * w->cam_r[1];
@@ -1167,7 +1201,10 @@ int world_build(world_t *w, const render_scene_t *sc)
         w->M[1][j] = w->rs * R[0][j] + w->rc * R[1][j];
         w->M[2][j] = R[2][j];
     }
-    w->horizon_v = ca > 1e-12 ? w->cy - w->f * sa / ca : (sa > 0 ? -1e9 : 1e9);
+    if (R[2][1] == 0.0)
+        w->horizon_v = ca > 1e-12 ? w->cy - w->f * sa / ca : (sa > 0 ? -1e9 : 1e9);
+    else /* rolled: the row at the principal point's column */
+        w->horizon_v = R[2][2] > 1e-12 ? w->cy + w->f * R[2][0] / R[2][2] : (R[2][0] < 0 ? -1e9 : 1e9);
 
     w->carpet_hx = fl_field_carpet_half_x_mm(w->field);
     w->carpet_hy = fl_field_carpet_half_y_mm(w->field);

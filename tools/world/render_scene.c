@@ -10,6 +10,8 @@
  *   format rgb|yuyv|planar
  *   robot X_MM Y_MM HEADING     robot pose, field frame
  *   head NECK_MM PITCH YAW PITCH_OFFSET
+ *   tilt TORSO_PITCH TORSO_ROLL ROLL_OFFSET   camera.h's IMU angles and
+ *                               roll offset (written only when not all 0)
  *   seed N                      per-frame noise
  *   world_seed N                room clutter, carpet texture, shadows
  *   background 0|1
@@ -45,6 +47,11 @@ int render_scene_write(FILE *f, const render_scene_t *sc)
             (int)sc->head.neck_height_mm, (int)sc->head.head_pitch, (int)sc->head.head_yaw,
             (int)sc->head.pitch_offset, fl_angle_to_urad(sc->head.head_pitch) / 1e6,
             fl_angle_to_urad(sc->head.head_yaw) / 1e6, fl_angle_to_urad(sc->head.pitch_offset) / 1e6);
+    if (sc->head.torso_pitch != 0 || sc->head.torso_roll != 0 || sc->head.roll_offset != 0)
+        fprintf(f, "tilt %d %d %d   # torso pitch %.4f roll %.4f, roll offset %.4f rad\n",
+                (int)sc->head.torso_pitch, (int)sc->head.torso_roll, (int)sc->head.roll_offset,
+                fl_angle_to_urad(sc->head.torso_pitch) / 1e6, fl_angle_to_urad(sc->head.torso_roll) / 1e6,
+                fl_angle_to_urad(sc->head.roll_offset) / 1e6);
     fprintf(f, "seed %lu\n", (unsigned long)sc->seed);
     fprintf(f, "world_seed %lu\n", (unsigned long)sc->world_seed);
     fprintf(f, "background %d\n", sc->background);
@@ -115,6 +122,13 @@ int render_scene_read(FILE *f, render_scene_t *sc, char *err, int err_len)
             s.head.head_yaw = (fl_angle_t)v[2];
             s.head.pitch_offset = (fl_angle_t)v[3];
             have_head = 1;
+        } else if (!strcmp(key, "tilt")) {
+            if (sscanf(line, "%*s %ld %ld %ld", &v[0], &v[1], &v[2]) != 3 ||
+                !angle_ok(v[0]) || !angle_ok(v[1]) || !angle_ok(v[2]))
+                BAD("tilt TORSO_PITCH TORSO_ROLL ROLL_OFFSET");
+            s.head.torso_pitch = (fl_angle_t)v[0];
+            s.head.torso_roll = (fl_angle_t)v[1];
+            s.head.roll_offset = (fl_angle_t)v[2];
         } else if (!strcmp(key, "seed") || !strcmp(key, "world_seed")) {
             unsigned long u;
             if (sscanf(line, "%*s %lu", &u) != 1)

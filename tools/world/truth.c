@@ -227,6 +227,9 @@ int truth_write(FILE *f, const truth_t *t)
     fprintf(f, "robot %d %d %d\n", (int)t->robot_x_mm, (int)t->robot_y_mm, (int)t->robot_heading);
     fprintf(f, "head %d %d %d %d\n", (int)t->head.neck_height_mm, (int)t->head.head_pitch,
             (int)t->head.head_yaw, (int)t->head.pitch_offset);
+    if (t->head.torso_pitch != 0 || t->head.torso_roll != 0 || t->head.roll_offset != 0)
+        fprintf(f, "tilt %d %d %d\n", (int)t->head.torso_pitch, (int)t->head.torso_roll,
+                (int)t->head.roll_offset);
     fprintf(f, "camera_centre %.3f %.3f %.3f\n", t->cam_x_mm, t->cam_y_mm, t->cam_z_mm);
     fprintf(f, "horizon %.3f\n", t->horizon_v);
     write_row(f, "border", t->border_v, t->width);
@@ -309,6 +312,12 @@ int truth_read(FILE *f, truth_t *t, char *err, int err_len)
             t->head.head_pitch = (fl_angle_t)a[1];
             t->head.head_yaw = (fl_angle_t)a[2];
             t->head.pitch_offset = (fl_angle_t)a[3];
+        } else if (!strcmp(key, "tilt")) {
+            if (sscanf(rest, "%ld %ld %ld", &a[0], &a[1], &a[2]) != 3)
+                TBAD("tilt TORSO_PITCH TORSO_ROLL ROLL_OFFSET");
+            t->head.torso_pitch = (fl_angle_t)a[0];
+            t->head.torso_roll = (fl_angle_t)a[1];
+            t->head.roll_offset = (fl_angle_t)a[2];
         } else if (!strcmp(key, "camera_centre")) {
             if (sscanf(rest, "%lf %lf %lf", &t->cam_x_mm, &t->cam_y_mm, &t->cam_z_mm) != 3)
                 TBAD("camera_centre X Y Z");

@@ -93,8 +93,9 @@ int truth_compute(const render_scene_t *sc, const render_frame_t *frame,
  *   camera NAME WIDTH HEIGHT
  *   robot X_MM Y_MM HEADING_BINANG
  *   head NECK_MM PITCH_BINANG YAW_BINANG PITCH_OFFSET_BINANG
+ *   tilt TORSO_PITCH TORSO_ROLL ROLL_OFFSET  (binary angles; only when not all 0)
  *   camera_centre X Y Z            (robot frame, mm)
- *   horizon V
+ *   horizon V                      (at the principal point's column)
  *   border V0 V1 ... V(width-1)
  *   border_end V0 ...
  *   border_visible V0 ...
