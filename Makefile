@@ -20,11 +20,18 @@ SHELL := /bin/bash
 #   make stack      worst-case stack depth of every public entry point
 #   make valgrind   test suite (quick mode) under valgrind memcheck
 #   make results    regenerate docs/RESULTS.md (tests, bench, walks, detection)
-#   make install    PREFIX=/usr/local: headers, library, pkg-config file
+#   make install    PREFIX=/usr/local (DESTDIR too): headers, library,
+#                   pkg-config file; the installed config.h has the build's
+#                   option values as its defaults (CONFIG_DEFS below)
 #   make echo       print the effective flags
 #
 # Variables: CC, BUILD (output folder), ARCHFLAGS (extra flags for every
-# object, e.g. -static for cross builds), FW_NOFP (no-FP flag for src/).
+# object, e.g. -static for cross builds), FW_NOFP (no-FP flag for src/),
+# CONFIG_DEFS (overrides of include/fieldloc/config.h for the library and
+# everything built with it, e.g. CONFIG_DEFS="-DFL_OBS_MAX=64"; a caller
+# built with other values gets FL_ERR_CONFIG from every init, so install
+# with `make install`, which writes these values into the installed
+# config.h).
 
 CC       ?= cc
 AR       ?= ar
@@ -32,6 +39,11 @@ BUILD    ?= build
 PREFIX   ?= /usr/local
 ARCHFLAGS ?=
 OPT      ?= -O2
+CONFIG_DEFS ?=
+# a command prefix that runs this build's executables (cross builds: the
+# qemu-user of the target), for the tests that compile and run a caller
+TEST_EXEC ?=
+VERSION  := $(shell sed -n 's/^\#define FL_VERSION_STRING "\(.*\)"/\1/p' include/fieldloc/config.h)
 
 WARN     = -std=c99 -pedantic -Wall -Wextra -Wconversion -Wshadow
 MACHINE := $(shell $(CC) -dumpmachine 2>/dev/null)
@@ -43,8 +55,8 @@ ifneq ($(filter i686% i386%,$(MACHINE)),)
 HOST_FP = -msse2 -mfpmath=sse
 endif
 
-FW_CFLAGS   = $(WARN) -Werror $(OPT) -g -fno-common -Iinclude $(FW_NOFP) $(ARCHFLAGS)
-HOST_CFLAGS = $(WARN) -Wno-address $(OPT) -g -Iinclude -Ihost_tests -Itools $(HOST_FP) $(ARCHFLAGS) -D_DEFAULT_SOURCE $(CV_DEFS)
+FW_CFLAGS   = $(WARN) -Werror $(OPT) -g -fno-common -Iinclude $(FW_NOFP) $(ARCHFLAGS) $(CONFIG_DEFS)
+HOST_CFLAGS = $(WARN) -Wno-address $(OPT) -g -Iinclude -Ihost_tests -Itools $(HOST_FP) $(ARCHFLAGS) $(CONFIG_DEFS) -D_DEFAULT_SOURCE $(CV_DEFS)
 HOST_LIBS   = -lm
 
 # OpenCV is optional and host-only: the tools' C++ files (tools/*/*.cpp: the
@@ -91,7 +103,7 @@ all: $(LIB) $(CLI)
 # they change: installing OpenCV (or changing CC, OPT, ARCHFLAGS) after a build
 # recompiles instead of linking objects built for another configuration.
 FLAGS_STAMP := $(BUILD)/flags.txt
-FLAGS_NOW   := $(CC) $(CXX) | $(FW_CFLAGS) | $(HOST_CFLAGS) | $(CV_CFLAGS) | $(CV_LIBS)
+FLAGS_NOW   := $(CC) $(CXX) | $(FW_CFLAGS) | $(HOST_CFLAGS) | $(CV_CFLAGS) | $(CV_LIBS) | $(TEST_EXEC)
 ifeq ($(filter clean echo,$(MAKECMDGOALS)),)
 $(shell mkdir -p $(BUILD) && { [ "$$(cat $(FLAGS_STAMP) 2>/dev/null)" = "$(FLAGS_NOW)" ] || echo "$(FLAGS_NOW)" > $(FLAGS_STAMP); })
 endif
@@ -104,13 +116,19 @@ $(BUILD)/host_tests/%.o: host_tests/%.c $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
 
+# host_tests/test_config.c compiles callers at test time the way this
+# build compiles (compiler, flags, library, how to run the result)
+$(BUILD)/host_tests/test_config.o: HOST_CFLAGS += -DFL_TEST_CC='"$(CC)"' \
+  -DFL_TEST_FLAGS='"$(ARCHFLAGS) $(CONFIG_DEFS)"' -DFL_TEST_ARCHFLAGS='"$(ARCHFLAGS)"' \
+  -DFL_TEST_BUILD='"$(BUILD)"' -DFL_TEST_EXEC='"$(TEST_EXEC)"'
+
 $(BUILD)/tools/%.o: tools/%.c $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
 
 $(BUILD)/tools/%.o: tools/%.cpp $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CXX) -O2 -g -Wall -Iinclude -Itools $(CV_DEFS) $(CV_CFLAGS) -MMD -MP -c $< -o $@
+	$(CXX) -O2 -g -Wall -Iinclude -Itools $(CONFIG_DEFS) $(CV_DEFS) $(CV_CFLAGS) -MMD -MP -c $< -o $@
 
 $(LIB): $(FW_OBJ)
 	@mkdir -p $(dir $@)
@@ -145,7 +163,7 @@ cross-test: $(RUNNER)
 	 for a in $(CROSS_ARCHS); do \
 	   case $$a in i686) q=qemu-i386;; *) q=qemu-$$a;; esac; \
 	   $(MAKE) --no-print-directory -s BUILD=$(BUILD)/cross/$$a CC=$$a-linux-gnu-gcc \
-	     AR=$$a-linux-gnu-ar ARCHFLAGS=-static $(BUILD)/cross/$$a/run_tests check || exit 1; \
+	     AR=$$a-linux-gnu-ar ARCHFLAGS=-static TEST_EXEC=$$q $(BUILD)/cross/$$a/run_tests check || exit 1; \
 	   $$q $(BUILD)/cross/$$a/run_tests --quick | grep -v '^#' > $(BUILD)/quick-$$a.txt; \
 	   if cmp -s $(BUILD)/quick-host.txt $(BUILD)/quick-$$a.txt; then \
 	     echo "cross-test $$a: identical to host ($$(tail -1 $(BUILD)/quick-$$a.txt))"; \
@@ -217,7 +235,7 @@ valgrind: $(RUNNER)
 FUZZ_CC      ?= clang
 FUZZ_SECONDS ?= 20
 FUZZ_FLAGS    = -g -O1 -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all \
-                -Iinclude -Itools -Ihost_tests -D_DEFAULT_SOURCE
+                -Iinclude -Itools -Ihost_tests -D_DEFAULT_SOURCE $(CONFIG_DEFS)
 FUZZ_NAMES   := $(patsubst host_tests/fuzz/fuzz_%.c,%,$(wildcard host_tests/fuzz/fuzz_*.c))
 FUZZ_LIB_SRC := $(FW_SRC) $(TOOL_LIB_SRC)
 fuzz-build:
@@ -243,11 +261,21 @@ fuzz-smoke: fuzz-build
 	  else echo "fuzz $$n: CRASH (see $(BUILD)/fuzz/log_$$n.txt)"; tail -30 $(BUILD)/fuzz/log_$$n.txt; status=1; fi; \
 	done; exit $$status
 
-install: $(LIB)
+# The installed config.h: the option defaults replaced by the values the
+# library's objects were compiled with (tools/build/config_header.sh asks
+# the compiler, with FW_CFLAGS).
+INSTALL_CONFIG := $(BUILD)/install/config.h
+$(INSTALL_CONFIG): include/fieldloc/config.h tools/build/config_header.sh $(FLAGS_STAMP)
+	@mkdir -p $(dir $@)
+	sh tools/build/config_header.sh include/fieldloc/config.h $(CC) $(FW_CFLAGS) > $@.tmp
+	mv $@.tmp $@
+
+install: $(LIB) $(INSTALL_CONFIG)
 	install -d $(DESTDIR)$(PREFIX)/include/fieldloc $(DESTDIR)$(PREFIX)/lib/pkgconfig
-	install -m 644 include/fieldloc/*.h $(DESTDIR)$(PREFIX)/include/fieldloc/
+	install -m 644 $(filter-out include/fieldloc/config.h,$(wildcard include/fieldloc/*.h)) $(DESTDIR)$(PREFIX)/include/fieldloc/
+	install -m 644 $(INSTALL_CONFIG) $(DESTDIR)$(PREFIX)/include/fieldloc/config.h
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/
-	sed -e 's|@PREFIX@|$(PREFIX)|' tools/build/fieldloc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/fieldloc.pc
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' tools/build/fieldloc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/fieldloc.pc
 
 uninstall:
 	rm -rf $(DESTDIR)$(PREFIX)/include/fieldloc
@@ -260,5 +288,6 @@ echo:
 	@echo "CC          = $(CC) ($(MACHINE))"
 	@echo "FW_CFLAGS   = $(FW_CFLAGS)"
 	@echo "HOST_CFLAGS = $(HOST_CFLAGS)"
+	@echo "VERSION     = $(VERSION)"
 
 -include $(FW_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(TOOL_LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)

@@ -78,6 +78,7 @@ static void test_hostile_frames(void)
     t_golden_lines_t gold;
     fl_camera_t cam;
     fl_camera_pose_t pose;
+    fl_camera_model_t model;
     const fl_camera_model_t *m = fl_camera_model_find("nao4-bottom-320");
     uint32_t h = t_hash_init();
     int k, si, fi, rejected = 0;
@@ -115,6 +116,10 @@ static void test_hostile_frames(void)
                 } else {
                     CHECK_EQ(st, FL_OK);
                 }
+                /* a camera model of the frame's size (a model of another
+                 * size is refused: vision.mismatched_frame) */
+                adv_camera_model(m, sizes[si][0], sizes[si][1], &model);
+                CHECK_EQ(fl_camera_init(&cam, &model, &pose), FL_OK);
                 fh = adv_run(g_state, &img, &cam, field, t_hash_init(), &n_obs);
                 h = t_hash_i32(h, (int32_t)fh);
                 if (st != FL_OK)

@@ -446,8 +446,13 @@ static void test_adversarial(void)
                 uint8_t *buf = adv_frame((adv_kind_t)k, sizes[si][0], sizes[si][1], fmts[fi],
                                          (k + fi) % 2 ? 5 : 0, &img, &st);
                 int i;
+                fl_camera_model_t model;
                 if (!buf)
                     continue;
+                /* a camera model of the frame's size (another is refused) */
+                adv_camera_model(fl_camera_model_find("aibo-ers7"), sizes[si][0], sizes[si][1],
+                                 &model);
+                CHECK_EQ(fl_camera_init(&cam, &model, &pose), FL_OK);
                 fl_vision_frame(&S->vis, &S->colors, &img, &cam, field, &obs);
                 CHECK(S->vis.beacons.n >= 0 && S->vis.beacons.n <= FL_BEACON_MAX_FOUND);
                 CHECK(S->vis.beacons.n_runs <= FL_BEACON_MAX_RUNS);

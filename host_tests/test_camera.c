@@ -21,8 +21,17 @@
  * polar: 2000 instead of 100000 random points.  Catalogue, invalid-input and
  * extreme-input cases are the same in both modes.
  *
- * Every input of the firmware is generated with integers (t_rng, firmware
- * outputs), never from the double reference, so the digests are
+ * Roll (camera.roll_*): the same sweeps with torso pitch and roll (+-10
+ * deg) and a roll offset (+-5 deg) added to every pose, the same
+ * tolerances; the horizon is checked per column against the reference's
+ * sloped line.  camera.roll_zero_is_head_only: without those angles the
+ * rotation and centre are the head-only model's integers, bit for bit.
+ * camera.extrinsics: fl_camera_init_extrinsics against a ZYX reference,
+ * and filled from a head pose's reference kinematics (not hashed: those
+ * inputs come from doubles).
+ *
+ * Every hashed input of the firmware is generated with integers (t_rng,
+ * firmware outputs), never from the double reference, so the digests are
  * bit-identical on every target.
  *
  * Tolerances:
@@ -1269,6 +1278,23 @@ static void test_extrinsics(void)
     t_digest("camera.extrinsics", h);
 }
 
+/* The own-model example of camera.h, as written there. */
+static void test_own_model_example(void)
+{
+    fl_camera_t cam;
+    fl_camera_model_t m = {"mycam", 640, 480, 8868, 5112, 3832, 0, 0, 0, 450, 0};
+    fl_camera_extrinsics_t e = {20, 0, 480, 0, fl_angle_from_mdeg(25000), fl_angle_from_mdeg(-2000)};
+    fl_point_t g;
+    CHECK_LE(fabs(m.focal_q4 - 16.0 * 320.0 / tan(30.0 * PI_D / 180.0)), 0.5);
+    CHECK_EQ(fl_camera_init_extrinsics(&cam, &m, &e), FL_OK);
+    /* the image centre looks 25 deg down from 480 mm: 1029 mm ahead */
+    CHECK(fl_camera_pixel_to_ground(&cam, m.cx_q4, m.cy_q4, &g));
+    CHECK_LE(fabs(g.x_mm - (20 + 480.0 / tan(25.0 * PI_D / 180.0))), 2.0);
+    CHECK_LE(abs(g.y_mm), 1);
+    /* rolled 2 deg to the right (left side down): the horizon falls towards the right */
+    CHECK_LE(fl_camera_horizon_v_q4(&cam, 0) + 16 * 10, fl_camera_horizon_v_q4(&cam, 16 * 639));
+}
+
 void suite_camera(void)
 {
     t_run("camera.catalogue", test_catalogue);
@@ -1283,6 +1309,7 @@ void suite_camera(void)
     t_run("camera.roll_invalid", test_roll_invalid);
     t_run("camera.roll_signs", test_roll_signs);
     t_run("camera.extrinsics", test_extrinsics);
+    t_run("camera.own_model_example", test_own_model_example);
     t_run("camera.extremes", test_extremes);
     t_run("camera.polar", test_polar);
     t_run("camera.foot_to_centre", test_foot_to_centre);

@@ -409,6 +409,106 @@ static void test_vision_bad_input(void)
     det_ctx_free(&dc);
 }
 
+/* The frame must be the camera model's size and the camera initialized:
+ * else nothing is processed, the observations are empty, the status says
+ * why, and the next matching frame gives what a fresh state gives. */
+static uint32_t vision_obs_hash(const fl_obs_list_t *obs)
+{
+    uint32_t h = t_hash_i32(t_hash_init(), obs->n);
+    int i;
+    for (i = 0; i < obs->n; i++) {
+        h = t_hash_i32(h, (int32_t)obs->obs[i].kind);
+        h = t_hash_i32(h, obs->obs[i].range_mm);
+        h = t_hash_i32(h, obs->obs[i].bearing);
+    }
+    return h;
+}
+
+static void vision_expect_refused(det_ctx_t *dc, const fl_image_t *img, const fl_camera_t *camera,
+                                  const fl_field_t *field, fl_status_t want)
+{
+    fl_obs_list_t obs;
+    uint32_t frames = dc->vis->frames;
+    memset(&obs, 0x5a, sizeof obs);
+    CHECK_EQ(fl_vision_frame(dc->vis, dc->colors, img, camera, field, &obs), 0);
+    CHECK_EQ(obs.n, 0);
+    CHECK_EQ(obs.dropped, 0);
+    CHECK_EQ(dc->vis->status, want);
+    CHECK_EQ(dc->vis->frames, frames);   /* not counted: not processed */
+    CHECK_EQ(dc->vis->lines.n_points + dc->vis->lines.n_segments + dc->vis->crossings.n +
+             dc->vis->posts.n + dc->vis->beacons.n, 0);
+    CHECK(!dc->vis->circle.found);
+}
+
+static void test_vision_camera_mismatch(void)
+{
+    det_ctx_t dc, fresh;
+    render_scene_t sc;
+    render_frame_t fr;
+    fl_camera_t cam320, cam640, bad;
+    fl_camera_pose_t pose;
+    fl_obs_list_t obs;
+    fl_image_t big;
+    uint8_t *px = calloc(640 * 480, 3);
+    char err[256];
+    uint32_t want;
+    int32_t n;
+    FILE *f = fopen("fixtures/frames/spl2013_t_near.scene", "r");
+    CHECK(f != NULL && px != NULL);
+    if (!f || !px) {
+        if (f) fclose(f);
+        free(px);
+        return;
+    }
+    CHECK_EQ(render_scene_read(f, &sc, err, sizeof err), 0);
+    fclose(f);
+    CHECK_EQ(render_frame(&sc, &fr), 0);
+    CHECK_EQ(fr.width, 320);
+    CHECK_EQ(det_ctx_init(&dc), 0);
+    CHECK_EQ(det_ctx_init(&fresh), 0);
+    CHECK_EQ(fl_camera_init(&cam320, sc.camera, &sc.head), FL_OK);
+    n = fl_vision_frame(fresh.vis, fresh.colors, &fr.view, &cam320, sc.field, &obs);
+    CHECK_EQ(n, obs.n);
+    want = vision_obs_hash(&obs);
+    CHECK(obs.n > 0);   /* the fixture shows a T: a refusal is not "nothing seen" */
+
+    /* the case that used to pass: a 640x480 frame with a 320x240 model */
+    CHECK_EQ(fl_image_init_packed(&big, FL_FMT_RGB888, px, 640, 480, 640 * 3), FL_OK);
+    vision_expect_refused(&dc, &big, &cam320, sc.field, FL_ERR_MISMATCH);
+    /* the 320x240 frame with a 640x480 model of the same camera */
+    pose = sc.head;
+    CHECK_EQ(fl_camera_init(&cam640, fl_camera_model_find("nao4-bottom-640"), &pose), FL_OK);
+    vision_expect_refused(&dc, &fr.view, &cam640, sc.field, FL_ERR_MISMATCH);
+    /* a camera whose init failed (neck height out of range: zeroed) */
+    pose.neck_height_mm = 1;
+    CHECK_EQ(fl_camera_init(&bad, sc.camera, &pose), FL_ERR_RANGE);
+    vision_expect_refused(&dc, &fr.view, &bad, sc.field, FL_ERR_CAMERA);
+    /* a width that matches but a height that does not (a cropped view) */
+    {
+        fl_image_t crop = fr.view;
+        crop.height = fr.view.height - 2;
+        vision_expect_refused(&dc, &crop, &cam320, sc.field, FL_ERR_MISMATCH);
+    }
+    /* every status names its cause */
+    CHECK(strstr(fl_status_str(FL_ERR_MISMATCH), "camera model") != NULL);
+    CHECK(strstr(fl_status_str(FL_ERR_CAMERA), "fl_camera_init") != NULL);
+    CHECK(strcmp(fl_status_str(FL_ERR_MISMATCH), fl_status_str(FL_ERR_CAMERA)) != 0);
+
+    /* the state is usable: the matching frame gives what a fresh state gives */
+    n = fl_vision_frame(dc.vis, dc.colors, &fr.view, &cam320, sc.field, &obs);
+    CHECK_EQ(n, obs.n);
+    CHECK_EQ(dc.vis->status, FL_OK);
+    CHECK_EQ(dc.vis->frames, 1);
+    CHECK_EQ(vision_obs_hash(&obs), want);
+    /* no camera at all is still accepted (image-level stages only) */
+    CHECK_EQ(fl_vision_frame(dc.vis, dc.colors, &big, NULL, sc.field, &obs), 0);
+    CHECK_EQ(dc.vis->status, FL_OK);
+    det_ctx_free(&dc);
+    det_ctx_free(&fresh);
+    render_frame_free(&fr);
+    free(px);
+}
+
 /* Random class noise: bounded output, caps counted, nothing square. */
 static void test_vision_noise(void)
 {
@@ -855,6 +955,7 @@ void suite_features(void)
     t_run("features.circle", test_circle);
     t_run("features.goal_painted", test_goal_painted);
     t_run("features.vision_bad_input", test_vision_bad_input);
+    t_run("features.vision_camera_mismatch", test_vision_camera_mismatch);
     t_run("features.vision_noise", test_vision_noise);
     t_run("features.border_t", test_border_t);
     t_run("features.connector", test_connector);

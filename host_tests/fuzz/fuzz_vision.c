@@ -4,12 +4,15 @@
  * the whole vision path.  Input layout: 12 header bytes
  *   [0] format (mod 4: 0 invalid, 1 RGB888, 2 YUYV422, 3 planar)
  *   [1..2] width, [3..4] height (little end first, taken mod 700)
- *   [5] stride padding, [6] camera index, [7..8] head pitch, [9..10] yaw
- *   [11] field index
+ *   [5] stride padding, [6] camera index (bits 0-6; bit 7 set: the
+ *   catalogue model as it is, usually of another size than the frame:
+ *   the refusal path; clear: that model rescaled to the frame,
+ *   adv_camera_model), [7..8] head pitch, [9..10] yaw, [11] field index
  * then pixel bytes (repeated to fill the frame).  The firmware must return
  * without touching memory outside the view and keep its output bounded.
  */
 #include "fieldloc/fieldloc.h"
+#include "world/adversarial.h"
 
 #include <stdint.h>
 #include <stdlib.h>
@@ -26,6 +29,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fl_camera_pose_t pose;
     fl_obs_list_t obs;
     const fl_camera_model_t *m;
+    fl_camera_model_t model;
     const fl_field_t *field;
     int32_t w, h, pad, n, i;
     size_t bytes;
@@ -44,7 +48,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     w = (data[1] | (data[2] << 8)) % 700;
     h = (data[3] | (data[4] << 8)) % 700;
     pad = data[5] & 15;
-    m = fl_camera_model_at((size_t)data[6] % fl_camera_model_count());
+    m = fl_camera_model_at((size_t)(data[6] & 127) % fl_camera_model_count());
+    if (!(data[6] & 128)) {
+        adv_camera_model(m, w, h, &model);
+        m = &model;
+    }
     field = fl_field_at((size_t)data[11] % fl_field_count());
     memset(&pose, 0, sizeof pose);
     pose.neck_height_mm = m->default_neck_height_mm;

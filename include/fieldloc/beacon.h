@@ -180,8 +180,15 @@ typedef struct {
 void fl_beacon_params_default(fl_beacon_params_t *p);
 
 /* Validate (FL_ERR_RANGE: hue > 179, lo > hi for S or V, a step, the
- * margin or the confidence out of range) and clear.  FL_ERR_NULL. */
-fl_status_t fl_beacon_init(fl_beacon_t *b, const fl_beacon_params_t *p);
+ * margin or the confidence out of range) and clear.  FL_ERR_NULL.
+ * FL_ERR_CONFIG
+ * (common.h: the caller's config.h differs from the library's): nothing
+ * written. */
+fl_status_t fl_beacon_init_cfg(fl_beacon_t *b, const fl_beacon_params_t *p, uint32_t caller_cfg);
+static inline fl_status_t fl_beacon_init(fl_beacon_t *b, const fl_beacon_params_t *p)
+{
+    return fl_beacon_init_cfg(b, p, FL_CONFIG_FINGERPRINT);
+}
 
 /* Find beacons and sky-blue goal posts in a scanned frame.  scan: the
  * frame's fl_scan_frame result (its border); colors: the table the scan

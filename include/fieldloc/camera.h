@@ -144,14 +144,27 @@ size_t fl_camera_model_count(void);
 const fl_camera_model_t *fl_camera_model_at(size_t i);  /* NULL if out of range */
 
 /* Validate model and pose and precompute the projection.  On error the
- * camera is left in a valid state that projects nothing. */
-fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
-                           const fl_camera_pose_t *pose);
+ * camera is left in a valid state that projects nothing (fl_vision_frame
+ * refuses it: FL_ERR_CAMERA).  FL_ERR_CONFIG (common.h: the caller's
+ * headers differ from the library's): nothing written. */
+fl_status_t fl_camera_init_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
+                               const fl_camera_pose_t *pose, uint32_t caller_cfg);
+static inline fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
+                                         const fl_camera_pose_t *pose)
+{
+    return fl_camera_init_cfg(cam, model, pose, FL_CONFIG_FINGERPRINT);
+}
 
 /* The same from the camera's own position and orientation; the model's
  * mount fields are not used (the extrinsics already include the mount). */
-fl_status_t fl_camera_init_extrinsics(fl_camera_t *cam, const fl_camera_model_t *model,
-                                      const fl_camera_extrinsics_t *ext);
+fl_status_t fl_camera_init_extrinsics_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
+                                          const fl_camera_extrinsics_t *ext, uint32_t caller_cfg);
+static inline fl_status_t fl_camera_init_extrinsics(fl_camera_t *cam,
+                                                    const fl_camera_model_t *model,
+                                                    const fl_camera_extrinsics_t *ext)
+{
+    return fl_camera_init_extrinsics_cfg(cam, model, ext, FL_CONFIG_FINGERPRINT);
+}
 
 /* Pixel (Q4) -> ground point in the robot frame (mm).  False when the ray
  * does not hit the ground in front of the camera within

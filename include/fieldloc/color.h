@@ -189,8 +189,14 @@ typedef struct {
 /* Validate params and build the tables.  FL_ERR_NULL, FL_ERR_RANGE (a hue
  * above 179, lo > hi for S or V, contrast > 200, adapt_max_hue > 30,
  * green_sat_ref 0, white_line_pct 1..99); on error *t is left classifying
- * everything as other. */
-fl_status_t fl_color_init(fl_color_table_t *t, const fl_color_params_t *p);
+ * everything as other.  FL_ERR_CONFIG (common.h: the caller's config.h
+ * differs from the library's): nothing written. */
+fl_status_t fl_color_init_cfg(fl_color_table_t *t, const fl_color_params_t *p,
+                              uint32_t caller_cfg);
+static inline fl_status_t fl_color_init(fl_color_table_t *t, const fl_color_params_t *p)
+{
+    return fl_color_init_cfg(t, p, FL_CONFIG_FINGERPRINT);
+}
 
 /* Re-centre on a field-color estimate (at least 16 samples): hue shift =
  * estimate hue - centre of params.green's hue range, limited to

@@ -1,10 +1,36 @@
 /*
  * fieldloc/config.h - every compile-time capacity of the module, in one
- * place.  Each option has a default, may be overridden with -D, and is range
- * checked here.  State structs are sized from these; nothing is allocated.
+ * place, and the version.  Each option has a default, may be overridden
+ * with -D, and is range checked here.  State structs are sized from these;
+ * nothing is allocated.
+ *
+ * The library and every caller must see the same values: a caller built
+ * with another FL_OBS_MAX than the library has a differently shaped
+ * fl_obs_list_t, and the library would write past its object.  So the
+ * options are folded into FL_CONFIG_FINGERPRINT (end of this file), every
+ * public init passes the caller's fingerprint to the library (common.h)
+ * and refuses a foreign one with FL_ERR_CONFIG.  To change an option,
+ * rebuild the library with it (make CONFIG_DEFS="-DFL_OBS_MAX=64"): `make
+ * install` then writes the build's values into the installed copy of this
+ * file as its defaults, so callers that pass no -D match.
  */
 #ifndef FIELDLOC_CONFIG_H
 #define FIELDLOC_CONFIG_H
+
+#include <stdint.h>
+
+/* Release version of the sources (not an option).  FL_VERSION_STRING is
+ * "MAJOR.MINOR.PATCH"; the installed fieldloc.pc carries the same. */
+#define FL_VERSION_MAJOR 0
+#define FL_VERSION_MINOR 15
+#define FL_VERSION_PATCH 0
+#define FL_VERSION_STRING "0.15.0"
+
+/* Layout version of the public structs (not an option): raise it whenever
+ * a public struct that an init function takes changes shape (a field
+ * added, removed, retyped or moved), so that a caller compiled against
+ * the old headers gets FL_ERR_CONFIG instead of a wrong layout. */
+#define FL_ABI_VERSION 2
 
 /* Largest image width or height accepted, pixels.  Default 1280 (NAO v6
  * full resolution is 1280x960).  Range 16..4096. */
@@ -200,5 +226,31 @@
 #if FL_BEACON_MAX_FOUND < 1 || FL_BEACON_MAX_FOUND > 32
 #error "FL_BEACON_MAX_FOUND must be in 1..32"
 #endif
+
+/* ---- the configuration fingerprint ---------------------------------------
+ * FNV-1a over 32-bit words: the layout version, then every option above
+ * (each one guarded by #ifndef in this file; the host test config.
+ * fingerprint_lists_every_option keeps the list complete).  Each step,
+ * for a fixed word, is a bijection of the running hash, so a change of
+ * any one value always changes the fingerprint.  A constant expression of type uint32_t, equal
+ * on every target (unsigned long arithmetic, reduced to 32 bits at each
+ * step); fl_config_fingerprint() (common.h) is the library's own. */
+#define FL_CFG_MIX_(h, v) \
+    (((((h) ^ ((unsigned long)(v) & 0xFFFFFFFFUL)) * 16777619UL)) & 0xFFFFFFFFUL)
+#define FL_CONFIG_FINGERPRINT ((uint32_t)( \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
+    FL_ABI_VERSION), \
+    FL_IMAGE_MAX_DIM), \
+    FL_FUZZY_CELL_MM), FL_FUZZY_MAX_NX), FL_FUZZY_MAX_NY), \
+    FL_FUZZY_MAX_REGIONS), \
+    FL_SCAN_MAX_COLS), FL_SCAN_MAX_ROWS), FL_SCAN_MAX_FEET), \
+    FL_LINES_MAX_POINTS), FL_LINES_MAX_SEGMENTS), FL_LINES_MAX_BUCKETS), \
+    FL_LINES_WTAB), FL_CROSSINGS_MAX), FL_GOAL_MAX_POSTS), \
+    FL_CIRCLE_MAX_CHORDS), FL_CIRCLE_MAX_POINTS), FL_LINES_NEAR_MAX), \
+    FL_OBS_MAX), \
+    FL_BEACON_MAX_RUNS), FL_BEACON_MAX_BLOBS), FL_BEACON_MAX_FOUND)))
 
 #endif /* FIELDLOC_CONFIG_H */

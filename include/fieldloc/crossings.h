@@ -167,7 +167,15 @@ typedef struct {
  * marks on. */
 void fl_crossings_params_default(fl_crossings_params_t *p);
 
-fl_status_t fl_crossings_init(fl_crossings_t *c, const fl_crossings_params_t *p);
+/* Validate params (FL_ERR_RANGE) and clear.  FL_ERR_NULL.  FL_ERR_CONFIG
+ * (common.h: the caller's config.h differs from the library's): nothing
+ * written. */
+fl_status_t fl_crossings_init_cfg(fl_crossings_t *c, const fl_crossings_params_t *p,
+                                  uint32_t caller_cfg);
+static inline fl_status_t fl_crossings_init(fl_crossings_t *c, const fl_crossings_params_t *p)
+{
+    return fl_crossings_init_cfg(c, p, FL_CONFIG_FINGERPRINT);
+}
 
 /* Find the crossings of a frame's segments.  scan may be NULL (no image
  * probes, no marks), camera may be NULL (no ground check, no ground

@@ -385,9 +385,16 @@ void fl_fuzzy_params_lowres(fl_fuzzy_params_t *p);
  * centred) and resets to total ignorance with no prior.  params NULL gives
  * the defaults.  FL_ERR_NULL, FL_ERR_SIZE (carpet larger than the compiled
  * capacity), FL_ERR_RANGE (params out of range); on error *g is unusable
- * (g->field is NULL and every other call is a no-op). */
-fl_status_t fl_fuzzy_init(fl_fuzzy_t *g, const fl_field_t *field,
-                          const fl_fuzzy_params_t *params);
+ * (g->field is NULL and every other call is a no-op).  FL_ERR_CONFIG
+ * (common.h: the caller's config.h differs from the library's): nothing
+ * written. */
+fl_status_t fl_fuzzy_init_cfg(fl_fuzzy_t *g, const fl_field_t *field,
+                              const fl_fuzzy_params_t *params, uint32_t caller_cfg);
+static inline fl_status_t fl_fuzzy_init(fl_fuzzy_t *g, const fl_field_t *field,
+                                        const fl_fuzzy_params_t *params)
+{
+    return fl_fuzzy_init_cfg(g, field, params, FL_CONFIG_FINGERPRINT);
+}
 
 /* ---- resets (each clears the tracked mode; see each for the prior) ----- */
 

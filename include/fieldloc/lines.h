@@ -218,8 +218,14 @@ typedef struct {
  * 400 % .. 25 %, luma contrast 12 % where the line is at most 3 px wide. */
 void fl_lines_params_default(fl_lines_params_t *p);
 
-/* Validate params (FL_ERR_RANGE) and clear.  FL_ERR_NULL. */
-fl_status_t fl_lines_init(fl_lines_t *l, const fl_lines_params_t *p);
+/* Validate params (FL_ERR_RANGE) and clear.  FL_ERR_NULL.  FL_ERR_CONFIG
+ * (common.h: the caller's config.h differs from the library's): nothing
+ * written. */
+fl_status_t fl_lines_init_cfg(fl_lines_t *l, const fl_lines_params_t *p, uint32_t caller_cfg);
+static inline fl_status_t fl_lines_init(fl_lines_t *l, const fl_lines_params_t *p)
+{
+    return fl_lines_init_cfg(l, p, FL_CONFIG_FINGERPRINT);
+}
 
 /* Find the line points of a scanned frame.  img: the scanned frame (same
  * size as the scan) or NULL (no luma points).  camera may be NULL (no

@@ -114,9 +114,14 @@ typedef struct fl_localizer {
      * not a vision preset's (fuzzy: fl_fuzzy_params_lowres). */
     void (*params_adapt)(void *params, fl_loc_preset_t preset);
     fl_status_t (*params_check)(const void *params);
-    /* params NULL: defaults.  The state keeps a pointer to field. */
+    /* params NULL: defaults.  The state keeps a pointer to field.
+     * caller_cfg: the caller's FL_CONFIG_FINGERPRINT (config.h); another
+     * than the library's gives FL_ERR_CONFIG and an empty state (the
+     * state has the library's state_size, but the observation lists the
+     * caller would pass have the caller's layout).  fl_loc_init passes
+     * it; a direct call passes FL_CONFIG_FINGERPRINT. */
     fl_status_t (*init)(void *state, const fl_field_t *field,
-                        const void *params);
+                        const void *params, uint32_t caller_cfg);
     /* The state's current parameters (read/write between calls, like
      * fl_fuzzy_t.params), NULL if uninitialized. */
     void *(*params_of)(void *state);
@@ -175,8 +180,17 @@ fl_status_t fl_localizer_param_get(const fl_localizer_t *loc,
 
 /* ---- checked wrappers (NULL loc or state: no-op / error / false / 0) ---- */
 
-fl_status_t fl_loc_init(const fl_localizer_t *loc, void *state,
-                        const fl_field_t *field, const void *params);
+/* loc->init with the caller's FL_CONFIG_FINGERPRINT: FL_ERR_CONFIG when
+ * the caller's config.h differs from the library's (the state is left
+ * empty, as after any other init error). */
+fl_status_t fl_loc_init_cfg(const fl_localizer_t *loc, void *state,
+                            const fl_field_t *field, const void *params,
+                            uint32_t caller_cfg);
+static inline fl_status_t fl_loc_init(const fl_localizer_t *loc, void *state,
+                                      const fl_field_t *field, const void *params)
+{
+    return fl_loc_init_cfg(loc, state, field, params, FL_CONFIG_FINGERPRINT);
+}
 void fl_loc_predict(const fl_localizer_t *loc, void *state, int32_t dx_mm,
                     int32_t dy_mm, fl_angle_t dtheta);
 uint16_t fl_loc_update(const fl_localizer_t *loc, void *state,

@@ -146,8 +146,14 @@ typedef struct {
     uint64_t gend_none[FL_SCAN_WORDS];
 } fl_scan_t;
 
-/* Validate params (FL_ERR_RANGE) and clear the state.  FL_ERR_NULL. */
-fl_status_t fl_scan_init(fl_scan_t *s, const fl_scan_params_t *p);
+/* Validate params (FL_ERR_RANGE) and clear the state.  FL_ERR_NULL.
+ * FL_ERR_CONFIG (common.h: the caller's config.h differs from the
+ * library's): nothing written. */
+fl_status_t fl_scan_init_cfg(fl_scan_t *s, const fl_scan_params_t *p, uint32_t caller_cfg);
+static inline fl_status_t fl_scan_init(fl_scan_t *s, const fl_scan_params_t *p)
+{
+    return fl_scan_init_cfg(s, p, FL_CONFIG_FINGERPRINT);
+}
 
 /* Scan one frame.  colors: tables from fl_color_init.  camera may be NULL
  * (border search from row 0).  Returns n_border; 0 with an empty result

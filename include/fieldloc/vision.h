@@ -91,12 +91,29 @@ void fl_vision_params_default(fl_vision_params_t *p);
  * sky-blue or pink.  NULL: false. */
 bool fl_vision_wants_beacons(const fl_field_t *field);
 
-/* Validate every stage's params and clear.  FL_ERR_NULL, FL_ERR_RANGE. */
-fl_status_t fl_vision_init(fl_vision_t *v, const fl_vision_params_t *p);
+/* Validate every stage's params and clear.  FL_ERR_NULL, FL_ERR_RANGE.
+ * FL_ERR_CONFIG
+ * (common.h: the caller's config.h differs from the library's): nothing
+ * written. */
+fl_status_t fl_vision_init_cfg(fl_vision_t *v, const fl_vision_params_t *p, uint32_t caller_cfg);
+static inline fl_status_t fl_vision_init(fl_vision_t *v, const fl_vision_params_t *p)
+{
+    return fl_vision_init_cfg(v, p, FL_CONFIG_FINGERPRINT);
+}
 
-/* One frame.  colors: the tables (not changed); camera: this frame's pose;
- * field: geometry (line width, radius, post size).  Fills out (cleared
- * first) and returns out->n; 0 with status set on bad input. */
+/* One frame.  colors: the tables (not changed); camera: this frame's pose
+ * (NULL: no ground geometry, hence no observations but the image-level
+ * stages run); field: geometry (line width, radius, post size).  Fills out
+ * (cleared first) and returns out->n; 0 with v->status set on bad input,
+ * and then nothing is processed (frames not counted, stage results
+ * empty) and the next valid frame works as usual:
+ *   FL_ERR_NULL      v's other pointers but camera
+ *   FL_ERR_SIZE, FL_ERR_STRIDE, FL_ERR_FORMAT   fl_image_validate (every
+ *                    format of image.h is read by every stage)
+ *   FL_ERR_CAMERA    a camera whose fl_camera_init failed (zeroed model)
+ *   FL_ERR_MISMATCH  img->width x height is not the camera model's
+ *                    width_px x height_px (a frame and a model of another
+ *                    resolution: scale the frame or pick the model). */
 int32_t fl_vision_frame(fl_vision_t *v, const fl_color_table_t *colors,
                         const fl_image_t *img, const fl_camera_t *camera,
                         const fl_field_t *field, fl_obs_list_t *out);

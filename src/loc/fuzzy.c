@@ -214,11 +214,13 @@ void fl_fuzzy_internal_ignorance(fl_fuzzy_t *g)
     g->sym_exact = g->field->symmetric;
 }
 
-fl_status_t fl_fuzzy_init(fl_fuzzy_t *g, const fl_field_t *field,
-                          const fl_fuzzy_params_t *params)
+fl_status_t fl_fuzzy_init_cfg(fl_fuzzy_t *g, const fl_field_t *field,
+                              const fl_fuzzy_params_t *params, uint32_t caller_cfg)
 {
     fl_fuzzy_params_t p;
     int32_t hx, hy, nx, ny;
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *g has another layout: no write is safe */
     if (g == NULL)
         return FL_ERR_NULL;
     g->field = NULL;

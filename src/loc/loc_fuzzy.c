@@ -46,8 +46,15 @@ static fl_status_t fz_params_check(const void *params)
     return fl_fuzzy_params_check((const fl_fuzzy_params_t *)params);
 }
 
-static fl_status_t fz_init(void *state, const fl_field_t *field, const void *params)
+static fl_status_t fz_init(void *state, const fl_field_t *field, const void *params,
+                           uint32_t caller_cfg)
 {
+    if (caller_cfg != FL_CONFIG_FINGERPRINT) {
+        /* the state is state_size bytes, the library's layout: left empty
+         * the way fl_fuzzy_init leaves it without a field */
+        (void)fl_fuzzy_init((fl_fuzzy_t *)state, NULL, NULL);
+        return FL_ERR_CONFIG;
+    }
     return fl_fuzzy_init((fl_fuzzy_t *)state, field, (const fl_fuzzy_params_t *)params);
 }
 

@@ -123,12 +123,13 @@ fl_status_t fl_localizer_param_get(const fl_localizer_t *loc,
 
 /* ---- checked wrappers ---- */
 
-fl_status_t fl_loc_init(const fl_localizer_t *loc, void *state,
-                        const fl_field_t *field, const void *params)
+fl_status_t fl_loc_init_cfg(const fl_localizer_t *loc, void *state,
+                            const fl_field_t *field, const void *params,
+                            uint32_t caller_cfg)
 {
     if (loc == NULL || state == NULL || loc->init == NULL)
         return FL_ERR_NULL;
-    return loc->init(state, field, params);
+    return loc->init(state, field, params, caller_cfg);
 }
 
 void fl_loc_predict(const fl_localizer_t *loc, void *state, int32_t dx_mm,

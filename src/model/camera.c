@@ -278,8 +278,8 @@ static bool fl_cam_upright(const int32_t r[3][3])
  * h rotated by T: h in Q16 mm (|h_i| <= 1414 mm < 2^27 Q16, each within
  * 2^-17 mm), times T (Q30) < 2^57 per term, sum < 2^59, rounded to Q4 once
  * (>> 42), so the centre stays within 1/32 mm + 2^-15 mm of exact. */
-fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
-                           const fl_camera_pose_t *pose)
+fl_status_t fl_camera_init_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
+                               const fl_camera_pose_t *pose, uint32_t caller_cfg)
 {
     fl_angle_t alpha, theta;
     int32_t sa, ca, sy, cy, st, ct;
@@ -289,6 +289,8 @@ fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
     fl_status_t st_model;
     int i;
 
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *cam may have another layout: no write is safe */
     if (!cam)
         return FL_ERR_NULL;
     memset(cam, 0, sizeof *cam); /* projects nothing until fully valid */
@@ -371,13 +373,15 @@ fl_status_t fl_camera_init(fl_camera_t *cam, const fl_camera_model_t *model,
  * pixel_to_ground's analysis assumes.  R = Rz(yaw) * Ry(pitch) * Rx(roll),
  * the yaw-pitch part as in fl_camera_init (so yaw and pitch alone give the
  * same matrix as a head pose with the same angles), then the roll product. */
-fl_status_t fl_camera_init_extrinsics(fl_camera_t *cam, const fl_camera_model_t *model,
-                                      const fl_camera_extrinsics_t *ext)
+fl_status_t fl_camera_init_extrinsics_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
+                                          const fl_camera_extrinsics_t *ext, uint32_t caller_cfg)
 {
     int32_t sp, cp, sy, cy;
     int32_t r[3][3];
     fl_status_t st_model;
 
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *cam may have another layout: no write is safe */
     if (!cam)
         return FL_ERR_NULL;
     memset(cam, 0, sizeof *cam);

@@ -62,8 +62,10 @@ static bool bc_box_ok(const fl_hsv_box_t *b)
            b->v_lo <= b->v_hi;
 }
 
-fl_status_t fl_beacon_init(fl_beacon_t *b, const fl_beacon_params_t *p)
+fl_status_t fl_beacon_init_cfg(fl_beacon_t *b, const fl_beacon_params_t *p, uint32_t caller_cfg)
 {
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *b has another layout: no write is safe */
     if (!b || !p)
         return FL_ERR_NULL;
     memset(b, 0, sizeof *b);

@@ -715,8 +715,11 @@ static void apply(fl_color_table_t *t, int32_t shift, int32_t green_s_lo,
     }
 }
 
-fl_status_t fl_color_init(fl_color_table_t *t, const fl_color_params_t *p)
+fl_status_t fl_color_init_cfg(fl_color_table_t *t, const fl_color_params_t *p,
+                              uint32_t caller_cfg)
 {
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *t may have another layout: no write is safe */
     if (t == NULL)
         return FL_ERR_NULL;
     memset(t, 0, sizeof *t);  /* all other until built */

@@ -22,8 +22,11 @@ void fl_crossings_params_default(fl_crossings_params_t *p)
     p->marks = 1;
 }
 
-fl_status_t fl_crossings_init(fl_crossings_t *c, const fl_crossings_params_t *p)
+fl_status_t fl_crossings_init_cfg(fl_crossings_t *c, const fl_crossings_params_t *p,
+                                  uint32_t caller_cfg)
 {
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *c has another layout: no write is safe */
     if (!c || !p)
         return FL_ERR_NULL;
     memset(c, 0, sizeof *c);

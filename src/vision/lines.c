@@ -46,8 +46,10 @@ static bool ln_params_ok(const fl_lines_params_t *p)
            p->luma_width_px >= 1 && p->luma_width_px <= 16;
 }
 
-fl_status_t fl_lines_init(fl_lines_t *l, const fl_lines_params_t *p)
+fl_status_t fl_lines_init_cfg(fl_lines_t *l, const fl_lines_params_t *p, uint32_t caller_cfg)
 {
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *l has another layout: no write is safe */
     if (!l || !p)
         return FL_ERR_NULL;
     memset(l, 0, sizeof *l);

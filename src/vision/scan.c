@@ -98,8 +98,10 @@ static bool params_ok(const fl_scan_params_t *p)
            p->estimate_step_px >= 0 && p->estimate_step_px <= 255;
 }
 
-fl_status_t fl_scan_init(fl_scan_t *s, const fl_scan_params_t *p)
+fl_status_t fl_scan_init_cfg(fl_scan_t *s, const fl_scan_params_t *p, uint32_t caller_cfg)
 {
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *s has another layout: no write is safe */
     if (s == NULL || p == NULL)
         return FL_ERR_NULL;
     memset(s, 0, sizeof *s);

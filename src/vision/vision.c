@@ -65,11 +65,13 @@ static void vi_scan_params(const fl_vision_params_t *p, int32_t width,
         out->row_step = g;
 }
 
-fl_status_t fl_vision_init(fl_vision_t *v, const fl_vision_params_t *p)
+fl_status_t fl_vision_init_cfg(fl_vision_t *v, const fl_vision_params_t *p, uint32_t caller_cfg)
 {
     fl_status_t st;
     fl_scan_params_t sp;
     fl_lines_t *l;
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *v has another layout: no write is safe */
     if (!v || !p)
         return FL_ERR_NULL;
     v->frames = 0;
@@ -116,6 +118,22 @@ static void vi_obs(fl_obs_t *o, fl_landmark_kind_t kind, int32_t range_mm, fl_an
     o->v_q4 = v_q4;
 }
 
+/* The camera model must describe this frame: a zeroed camera (its
+ * fl_camera_init failed) projects nothing, and a model of another size
+ * would put every ground point, the horizon and the line widths in the
+ * wrong place.  NULL: no camera, nothing to compare. */
+static fl_status_t vi_camera_check(const fl_image_t *img, const fl_camera_t *camera)
+{
+    if (camera == NULL)
+        return FL_OK;
+    if (camera->model.width_px <= 0 || camera->model.height_px <= 0 ||
+        camera->model.focal_q4 <= 0)
+        return FL_ERR_CAMERA;
+    if (img->width != camera->model.width_px || img->height != camera->model.height_px)
+        return FL_ERR_MISMATCH;
+    return FL_OK;
+}
+
 static int32_t vi_push(fl_obs_list_t *out, const fl_obs_t *o, int32_t min_conf)
 {
     if (o->confidence < min_conf)
@@ -145,7 +163,12 @@ int32_t fl_vision_frame(fl_vision_t *v, const fl_color_table_t *colors,
         v->status = FL_ERR_NULL;
         return 0;
     }
+    /* a format of image.h (each stage reads all of them) with a valid size
+     * and stride */
     v->status = fl_image_validate(img);
+    if (v->status != FL_OK)
+        return 0;
+    v->status = vi_camera_check(img, camera);
     if (v->status != FL_OK)
         return 0;
     v->frames++;

@@ -1,5 +1,6 @@
 /* tools/cli/cmd_bench.c - `fieldloc bench`: runs every benchmark section listed
  * in registry.h and writes rows name<TAB>fieldloc_ns<TAB>peer_ns<TAB>speedup. */
+#include "cli/args.h"
 #include "cli/registry.h"
 
 #include <stdio.h>
@@ -23,11 +24,12 @@ int cmd_bench(int argc, char **argv)
                            (!bench_scan_write_noise || bench_scan_write_noise(argv[k + 1]) == 0)
                        ? 0
                        : 1;
-        else {
+        else if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
             fprintf(stderr, "usage: fieldloc bench [--out FILE.tsv] [--quick] [--only SECTION] [--noise-frames DIR]\n"
                     "  sections: fixed scan vision adversarial fuzzy\n");
-            return 2;
-        }
+            return 0;
+        } else
+            return arg_unknown("bench", argv[k], "--out=1 --only=1 --noise-frames=1");
     }
     ctx.tsv = fopen(out, "w");
     if (!ctx.tsv) {

@@ -28,6 +28,7 @@
 #include "eval/calibrate.h"
 #include "eval/calib_frames.h"
 #include "fieldloc/fieldloc.h"
+#include "cli/args.h"
 #include "cli/registry.h"
 
 #include <math.h>
@@ -426,8 +427,12 @@ int cmd_calibrate(int argc, char **argv)
             roll = 0;
         else if (!strcmp(argv[i], "--fit-heading"))
             heading = 1;
-        else
-            return cal_usage();
+        else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            cal_usage();
+            return 0;
+        } else
+            return arg_unknown("calibrate", argv[i],
+                               "--dir=1 --frames=1 --field=1 --camera=1 --out=1");
     }
     if (frames) {
         if (dir || verbose)

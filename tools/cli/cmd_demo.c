@@ -28,6 +28,7 @@
  * PNG next to every PPM when the tools were built with OpenCV.
  */
 #include "loc/locrun.h"
+#include "cli/args.h"
 #include "eval/picture.h"
 #include "io/ppm.h"
 #include "cli/registry.h"
@@ -70,11 +71,17 @@ static void demo_save(demo_t *d, const host_image_t *img, const char *name)
     }
 }
 
-/* Frame | belief picture of one record; halves optionally kept. */
+/* Frame | belief picture of one record; halves optionally kept.  Each
+ * picture carries its legend strip: walk time and frame (record) number,
+ * the estimate with its reliability, and the error to the truth as the
+ * metrics count it (modulo the symmetry while the half is unknown). */
 static void demo_picture(demo_t *d, const lr_walk_step_t *ws, const char *name, int halves)
 {
     host_image_t belief, frame, both;
     pic_pose_t truth, ep;
+    char caption[512];
+    const unsigned frame_sets = PIC_LEGEND_DETECT | PIC_LEGEND_MODEL,
+                   belief_sets = PIC_LEGEND_BELIEF | PIC_LEGEND_TRUTH;
     truth.x_mm = ws->st->true_x_mm;
     truth.y_mm = ws->st->true_y_mm;
     truth.heading_deg = ws->st->true_heading_rad * (180.0 / 3.14159265358979323846);
@@ -83,21 +90,26 @@ static void demo_picture(demo_t *d, const lr_walk_step_t *ws, const char *name, 
     ep.heading_deg = lr_deg(ws->est->heading);
     if (pic_belief(ws->lr->loc, ws->lr->state, ws->lr->field, 0, &truth, ws->est, &ws->lr->obs, &belief) != 0)
         return;
+    pic_belief_caption(caption, sizeof caption, ws->t_s, ws->record, ws->est, ws->pos_err_mm,
+                       ws->head_err_deg);
     if (ws->frame != NULL &&
         pic_frame(&ws->lr->det, &ws->frame->view, &ws->lr->cam, ws->lr->field, &ep, 2, &frame) ==
             0) {
         if (pic_side_by_side(&frame, &belief, 8, &both) == 0) {
-            demo_save(d, &both, name);
+            if (pic_legend_inplace(&both, frame_sets | belief_sets, caption) == 0)
+                demo_save(d, &both, name);
             host_image_free(&both);
         }
-        if (halves)
+        if (halves && pic_legend_inplace(&frame, frame_sets, caption) == 0)
             demo_save(d, &frame, "frame_final");
         host_image_free(&frame);
-    } else {
+        if (halves && pic_legend_inplace(&belief, belief_sets, caption) == 0)
+            demo_save(d, &belief, "belief_final");
+    } else if (pic_legend_inplace(&belief, belief_sets, caption) == 0) {
         demo_save(d, &belief, name);
+        if (halves)
+            demo_save(d, &belief, "belief_final");
     }
-    if (halves)
-        demo_save(d, &belief, "belief_final");
     host_image_free(&belief);
 }
 
@@ -159,7 +171,9 @@ static int demo_usage(void)
     fprintf(stderr,
             "usage: fieldloc demo [--walk FILE.walk | --field NAME] [--seed N] [--every N]\n"
             "                     [--seconds S] [--out DIR] [--picture-every-s S] [--no-png]\n"
-            "                     [--localizer NAME (default fuzzy)]\n");
+            "                     [--localizer NAME (default fuzzy)]\n"
+            "  --seed 0..2147483647, --every 1..1000, --seconds 0..86400 (0: the whole walk),\n"
+            "  --picture-every-s 0..86400 (0: none)\n");
     return 2;
 }
 
@@ -185,22 +199,31 @@ int cmd_demo(int argc, char **argv)
             walk = argv[++k];
         else if (!strcmp(argv[k], "--field") && k + 1 < argc)
             field = argv[++k];
-        else if (!strcmp(argv[k], "--seed") && k + 1 < argc)
-            seed = atol(argv[++k]);
-        else if (!strcmp(argv[k], "--every") && k + 1 < argc)
-            every = atol(argv[++k]);
-        else if (!strcmp(argv[k], "--seconds") && k + 1 < argc)
-            seconds = atof(argv[++k]);
-        else if (!strcmp(argv[k], "--out") && k + 1 < argc)
+        else if (!strcmp(argv[k], "--seed") && k + 1 < argc) {
+            if (arg_long("demo", "--seed", argv[++k], 0, 2147483647L, NULL, &seed) != 0)
+                return 2;
+        } else if (!strcmp(argv[k], "--every") && k + 1 < argc) {
+            if (arg_long("demo", "--every", argv[++k], 1, 1000, NULL, &every) != 0)
+                return 2;
+        } else if (!strcmp(argv[k], "--seconds") && k + 1 < argc) {
+            if (arg_double("demo", "--seconds", argv[++k], 0, 86400, "s", &seconds) != 0)
+                return 2;
+        } else if (!strcmp(argv[k], "--out") && k + 1 < argc)
             out = argv[++k];
-        else if (!strcmp(argv[k], "--picture-every-s") && k + 1 < argc)
-            pic_s = atof(argv[++k]);
-        else if (!strcmp(argv[k], "--no-png"))
+        else if (!strcmp(argv[k], "--picture-every-s") && k + 1 < argc) {
+            if (arg_double("demo", "--picture-every-s", argv[++k], 0, 86400, "s", &pic_s) != 0)
+                return 2;
+        } else if (!strcmp(argv[k], "--no-png"))
             png = 0;
         else if (!strcmp(argv[k], "--localizer") && k + 1 < argc)
             localizer = argv[++k];
-        else
-            return demo_usage();
+        else if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
+            demo_usage();
+            return 0;
+        } else
+            return arg_unknown("demo", argv[k],
+                               "--walk=1 --field=1 --seed=1 --every=1 --seconds=1 --out=1 "
+                               "--picture-every-s=1 --localizer=1");
     }
     if (every < 1 || every > 1000 || seconds < 0 || pic_s < 0)
         return demo_usage();

@@ -23,9 +23,18 @@
  * "FILE:LINE: reason" (exit status 2).
  * --stats prints the stage counters to stderr; --repeat N runs the path N
  * times (for callgrind: instructions per frame).
+ * --picture OUT.ppm|.png draws the stages over the frame (det_draw) with a
+ * legend strip below it; --show border,classes adds the scanner's field
+ * border (and first searched row) and its class map (green / white /
+ * yellow / other per grid cell), to see why a feature was or was not found.
+ * Numbers are checked (tools/cli/args.h): --head within the NAO head joints
+ * (the camera's limit for a non-NAO camera), --neck 50..2000 mm, --repeat
+ * 1..1000000; a bad value or option exits with status 2.
  */
+#include "cli/args.h"
 #include "eval/detect.h"
 #include "eval/calib_frames.h"
+#include "eval/picture.h"
 #include "io/ppm.h"
 #include "cli/registry.h"
 #include "world/render.h"
@@ -38,11 +47,76 @@ static int detect_usage(void)
 {
     fprintf(stderr,
             "usage: fieldloc detect [--field NAME] [--camera NAME] [--head PITCH_RAD YAW_RAD]\n"
-            "                       [--neck MM] [--calib CALIB] [--picture OUT.ppm] [--stats]\n"
-            "                       [--repeat N] IMAGE.ppm\n"
+            "                       [--neck MM] [--calib CALIB] [--picture OUT.ppm]\n"
+            "                       [--show border,classes] [--stats] [--repeat N] IMAGE.ppm\n"
+            "  --head: NAO HeadPitch -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad\n"
+            "  --neck 50..2000 mm, --repeat 1..1000000\n"
+            "  --calib: a calibration file from `fieldloc calibrate --out`\n"
             "  prints: kind<TAB>u<TAB>v<TAB>confidence<TAB>range_mm<TAB>bearing_deg\n"
             "  kind L T X G (post foot) U (post top) C (circle centre)\n");
     return 2;
+}
+
+/* --show LIST: comma-separated border, classes. */
+static int detect_show(const char *list, int *border, int *classes)
+{
+    char buf[128], *tok, *save = NULL;
+    snprintf(buf, sizeof buf, "%s", list);
+    for (tok = strtok_r(buf, ",", &save); tok != NULL; tok = strtok_r(NULL, ",", &save)) {
+        if (!strcmp(tok, "border"))
+            *border = 1;
+        else if (!strcmp(tok, "classes"))
+            *classes = 1;
+        else {
+            fprintf(stderr, "fieldloc detect: --show: unknown layer \"%s\" (border, classes)\n",
+                    tok);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* The detection picture: the frame, the scanner layers asked for, the
+ * stages (det_draw) on top, and the legend strip below. */
+static int detect_picture(const det_ctx_t *ctx, const render_frame_t *fr, const fl_camera_t *cam,
+                          const fl_field_t *field, const fl_camera_model_t *m, const char *path,
+                          int n_features, int show_border, int show_classes, const char *picture)
+{
+    host_image_t img, out;
+    char caption[512];
+    const char *base = strrchr(path, '/');
+    size_t len = strlen(picture);
+    int rc = 0;
+    unsigned sets = PIC_LEGEND_DETECT;
+    img.width = fr->width;
+    img.height = fr->height;
+    img.rgb = det_rgb_copy(&fr->view);
+    if (!img.rgb)
+        return 1;
+    pic_scan_overlay(&ctx->vis->scan, img.rgb, fr->width, fr->height, show_classes, show_border);
+    det_draw(ctx, img.rgb, fr->width, fr->height, cam, field);
+    if (show_classes)
+        sets |= PIC_LEGEND_CLASSES;
+    if (show_border)
+        sets |= PIC_LEGEND_BORDER;
+    snprintf(caption, sizeof caption, "%s: %d features (field %s, camera %s)",
+             base ? base + 1 : path, n_features, field->name, m->name);
+    if (pic_add_legend(&img, sets, caption, &out) != 0) {
+        free(img.rgb);
+        return 1;
+    }
+    free(img.rgb);
+    if (len > 4 && !strcmp(picture + len - 4, ".png")) {
+        if (png_write(picture, out.rgb, out.width, out.height) != 0) {
+            fprintf(stderr, "detect: cannot write %s (PNG needs OpenCV)\n", picture);
+            rc = 1;
+        }
+    } else if (ppm_write(picture, out.rgb, out.width, out.height) != 0) {
+        fprintf(stderr, "detect: cannot write %s\n", picture);
+        rc = 1;
+    }
+    host_image_free(&out);
+    return rc;
 }
 
 int cmd_detect(int argc, char **argv)
@@ -51,7 +125,9 @@ int cmd_detect(int argc, char **argv)
                *picture = NULL, *calib_path = NULL;
     fl_calib_t calib;
     double pitch = 0, yaw = 0;
-    int i, n, stats = 0, rc = 0, repeat = 1, head_given = 0, neck = 0;
+    const char *head_text[2] = {NULL, NULL};
+    int i, n, stats = 0, rc = 0, repeat = 1, head_given = 0, show_border = 0, show_classes = 0;
+    int32_t neck = 0;
     const fl_field_t *field;
     const fl_camera_model_t *m;
     fl_camera_t cam;
@@ -67,8 +143,12 @@ int cmd_detect(int argc, char **argv)
         else if (!strcmp(argv[i], "--camera") && i + 1 < argc)
             cam_name = argv[++i];
         else if (!strcmp(argv[i], "--head") && i + 2 < argc) {
-            pitch = atof(argv[++i]);
-            yaw = atof(argv[++i]);
+            /* numbers now, their range once the camera is known */
+            head_text[0] = argv[++i];
+            head_text[1] = argv[++i];
+            if (arg_double("detect", "--head pitch", head_text[0], -1e9, 1e9, NULL, &pitch) ||
+                arg_double("detect", "--head yaw", head_text[1], -1e9, 1e9, NULL, &yaw))
+                return 2;
             head_given = 1;
         } else if (!strcmp(argv[i], "--calib") && i + 1 < argc)
             calib_path = argv[++i];
@@ -76,16 +156,27 @@ int cmd_detect(int argc, char **argv)
             picture = argv[++i];
         else if (!strcmp(argv[i], "--stats"))
             stats = 1;
-        else if (!strcmp(argv[i], "--repeat") && i + 1 < argc)
-            repeat = atoi(argv[++i]);
-        else if (!strcmp(argv[i], "--neck") && i + 1 < argc)
-            neck = atoi(argv[++i]);
-        else if (argv[i][0] == '-' && argv[i][1] != '\0')
-            return detect_usage();
+        else if (!strcmp(argv[i], "--repeat") && i + 1 < argc) {
+            if (arg_int("detect", "--repeat", argv[++i], 1, 1000000, NULL, &repeat) != 0)
+                return 2;
+        } else if (!strcmp(argv[i], "--neck") && i + 1 < argc) {
+            if (arg_int32("detect", "--neck", argv[++i], FL_CAMERA_NECK_MIN_MM,
+                          FL_CAMERA_NECK_MAX_MM, "mm", &neck) != 0)
+                return 2;
+        } else if (!strcmp(argv[i], "--show") && i + 1 < argc) {
+            if (detect_show(argv[++i], &show_border, &show_classes) != 0)
+                return 2;
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            detect_usage();
+            return 0;
+        } else if (argv[i][0] == '-' && argv[i][1] != '\0')
+            return arg_unknown("detect", argv[i],
+                               "--field=1 --camera=1 --head=2 --picture=1 --repeat=1 --neck=1 "
+                               "--show=1 --calib=1");
         else if (!path)
             path = argv[i];
         else
-            return detect_usage();
+            return arg_unknown("detect", argv[i], NULL);
     }
     if (!path)
         return detect_usage();
@@ -117,6 +208,10 @@ int cmd_detect(int argc, char **argv)
     if (fr.width != m->width_px || fr.height != m->height_px) {
         fprintf(stderr, "detect: image %dx%d does not match camera %s (%dx%d)\n", fr.width,
                 fr.height, m->name, (int)m->width_px, (int)m->height_px);
+        render_frame_free(&fr);
+        return 2;
+    }
+    if (head_given && arg_head("detect", "--head", m, head_text[0], head_text[1], &pitch, &yaw) != 0) {
         render_frame_free(&fr);
         return 2;
     }
@@ -172,25 +267,9 @@ int cmd_detect(int argc, char **argv)
                 (int)v->posts.candidates, v->circle.found ? "found" : "no",
                 (int)v->circle.n_cand, (int)v->circle.rms_mm, (int)obs.n);
     }
-    if (picture) {
-        uint8_t *rgb = det_rgb_copy(&fr.view);
-        if (!rgb) {
-            rc = 1;
-        } else {
-            size_t len = strlen(picture);
-            det_draw(&ctx, rgb, fr.width, fr.height, &cam, field);
-            if (len > 4 && !strcmp(picture + len - 4, ".png")) {
-                if (png_write(picture, rgb, fr.width, fr.height) != 0) {
-                    fprintf(stderr, "detect: cannot write %s (PNG needs OpenCV)\n", picture);
-                    rc = 1;
-                }
-            } else if (ppm_write(picture, rgb, fr.width, fr.height) != 0) {
-                fprintf(stderr, "detect: cannot write %s\n", picture);
-                rc = 1;
-            }
-            free(rgb);
-        }
-    }
+    if (picture)
+        rc = detect_picture(&ctx, &fr, &cam, field, m, path, n, show_border, show_classes,
+                            picture);
     det_ctx_free(&ctx);
     render_frame_free(&fr);
     return rc;

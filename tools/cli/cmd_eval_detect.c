@@ -18,8 +18,12 @@
  * occluded) is neither a hit nor a false positive; an unmatched detection
  * whose own range is beyond max-range is ignored.  Range errors of matched
  * crossings and feet by distance bin (|r - r_true| / r_true).
- * The scoring is in tools/eval/eval_detect.c.
+ * The scoring is in tools/eval/eval_detect.c.  --pictures DIR writes one
+ * picture per frame (stages, truth rings, legend strip).
+ * Numbers are checked (tools/cli/args.h; the ranges of the vision
+ * parameters, lines.h / crossings.h / scan.h); errors exit with status 2.
  */
+#include "cli/args.h"
 #include "eval/detect.h"
 #include "io/realdata.h"
 #include "cli/registry.h"
@@ -27,6 +31,17 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+static int evd_usage(int rc)
+{
+    fprintf(stderr,
+            "usage: fieldloc eval-detect [--fixtures DIR] [--realdata DIR] [--max-range MM]\n"
+            "         [--only PREFIX] [--verbose] [--pictures DIR] [--no-real] [--no-fixtures]\n"
+            "  tuning: --run 1..255 px  --grid 1..16 px  --step 1..64 px  --err BASE POINT\n"
+            "          (0..65535 each)  --white 0..100 %%  --white-s 0..254  --tol 1..45 deg\n"
+            "          --minconf 0..255;  --max-range 100..20000 mm\n");
+    return rc;
+}
 
 int cmd_eval_detect(int argc, char **argv)
 {
@@ -36,14 +51,18 @@ int cmd_eval_detect(int argc, char **argv)
     det_ctx_t ctx;
     evd_stats_t s;
     fl_vision_params_t vp;
+    static const char C[] = "eval-detect";
     fl_vision_params_default(&vp);
     for (i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--fixtures") && i + 1 < argc)
             fix = argv[++i];
         else if (!strcmp(argv[i], "--realdata") && i + 1 < argc)
             real = argv[++i];
-        else if (!strcmp(argv[i], "--max-range") && i + 1 < argc)
-            max_range = atof(argv[++i]);
+        else if (!strcmp(argv[i], "--max-range") && i + 1 < argc) {
+            if (arg_double("eval-detect", "--max-range", argv[++i], 100, FL_CAMERA_MAX_RANGE_MM,
+                           "mm", &max_range) != 0)
+                return 2;
+        }
         else if (!strcmp(argv[i], "--only") && i + 1 < argc)
             only = argv[++i];
         else if (!strcmp(argv[i], "--verbose"))
@@ -55,28 +74,42 @@ int cmd_eval_detect(int argc, char **argv)
         else if (!strcmp(argv[i], "--no-fixtures"))
             skip_fix = 1;
         /* tuning knobs (defaults: fl_vision_params_default) */
-        else if (!strcmp(argv[i], "--run") && i + 1 < argc)
-            vp.scan.border_run_px = atoi(argv[++i]);
-        else if (!strcmp(argv[i], "--grid") && i + 1 < argc)
-            vp.scan.col_step = vp.scan.row_step = atoi(argv[++i]);
-        else if (!strcmp(argv[i], "--step") && i + 1 < argc)
-            vp.lines.step_px = atoi(argv[++i]);
-        else if (!strcmp(argv[i], "--err") && i + 2 < argc) {
-            vp.lines.err_base_q2 = atoi(argv[++i]);
-            vp.lines.err_point_q2 = atoi(argv[++i]);
-        } else if (!strcmp(argv[i], "--white") && i + 1 < argc)
-            vp.lines.white_pct = atoi(argv[++i]);
-        else if (!strcmp(argv[i], "--white-s") && i + 1 < argc)
-            det_white_s_hi = atoi(argv[++i]);
-        else if (!strcmp(argv[i], "--tol") && i + 1 < argc)
-            vp.crossings.ground_tol_mdeg = atoi(argv[++i]) * 1000;
-        else if (!strcmp(argv[i], "--minconf") && i + 1 < argc)
-            vp.min_confidence = vp.crossings.min_confidence = atoi(argv[++i]);
-        else {
-            fprintf(stderr, "usage: fieldloc eval-detect [--fixtures DIR] [--realdata DIR] "
-                            "[--max-range MM] [--only PREFIX] [--verbose]\n");
-            return 2;
-        }
+        else if (!strcmp(argv[i], "--run") && i + 1 < argc) {
+            if (arg_int32(C, "--run", argv[++i], 1, 255, "px", &vp.scan.border_run_px))
+                return 2;
+        } else if (!strcmp(argv[i], "--grid") && i + 1 < argc) {
+            if (arg_int32(C, "--grid", argv[++i], 1, 16, "px", &vp.scan.col_step))
+                return 2;
+            vp.scan.row_step = vp.scan.col_step;
+        } else if (!strcmp(argv[i], "--step") && i + 1 < argc) {
+            if (arg_int32(C, "--step", argv[++i], 1, 64, "px", &vp.lines.step_px))
+                return 2;
+        } else if (!strcmp(argv[i], "--err") && i + 2 < argc) {
+            if (arg_int32(C, "--err BASE", argv[++i], 0, 65535, NULL, &vp.lines.err_base_q2) ||
+                arg_int32(C, "--err POINT", argv[++i], 0, 65535, NULL, &vp.lines.err_point_q2))
+                return 2;
+        } else if (!strcmp(argv[i], "--white") && i + 1 < argc) {
+            if (arg_int32(C, "--white", argv[++i], 0, 100, "%", &vp.lines.white_pct))
+                return 2;
+        } else if (!strcmp(argv[i], "--white-s") && i + 1 < argc) {
+            /* green S >= this + 1 must stay a byte */
+            if (arg_int(C, "--white-s", argv[++i], 0, 254, NULL, &det_white_s_hi))
+                return 2;
+        } else if (!strcmp(argv[i], "--tol") && i + 1 < argc) {
+            if (arg_int32(C, "--tol", argv[++i], 1, 45, "deg", &vp.crossings.ground_tol_mdeg))
+                return 2;
+            vp.crossings.ground_tol_mdeg *= 1000;
+        } else if (!strcmp(argv[i], "--minconf") && i + 1 < argc) {
+            if (arg_int32(C, "--minconf", argv[++i], 0, 255, NULL, &vp.min_confidence))
+                return 2;
+            vp.crossings.min_confidence = vp.min_confidence;
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h"))
+            return evd_usage(0);
+        else
+            return arg_unknown(C, argv[i],
+                               "--fixtures=1 --realdata=1 --max-range=1 --only=1 --pictures=1 "
+                               "--run=1 --grid=1 --step=1 --err=2 --white=1 --white-s=1 --tol=1 "
+                               "--minconf=1");
     }
     if (det_ctx_init_params(&ctx, &vp) != 0) {
         fprintf(stderr, "eval-detect: bad parameters\n");

@@ -17,6 +17,7 @@
  */
 #include "world/render.h"
 #include "world/truth.h"
+#include "cli/args.h"
 #include "cli/registry.h"
 
 #include <stdio.h>
@@ -69,12 +70,13 @@ int cmd_fixtures(int argc, char **argv)
             out = argv[++i];
         else if (!strcmp(argv[i], "--only") && i + 1 < argc)
             only = argv[++i];
-        else {
+        else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             fprintf(stderr, "usage: fieldloc fixtures [--out DIR] [--only NAME]\n"
                             "  writes DIR/frames/NAME.{ppm|raw,truth,scene} and DIR/frames/index.txt,\n"
                             "  and DIR/walks/ when the walk simulator is built in\n");
-            return 2;
-        }
+            return 0;
+        } else
+            return arg_unknown("fixtures", argv[i], "--out=1 --only=1");
     }
     snprintf(dir, sizeof dir, "%s/frames", out);
     if (ensure_dir(out) != 0 || ensure_dir(dir) != 0) {

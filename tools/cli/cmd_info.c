@@ -1,5 +1,6 @@
 /* tools/cli/cmd_info.c - `fieldloc fields`, `cameras`, `project`. */
 #include "fieldloc/fieldloc.h"
+#include "cli/args.h"
 #include "cli/registry.h"
 
 #include <math.h>
@@ -12,6 +13,17 @@ static const char *kind_name[FL_LM_KIND_COUNT] = {
     "L", "T", "X", "penalty-mark", "centre-mark", "post", "centre-circle", "beacon"};
 
 static int list_fields(void);
+
+/* The listing commands take no option: --help says so, anything else is an
+ * error (status 2). */
+static int no_options(const char *cmd, const char *arg)
+{
+    if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
+        fprintf(stderr, "usage: fieldloc %s (no options)\n", cmd);
+        return 0;
+    }
+    return arg_unknown(cmd, arg, NULL);
+}
 static int list_cameras(void);
 
 static fl_angle_t angle_from_rad(double rad)
@@ -23,7 +35,8 @@ static double angle_to_deg(fl_angle_t a) { return a * (360.0 / 65536.0); }
 
 int cmd_fields(int argc, char **argv)
 {
-    (void)argc; (void)argv;
+    if (argc > 0)
+        return no_options("fields", argv[0]);
     return list_fields();
 }
 
@@ -48,7 +61,8 @@ static int list_fields(void)
 
 int cmd_cameras(int argc, char **argv)
 {
-    (void)argc; (void)argv;
+    if (argc > 0)
+        return no_options("cameras", argv[0]);
     return list_cameras();
 }
 
@@ -68,6 +82,20 @@ static int list_cameras(void)
     return 0;
 }
 
+static int project_usage(void)
+{
+    fprintf(stderr,
+            "usage: fieldloc project [--camera NAME] [--neck MM] [--head PITCH_RAD YAW_RAD]\n"
+            "                        [--tilt TORSO_PITCH_RAD TORSO_ROLL_RAD ROLL_OFFSET_RAD] U V\n"
+            "  (neck height and pitch offset default to the camera model's calibrated pose;\n"
+            "  --tilt: the IMU's AngleY, AngleX and a calibration roll, camera.h's signs,\n"
+            "  each -0.7854..0.7854 rad)\n"
+            "  --neck 50..2000 mm; --head within the NAO head joints (HeadPitch\n"
+            "  -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad; non-NAO camera: its\n"
+            "  tilt limit); U V a pixel of the image (-0.5..width-0.5, -0.5..height-0.5)\n");
+    return 2;
+}
+
 int cmd_project(int argc, char **argv)
 {
     const char *cam_name = "nao4-bottom-320";
@@ -75,38 +103,65 @@ int cmd_project(int argc, char **argv)
     int32_t neck_mm = -1;
     fl_camera_t cam;
     const fl_camera_model_t *m;
-    double u = -1, v = -1;
+    double u = -1, v = -1, pitch = 0, yaw = 0;
+    const char *uv_text[2] = {NULL, NULL}, *head_text[2] = {NULL, NULL};
     int i, npos = 0;
     fl_status_t s;
     fl_point_t g;
     for (i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--camera") && i + 1 < argc)
             cam_name = argv[++i];
-        else if (!strcmp(argv[i], "--neck") && i + 1 < argc)
-            neck_mm = atoi(argv[++i]);
-        else if (!strcmp(argv[i], "--head") && i + 2 < argc) {
-            pose.head_pitch = angle_from_rad(atof(argv[++i]));
-            pose.head_yaw = angle_from_rad(atof(argv[++i]));
-        } else if (npos == 0) {
-            u = atof(argv[i]);
-            npos++;
-        } else if (npos == 1) {
-            v = atof(argv[i]);
-            npos++;
-        } else {
-            fprintf(stderr, "project: unexpected argument %s\n", argv[i]);
-            return 2;
-        }
+        else if (!strcmp(argv[i], "--neck") && i + 1 < argc) {
+            if (arg_int32("project", "--neck", argv[++i], FL_CAMERA_NECK_MIN_MM,
+                          FL_CAMERA_NECK_MAX_MM, "mm", &neck_mm) != 0)
+                return 2;
+        } else if (!strcmp(argv[i], "--head") && i + 2 < argc) {
+            head_text[0] = argv[++i];   /* range checked once the camera is known */
+            head_text[1] = argv[++i];
+            if (arg_double("project", "--head pitch", head_text[0], -1e9, 1e9, NULL, &pitch) ||
+                arg_double("project", "--head yaw", head_text[1], -1e9, 1e9, NULL, &yaw))
+                return 2;
+        } else if (!strcmp(argv[i], "--tilt") && i + 3 < argc) {
+            /* the IMU's AngleY and AngleX and a calibration roll (camera.h's
+             * signs), each within the camera model's limit */
+            double t[3];
+            int k;
+            for (k = 0; k < 3; k++) {
+                static const char *const what[3] = {"--tilt torso pitch", "--tilt torso roll",
+                                                    "--tilt roll offset"};
+                if (arg_double("project", what[k], argv[++i], -0.7854, 0.7854, "rad", &t[k]) != 0)
+                    return 2;
+            }
+            pose.torso_pitch = angle_from_rad(t[0]);
+            pose.torso_roll = angle_from_rad(t[1]);
+            pose.roll_offset = angle_from_rad(t[2]);
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            project_usage();
+            return 0;
+        } else if (argv[i][0] == '-' && argv[i][1] != '.' &&
+                   !(argv[i][1] >= '0' && argv[i][1] <= '9'))
+            return arg_unknown("project", argv[i], "--camera=1 --neck=1 --head=2 --tilt=3");
+        else if (npos < 2)
+            uv_text[npos++] = argv[i];
+        else
+            return arg_unknown("project", argv[i], NULL);
     }
-    if (npos != 2) {
-        fprintf(stderr, "usage: fieldloc project [--camera NAME] [--neck MM] [--head PITCH_RAD YAW_RAD] U V\n"
-                        "  (neck height and pitch offset default to the camera model's calibrated pose)\n");
-        return 2;
-    }
+    if (npos != 2)
+        return project_usage();
     m = fl_camera_model_find(cam_name);
     if (!m) {
         fprintf(stderr, "project: unknown camera %s (see: fieldloc cameras)\n", cam_name);
         return 2;
+    }
+    /* a pixel of the image (pixel centres at integers) */
+    if (arg_double("project", "U", uv_text[0], -0.5, m->width_px - 0.5, "px", &u) != 0 ||
+        arg_double("project", "V", uv_text[1], -0.5, m->height_px - 0.5, "px", &v) != 0)
+        return 2;
+    if (head_text[0] != NULL) {
+        if (arg_head("project", "--head", m, head_text[0], head_text[1], &pitch, &yaw) != 0)
+            return 2;
+        pose.head_pitch = angle_from_rad(pitch);
+        pose.head_yaw = angle_from_rad(yaw);
     }
     /* the model's default pose (calibrated for uva2013) unless overridden */
     pose.neck_height_mm = neck_mm >= 0 ? neck_mm : m->default_neck_height_mm;
@@ -153,8 +208,8 @@ int cmd_sizes(int argc, char **argv)
     };
     size_t i, total = sizeof(fl_color_table_t) + sizeof(fl_vision_t) + loc->state_size +
                       sizeof(fl_camera_t) + sizeof(fl_obs_list_t) + sizeof(fl_image_t);
-    (void)argc;
-    (void)argv;
+    if (argc > 0)
+        return no_options("sizes", argv[0]);
     snprintf(loc_type, sizeof loc_type, "fl_%s_t", loc->name);
     for (i = 0; i < sizeof t / sizeof t[0]; i++)
         printf("%-18s %8lu B  %s\n", t[i].name, (unsigned long)t[i].size, t[i].what);

@@ -55,6 +55,7 @@
  */
 #include "loc/locrun.h"
 #include "eval/calib_frames.h"
+#include "cli/args.h"
 #include "eval/picture.h"
 #include "io/ppm.h"
 #include "io/realdata.h"
@@ -78,7 +79,8 @@ static int lz_usage(void)
             "        [--calib CALIB] per-robot calibration from `fieldloc calibrate --out`)\n"
             "  SEQUENCE.txt: 'field NAME', 'camera NAME', optional 'prior X_MM Y_MM THETA_DEG',\n"
             "  then per frame 'frame IMAGE.ppm odo DX_MM DY_MM DTHETA_DEG head PITCH_RAD YAW_RAD'\n"
-            "  prints per frame: pose X_MM Y_MM THETA_DEG RELIABILITY\n");
+            "  prints per frame: pose X_MM Y_MM THETA_DEG RELIABILITY\n"
+            "  --picture-every 1..1000000\n");
     return 2;
 }
 
@@ -260,9 +262,8 @@ int cmd_localize(int argc, char **argv)
         if (!strcmp(argv[k], "--pictures") && k + 1 < argc)
             pictures = argv[++k];
         else if (!strcmp(argv[k], "--picture-every") && k + 1 < argc) {
-            every = atoi(argv[++k]);
-            if (every < 1)
-                return lz_usage();
+            if (arg_int("localize", "--picture-every", argv[++k], 1, 1000000, NULL, &every) != 0)
+                return 2;
         } else if (!strcmp(argv[k], "--write-seq") && k + 1 < argc)
             write_seq = argv[++k];
         else if (!strcmp(argv[k], "--uva-spots"))
@@ -275,12 +276,17 @@ int cmd_localize(int argc, char **argv)
             if (n_param < 64)
                 param[n_param++] = argv[++k];
         }
-        else if (argv[k][0] == '-' && argv[k][1] != '\0')
-            return lz_usage();
+        else if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
+            lz_usage();
+            return 0;
+        } else if (argv[k][0] == '-' && argv[k][1] != '\0')
+            return arg_unknown("localize", argv[k],
+                               "--pictures=1 --picture-every=1 --write-seq=1 --localizer=1 "
+                               "--param=1 --calib=1");
         else if (seq_path == NULL)
             seq_path = argv[k];
         else
-            return lz_usage();
+            return arg_unknown("localize", argv[k], NULL);
     }
     if (calib_path != NULL && cf_calib_load(calib_path, &calib, err, (int)sizeof err) != 0) {
         fprintf(stderr, "localize: %s\n", err);

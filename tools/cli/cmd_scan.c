@@ -12,8 +12,14 @@
  * once after fl_color_adapt when the field color moved.  --repeat scans
  * the same frame N times (for callgrind: instructions per frame =
  * difference of two N / difference of N).
+ * The picture has a legend strip below the frame (picture.h).  Numbers are
+ * checked (tools/cli/args.h): --step 1..16 each, --run 1..255 px, --head
+ * within the NAO head joints (the camera's limit otherwise), --neck
+ * 50..2000 mm, --repeat 1..1000000; errors exit with status 2.
  */
 #include "eval/scan_tool.h"
+#include "cli/args.h"
+#include "eval/picture.h"
 
 #include "io/ppm.h"
 #include "io/realdata.h"
@@ -31,7 +37,9 @@ static int usage(void)
             "usage: fieldloc scan IMAGE.ppm|FRAME.raw [--picture OUT.ppm|.png]\n"
             "         [--format rgb|yuyv|planar] [--step COL ROW] [--full] [--run N]\n"
             "         [--camera NAME --head PITCH_RAD YAW_RAD [--neck MM]] [--uva]\n"
-            "         [--adapt] [--repeat N] [--quiet]\n");
+            "         [--adapt] [--repeat N] [--quiet]\n"
+            "  --step 1..16 1..16, --run 1..255 px, --neck 50..2000 mm, --repeat 1..1000000,\n"
+            "  --head: NAO HeadPitch -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad\n");
     return 2;
 }
 
@@ -78,6 +86,7 @@ int cmd_scan(int argc, char **argv)
     fl_camera_pose_t pose = {460, 0, 0, 0, 0, 0, 0};
     int use_cam = 0, uva = 0, adapt = 0, quiet = 0, repeat = 1, k, i;
     double pitch = 0, yaw = 0;
+    const char *head_text[2] = {NULL, NULL};
     render_frame_t fr;
     scantool_frame_t conv;
     const fl_image_t *view;
@@ -94,30 +103,43 @@ int cmd_scan(int argc, char **argv)
             if (!fmt)
                 return usage();
         } else if (!strcmp(argv[k], "--step") && k + 2 < argc) {
-            sp.col_step = atoi(argv[++k]);
-            sp.row_step = atoi(argv[++k]);
+            if (arg_int32("scan", "--step COL", argv[++k], 1, 16, "px", &sp.col_step) ||
+                arg_int32("scan", "--step ROW", argv[++k], 1, 16, "px", &sp.row_step))
+                return 2;
         } else if (!strcmp(argv[k], "--full"))
             sp.col_step = sp.row_step = 1;
-        else if (!strcmp(argv[k], "--run") && k + 1 < argc)
-            sp.border_run_px = atoi(argv[++k]);
-        else if (!strcmp(argv[k], "--camera") && k + 1 < argc)
+        else if (!strcmp(argv[k], "--run") && k + 1 < argc) {
+            if (arg_int32("scan", "--run", argv[++k], 1, 255, "px", &sp.border_run_px))
+                return 2;
+        } else if (!strcmp(argv[k], "--camera") && k + 1 < argc)
             camname = argv[++k];
         else if (!strcmp(argv[k], "--head") && k + 2 < argc) {
-            pitch = atof(argv[++k]);
-            yaw = atof(argv[++k]);
+            head_text[0] = argv[++k];   /* range checked once the camera is known */
+            head_text[1] = argv[++k];
+            if (arg_double("scan", "--head pitch", head_text[0], -1e9, 1e9, NULL, &pitch) ||
+                arg_double("scan", "--head yaw", head_text[1], -1e9, 1e9, NULL, &yaw))
+                return 2;
             use_cam = 1;
-        } else if (!strcmp(argv[k], "--neck") && k + 1 < argc)
-            pose.neck_height_mm = atoi(argv[++k]);
-        else if (!strcmp(argv[k], "--uva"))
+        } else if (!strcmp(argv[k], "--neck") && k + 1 < argc) {
+            if (arg_int32("scan", "--neck", argv[++k], FL_CAMERA_NECK_MIN_MM,
+                          FL_CAMERA_NECK_MAX_MM, "mm", &pose.neck_height_mm))
+                return 2;
+        } else if (!strcmp(argv[k], "--uva"))
             uva = 1;
         else if (!strcmp(argv[k], "--adapt"))
             adapt = 1;
-        else if (!strcmp(argv[k], "--repeat") && k + 1 < argc)
-            repeat = atoi(argv[++k]);
-        else if (!strcmp(argv[k], "--quiet"))
+        else if (!strcmp(argv[k], "--repeat") && k + 1 < argc) {
+            if (arg_int("scan", "--repeat", argv[++k], 1, 1000000, NULL, &repeat))
+                return 2;
+        } else if (!strcmp(argv[k], "--quiet"))
             quiet = 1;
-        else if (argv[k][0] == '-' || in)
-            return usage();
+        else if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
+            usage();
+            return 0;
+        } else if (argv[k][0] == '-' || in)
+            return arg_unknown("scan", argv[k],
+                               "--picture=1 --format=1 --step=2 --run=1 --camera=1 --head=2 "
+                               "--neck=1 --repeat=1");
         else
             in = argv[k];
     }
@@ -161,6 +183,9 @@ int cmd_scan(int argc, char **argv)
             fprintf(stderr, "scan: unknown camera %s\n", camname);
             return 2;
         }
+        if (head_text[0] != NULL &&
+            arg_head("scan", "--head", m, head_text[0], head_text[1], &pitch, &yaw) != 0)
+            return 2;
         pose.head_pitch = (fl_angle_t)lrint(pitch * 32768.0 / M_PI);
         pose.head_yaw = (fl_angle_t)lrint(yaw * 32768.0 / M_PI);
         if (fl_camera_init(&cam, m, &pose) != FL_OK) {
@@ -203,21 +228,32 @@ int cmd_scan(int argc, char **argv)
                scan.field.luma, colors.hue_shift);
     }
     if (picture) {
-        uint8_t *pic = malloc((size_t)fr.width * (size_t)fr.height * 3);
+        host_image_t pic, out;
         size_t len = strlen(picture);
+        char caption[256];
         int rc;
-        if (!pic)
+        pic.width = fr.width;
+        pic.height = fr.height;
+        pic.rgb = malloc((size_t)fr.width * (size_t)fr.height * 3);
+        if (!pic.rgb)
             return 1;
-        scantool_picture(&scan, rgb, fr.width, fr.height, pic);
+        scantool_picture(&scan, rgb, fr.width, fr.height, pic.rgb);
+        snprintf(caption, sizeof caption, "%s: grid %dx%d (step %d %d), border in %d/%d columns",
+                 base_name(in), scan.cols, scan.rows, sp.col_step, sp.row_step, scan.n_border,
+                 scan.cols);
+        rc = pic_add_legend(&pic, PIC_LEGEND_SCAN, caption, &out);
+        free(pic.rgb);
+        if (rc != 0)
+            return 1;
         if (len > 4 && !strcmp(picture + len - 4, ".png"))
-            rc = png_write(picture, pic, fr.width, fr.height);
+            rc = png_write(picture, out.rgb, out.width, out.height);
         else
-            rc = ppm_write(picture, pic, fr.width, fr.height);
+            rc = ppm_write(picture, out.rgb, out.width, out.height);
         if (rc != 0)
             fprintf(stderr, "scan: cannot write %s\n", picture);
         else if (!quiet)
             printf("picture %s\n", picture);
-        free(pic);
+        host_image_free(&out);
     }
     scantool_frame_free(&conv);
     free(rgb);

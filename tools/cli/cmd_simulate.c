@@ -92,6 +92,7 @@
  * plain error to the truth.
  */
 #include "fieldloc/fieldloc.h"
+#include "cli/args.h"
 #include "loc/locrun.h"
 #include "cli/registry.h"
 #include "world/sim.h"
@@ -109,7 +110,8 @@ static void usage(void)
             "                         [--scenario FILE.walk] [--every N] [--param NAME=V]...\n"
             "                         [--obs-cache FILE] [--print-obs]\n"
             "  --frames: render each frame at the true pose and run the vision path;\n"
-            "            vision on every Nth step (--every, default 3 = 10 Hz at 30 Hz)\n");
+            "            vision on every Nth step (--every, default 3 = 10 Hz at 30 Hz)\n"
+            "  --seed 0..2147483647, --steps 0..100000000, --every 1..1000, --post-sides 0|1\n");
 }
 
 int cmd_simulate(int argc, char **argv)
@@ -120,7 +122,7 @@ int cmd_simulate(int argc, char **argv)
     static sim_scenario_t sc;
     lr_walk_opts_t o;
     lr_walk_result_t res;
-    char err[256], *end;
+    char err[256];
     const char *obs_cache = NULL, *param[64];
     int n_param = 0;
     const fl_localizer_t *loc;
@@ -133,23 +135,14 @@ int cmd_simulate(int argc, char **argv)
         else if (!strcmp(argv[k], "--localizer") && k + 1 < argc)
             localizer = argv[++k];
         else if (!strcmp(argv[k], "--seed") && k + 1 < argc) {
-            seed = strtol(argv[++k], &end, 10);
-            if (*end != '\0' || seed < 0) {
-                fprintf(stderr, "simulate: --seed needs a non-negative integer\n");
+            if (arg_long("simulate", "--seed", argv[++k], 0, 2147483647L, NULL, &seed) != 0)
                 return 2;
-            }
         } else if (!strcmp(argv[k], "--steps") && k + 1 < argc) {
-            max_steps = strtol(argv[++k], &end, 10);
-            if (*end != '\0' || max_steps < 0) {
-                fprintf(stderr, "simulate: --steps needs a non-negative integer\n");
+            if (arg_long("simulate", "--steps", argv[++k], 0, 100000000L, NULL, &max_steps))
                 return 2;
-            }
         } else if (!strcmp(argv[k], "--every") && k + 1 < argc) {
-            every = strtol(argv[++k], &end, 10);
-            if (*end != '\0' || every < 1 || every > 1000) {
-                fprintf(stderr, "simulate: --every needs an integer in 1..1000\n");
+            if (arg_long("simulate", "--every", argv[++k], 1, 1000, NULL, &every) != 0)
                 return 2;
-            }
         } else if (!strcmp(argv[k], "--param") && k + 1 < argc) {
             if (n_param < 64)
                 param[n_param++] = argv[++k];
@@ -165,12 +158,16 @@ int cmd_simulate(int argc, char **argv)
             quiet = 1;
         else if (!strcmp(argv[k], "--print-obs"))
             print_obs = 1;
-        else if (!strcmp(argv[k], "--post-sides") && k + 1 < argc)
-            post_sides = atoi(argv[++k]);
-        else {
+        else if (!strcmp(argv[k], "--post-sides") && k + 1 < argc) {
+            if (arg_int("simulate", "--post-sides", argv[++k], 0, 1, NULL, &post_sides) != 0)
+                return 2;
+        } else if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
             usage();
-            return 2;
-        }
+            return 0;
+        } else
+            return arg_unknown("simulate", argv[k],
+                               "--field=1 --localizer=1 --seed=1 --steps=1 --every=1 --param=1 "
+                               "--obs-cache=1 --scenario=1 --post-sides=1");
     }
     if (scen_path == NULL && field_name == NULL) {
         usage();

@@ -4,6 +4,7 @@
  * eval-detect` and the tests; the rules are in tools/cli/cmd_eval_detect.c.
  */
 #include "eval/detect.h"
+#include "eval/picture.h"
 #include "io/ppm.h"
 #include "io/realdata.h"
 #include "world/render.h"
@@ -203,7 +204,7 @@ static void evd_verbose_frame(const char *name, const evd_item_t *det, int nd,
 }
 
 /* Picture of one evaluated frame: stages plus truth (white ring: matched,
- * red ring: missed, grey: not required). */
+ * red ring: missed, grey: not required), the legend strip below. */
 static void evd_picture(det_ctx_t *ctx, const fl_image_t *img, const fl_camera_t *cam,
                         const fl_field_t *field, const evd_item_t *tru, int nt,
                         const char *name)
@@ -229,7 +230,18 @@ static void evd_picture(det_ctx_t *ctx, const fl_image_t *img, const fl_camera_t
         }
     }
     snprintf(path, sizeof path, "%s/%s.ppm", evd_pic_dir, name);
-    ppm_write(path, rgb, img->width, img->height);
+    {
+        host_image_t pic, out;
+        char caption[256];
+        pic.width = img->width;
+        pic.height = img->height;
+        pic.rgb = rgb;
+        snprintf(caption, sizeof caption, "eval-detect %s (field %s)", name, field->name);
+        if (pic_add_legend(&pic, PIC_LEGEND_DETECT | PIC_LEGEND_EVAL, caption, &out) == 0) {
+            ppm_write(path, out.rgb, out.width, out.height);
+            host_image_free(&out);
+        }
+    }
     free(rgb);
 }
 

@@ -62,6 +62,51 @@ int pic_frame(const det_ctx_t *det, const fl_image_t *img, const fl_camera_t *ca
 int pic_side_by_side(const host_image_t *a, const host_image_t *b, int gap,
                      host_image_t *out);
 
+/* ---- legends ------------------------------------------------------------------
+ * Every picture the CLI writes carries a legend in a strip added BELOW the
+ * image (never over data): optional caption lines (time, error,
+ * reliability...), then one swatch + text per mark, wrapped to the width.
+ * The text uses the built-in 5 x 7 font (tools/io/font.h), light grey on
+ * PIC_LEGEND_BG.  The sets name the marks of each drawing function: */
+#define PIC_LEGEND_DETECT  0x01u  /* det_draw: points, segments, crossings, posts, circle */
+#define PIC_LEGEND_MODEL   0x02u  /* pic_frame: the field model seen from the estimate */
+#define PIC_LEGEND_BELIEF  0x04u  /* pic_belief: shading, ticks, truth, estimate, obs */
+#define PIC_LEGEND_CLASSES 0x08u  /* pic_scan_overlay classes: the scanner's class map */
+#define PIC_LEGEND_BORDER  0x10u  /* pic_scan_overlay border: border and search start */
+#define PIC_LEGEND_SCAN    0x20u  /* scantool_picture */
+#define PIC_LEGEND_EVAL    0x40u  /* eval-detect: truth rings */
+#define PIC_LEGEND_MASK    0x80u  /* render --mask: the renderer's pixel classes */
+#define PIC_LEGEND_TRUTH   0x100u /* pic_belief with a truth pose: its ring */
+
+/* Strip background; the caption and labels are drawn in PIC_LEGEND_FG. */
+#define PIC_LEGEND_BG 24
+#define PIC_LEGEND_FG 230
+
+/* Legend strip height for an image of this width (same layout as
+ * pic_add_legend). */
+int pic_legend_height(int width, unsigned sets, const char *caption);
+
+/* out = img with the legend strip of sets below it; caption (may be NULL;
+ * '\n' separates lines, long lines wrap at spaces) first.  0 on success. */
+int pic_add_legend(const host_image_t *img, unsigned sets, const char *caption,
+                   host_image_t *out);
+
+/* The same, replacing *img (freed) by the picture with its legend. */
+int pic_legend_inplace(host_image_t *img, unsigned sets, const char *caption);
+
+/* Caption of a belief picture: time (t_s < 0: unknown) and frame number
+ * (frame < 0: unknown), the estimate with its reliability, and, when
+ * err_mm >= 0, the position and heading error to the truth. */
+void pic_belief_caption(char *buf, size_t n, double t_s, long frame,
+                        const fl_loc_estimate_t *est, double err_mm, double err_deg);
+
+/* Draw the scanner's result over an RGB image of its frame: with classes,
+ * every grid cell tinted by its class (green, white, yellow; other dimmed);
+ * with border, the field border per grid column (red line) and, when the
+ * search started below row 0, the first searched row (dotted white). */
+void pic_scan_overlay(const fl_scan_t *s, uint8_t *rgb, int w, int h, int classes,
+                      int border);
+
 /* Write base.ppm, and base.png when png is 1 and the tools were built with
  * OpenCV.  Returns 0 when the PPM was written; *png_written (may be NULL)
  * tells about the PNG. */

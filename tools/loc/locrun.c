@@ -59,7 +59,7 @@ int lr_init(lr_t *r, const fl_localizer_t *loc, const fl_field_t *field,
     } else {
         loc->params_default(r->params);
     }
-    if (loc->init(r->state, field, params != NULL ? r->params : NULL) != FL_OK) {
+    if (fl_loc_init(loc, r->state, field, params != NULL ? r->params : NULL) != FL_OK) {
         if (err)
             snprintf(err, (size_t)err_len, "cannot size the %s localizer for field %s (or bad params)",
                      loc->name, field->name);
@@ -482,7 +482,7 @@ static void lr_seq_picture(const lr_seq_opts_t *o, lr_t *lr, const render_frame_
 {
     host_image_t belief, frame, both;
     pic_pose_t ep;
-    char base[1100];
+    char base[1100], info[256], caption[1400];
     ep.x_mm = est->x_mm;
     ep.y_mm = est->y_mm;
     ep.heading_deg = lr_deg(est->heading);
@@ -490,13 +490,19 @@ static void lr_seq_picture(const lr_seq_opts_t *o, lr_t *lr, const render_frame_
         return;
     snprintf(base, sizeof base, "%s/%s%05d", o->pictures,
              o->picture_prefix ? o->picture_prefix : "frame_", k);
+    /* legend strip: the sequence frame, the estimate and its reliability
+     * (a sequence has no truth, so no error) */
+    pic_belief_caption(info, sizeof info, -1, k, est, -1, 0);
+    snprintf(caption, sizeof caption, "%s  %s", o->name ? o->name : "", info);
     if (have_frame && pic_frame(&lr->det, &fr->view, &lr->cam, lr->field, &ep, 2, &frame) == 0) {
         if (pic_side_by_side(&frame, &belief, 8, &both) == 0) {
-            pic_save(&both, base, 1, NULL);
+            if (pic_legend_inplace(&both, PIC_LEGEND_DETECT | PIC_LEGEND_MODEL | PIC_LEGEND_BELIEF,
+                                   caption) == 0)
+                pic_save(&both, base, 1, NULL);
             host_image_free(&both);
         }
         host_image_free(&frame);
-    } else {
+    } else if (pic_legend_inplace(&belief, PIC_LEGEND_BELIEF, caption) == 0) {
         pic_save(&belief, base, 1, NULL);
     }
     host_image_free(&belief);

@@ -92,3 +92,26 @@ uint8_t *adv_frame(adv_kind_t k, int w, int hgt, fl_pixel_format_t f, int pad,
     return buf;
 }
 
+
+void adv_camera_model(const fl_camera_model_t *base, int w, int h, fl_camera_model_t *out)
+{
+    int64_t num, den;
+    *out = *base;
+    if (w < 1 || h < 1 || base->width_px < 1 || base->height_px < 1)
+        return;
+    /* ratio num / den = max(w / W, h / H) */
+    if ((int64_t)w * base->height_px >= (int64_t)h * base->width_px) {
+        num = w;
+        den = base->width_px;
+    } else {
+        num = h;
+        den = base->height_px;
+    }
+    out->width_px = w;
+    out->height_px = h;
+    out->focal_q4 = (int32_t)(base->focal_q4 * num / den);
+    if (out->focal_q4 < 1)
+        out->focal_q4 = 1;
+    out->cx_q4 = (int32_t)((int64_t)base->cx_q4 * w / base->width_px);
+    out->cy_q4 = (int32_t)((int64_t)base->cy_q4 * h / base->height_px);
+}

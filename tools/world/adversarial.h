@@ -7,6 +7,7 @@
 #ifndef FL_TOOLS_ADVERSARIAL_H
 #define FL_TOOLS_ADVERSARIAL_H
 
+#include "fieldloc/camera.h"
 #include "fieldloc/image.h"
 
 typedef enum { ADV_GREEN, ADV_WHITE, ADV_YELLOW, ADV_BLACK, ADV_SATURATED, ADV_NOISE,
@@ -19,5 +20,13 @@ const char *adv_name(adv_kind_t k);
  * view and the status of its validation (odd YUYV widths are rejected). */
 uint8_t *adv_frame(adv_kind_t k, int w, int h, fl_pixel_format_t f, int pad,
                    fl_image_t *img, fl_status_t *st);
+
+/* A camera model for a frame of w x h: base as a sensor scaled by the
+ * larger of w / width_px and h / height_px and cropped to w x h (focal
+ * length scaled by that ratio, at least 1/16 px; the principal point at
+ * the same relative place), name kept.  fl_vision_frame refuses a frame
+ * whose size is not its camera model's, so frames of any size need their
+ * own model.  w or h below 1: base unchanged. */
+void adv_camera_model(const fl_camera_model_t *base, int w, int h, fl_camera_model_t *out);
 
 #endif

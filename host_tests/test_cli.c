@@ -1,0 +1,429 @@
+/*
+ * host_tests/test_cli.c - the command-line tool as a user meets it: numeric
+ * options are checked (tools/cli/args.h: a bad number, a value out of
+ * range, an unknown option or a missing value exit with status 2 and one
+ * line on stderr; good values still work), and the pictures carry a legend
+ * strip below the image (tools/eval/picture.h, the 5 x 7 font of
+ * tools/io/font.h).
+ *
+ * The CLI cases run the built binary, `fieldloc` next to this runner
+ * (both are built by `make test`); they are skipped under --quick (qemu
+ * runs only the cross-built runner) and, with a "#" line, when the binary
+ * is absent (e.g. `make sanitize` builds the runner only).
+ */
+#include "test.h"
+#include "eval/picture.h"
+#include "io/font.h"
+#include "io/ppm.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+/* ---- the font and the legend strip (no binary needed) ------------------- */
+
+static void t_font(void)
+{
+    static const uint8_t white[3] = {255, 255, 255};
+    /* 'T': full top row, then the middle column */
+    host_image_t im = host_image_new(20, 12, 0, 0, 0);
+    int r, b, x;
+    CHECK_EQ(font_row('T', 0), 0x1f);
+    for (r = 1; r < 7; r++)
+        CHECK_EQ(font_row('T', r), 0x04);
+    CHECK_EQ(font_row('T', 7), 0);
+    /* a descender below the baseline for p, none for o */
+    CHECK(font_row('p', 7) != 0);
+    CHECK_EQ(font_row('o', 7), 0);
+    CHECK_EQ(font_row(' ', 3), 0);
+    /* outside printable ASCII: the '?' glyph */
+    CHECK_EQ(font_row('\001', 0), font_row('?', 0));
+    CHECK_EQ(font_text_width("", 1), 0);
+    CHECK_EQ(font_text_width("ab", 1), 11);
+    CHECK_EQ(font_text_width("ab", 2), 22);
+    CHECK(im.rgb != NULL);
+    if (im.rgb == NULL)
+        return;
+    x = font_draw(&im, 1, 2, "T", white, 1);
+    CHECK_EQ(x, 1 + FONT_ADVANCE);
+    /* every pixel of the glyph box matches the table */
+    for (r = 0; r < FONT_H; r++)
+        for (b = 0; b < FONT_W; b++) {
+            const uint8_t *p = im.rgb + 3 * ((size_t)(2 + r) * 20 + (size_t)(1 + b));
+            CHECK_EQ(p[0] == 255, (font_row('T', r) >> (4 - b)) & 1);
+        }
+    /* clipped, not crashing, at the image edge */
+    font_draw(&im, 17, 8, "WW", white, 3);
+    host_image_free(&im);
+}
+
+/* Count pixels of color c in rows [v0, v1) of im. */
+static long count_color(const host_image_t *im, int v0, int v1, int r, int g, int b)
+{
+    long n = 0;
+    int u, v;
+    for (v = v0; v < v1 && v < im->height; v++)
+        for (u = 0; u < im->width; u++) {
+            const uint8_t *p = im->rgb + 3 * ((size_t)v * (size_t)im->width + (size_t)u);
+            n += p[0] == r && p[1] == g && p[2] == b;
+        }
+    return n;
+}
+
+static void t_legend(void)
+{
+    host_image_t img = host_image_new(200, 50, 10, 200, 30), out, narrow, nout;
+    const char *cap = "a caption long enough to wrap on a narrow picture of the tools";
+    int h, hn;
+    CHECK(img.rgb != NULL);
+    if (img.rgb == NULL)
+        return;
+    h = pic_legend_height(200, PIC_LEGEND_DETECT, cap);
+    CHECK(h > 0);
+    CHECK_EQ(pic_add_legend(&img, PIC_LEGEND_DETECT, cap, &out), 0);
+    CHECK_EQ(out.width, 200);
+    CHECK_EQ(out.height, 50 + h);
+    if (out.rgb != NULL) {
+        /* the image itself is untouched, the strip holds text and swatches */
+        CHECK(memcmp(out.rgb, img.rgb, 200 * 50 * 3) == 0);
+        CHECK(count_color(&out, 50, out.height, PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG) > 200);
+        CHECK(count_color(&out, 50, out.height, PIC_LEGEND_BG, PIC_LEGEND_BG, PIC_LEGEND_BG) > 0);
+        CHECK(count_color(&out, 50, out.height, 255, 0, 0) > 0);       /* L crossing box */
+        CHECK(count_color(&out, 50, out.height, 200, 255, 0) > 0);     /* post top */
+        /* the first caption word, exactly as the font draws it */
+        {
+            host_image_t ref = host_image_new(200, FONT_LINE, PIC_LEGEND_BG, PIC_LEGEND_BG,
+                                              PIC_LEGEND_BG);
+            static const uint8_t fg[3] = {PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG};
+            int v, w = font_text_width("a caption", 1);
+            font_draw(&ref, 4, 0, "a caption", fg, 1);
+            for (v = 0; v < FONT_H; v++)
+                CHECK(memcmp(out.rgb + 3 * ((size_t)(50 + 4 + v) * 200 + 4),
+                             ref.rgb + 3 * ((size_t)v * 200 + 4), 3 * (size_t)w) == 0);
+            host_image_free(&ref);
+        }
+    }
+    host_image_free(&out);
+    /* more sets, or a narrower picture, make a taller strip */
+    CHECK(pic_legend_height(200, PIC_LEGEND_DETECT | PIC_LEGEND_CLASSES, cap) > h);
+    narrow = host_image_new(100, 50, 0, 0, 0);
+    hn = pic_legend_height(100, PIC_LEGEND_DETECT, cap);
+    CHECK(hn > h);
+    CHECK_EQ(pic_legend_inplace(&narrow, PIC_LEGEND_DETECT, cap), 0);
+    CHECK_EQ(narrow.height, 50 + hn);
+    host_image_free(&narrow);
+    /* a wide picture (frame | belief) gets the strip at twice the size */
+    {
+        host_image_t wide = host_image_new(1200, 20, 0, 0, 0), ref;
+        static const uint8_t fg[3] = {PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG};
+        int v, w = font_text_width("t 3.0 s", 2);
+        CHECK_EQ(pic_legend_inplace(&wide, PIC_LEGEND_BELIEF, "t 3.0 s"), 0);
+        ref = host_image_new(1200, 2 * FONT_LINE, PIC_LEGEND_BG, PIC_LEGEND_BG, PIC_LEGEND_BG);
+        font_draw(&ref, 4, 0, "t 3.0 s", fg, 2);
+        if (wide.rgb != NULL && ref.rgb != NULL)
+            for (v = 0; v < 2 * FONT_H; v++)
+                CHECK(memcmp(wide.rgb + 3 * ((size_t)(20 + 4 + v) * 1200 + 4),
+                             ref.rgb + 3 * ((size_t)v * 1200 + 4), 3 * (size_t)w) == 0);
+        host_image_free(&ref);
+        host_image_free(&wide);
+    }
+    memset(&nout, 0, sizeof nout);
+    CHECK_EQ(pic_add_legend(&nout, PIC_LEGEND_DETECT, NULL, &out), -1);
+    host_image_free(&img);
+}
+
+static void t_caption(void)
+{
+    fl_loc_estimate_t e;
+    char buf[256];
+    memset(&e, 0, sizeof e);
+    e.x_mm = 1200;
+    e.y_mm = -300;
+    e.heading = 16384;               /* 90 deg */
+    e.reliability_q16 = 49152;       /* 0.75 */
+    pic_belief_caption(buf, sizeof buf, 12.5, 125, &e, 240.4, 3.25);
+    CHECK(strstr(buf, "t 12.5 s") != NULL);
+    CHECK(strstr(buf, "frame 125") != NULL);
+    CHECK(strstr(buf, "estimate 1200 -300 mm 90 deg") != NULL);
+    CHECK(strstr(buf, "reliability 0.75") != NULL);
+    CHECK(strstr(buf, "error 240 mm 3.2 deg") != NULL || strstr(buf, "error 240 mm 3.3 deg"));
+    pic_belief_caption(buf, sizeof buf, -1, 7, &e, -1, 0);
+    CHECK(strstr(buf, "t ") != buf);
+    CHECK(strstr(buf, "frame 7") == buf);
+    CHECK(strstr(buf, "no truth") != NULL);
+    /* a short buffer is cut, never overrun */
+    pic_belief_caption(buf, 10, 12.5, 125, &e, 240, 3);
+    CHECK(strlen(buf) == 9);
+}
+
+/* ---- the binary ------------------------------------------------------------ */
+
+static char t_cli[1100], t_dir[1100];
+
+/* The fieldloc binary next to this runner; 0 when found. */
+static int cli_find(void)
+{
+    char self[1024];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    char *slash;
+    if (n <= 0)
+        return -1;
+    self[n] = '\0';
+    slash = strrchr(self, '/');
+    if (slash == NULL)
+        return -1;
+    *slash = '\0';
+    snprintf(t_cli, sizeof t_cli, "%s/fieldloc", self);
+    snprintf(t_dir, sizeof t_dir, "%s/cli_test", self);
+    mkdir(t_dir, 0777);
+    return access(t_cli, X_OK) == 0 ? 0 : -1;
+}
+
+/* Run `fieldloc ARGS`; returns the exit status (-1: not run), stdout and
+ * stderr in out / err (may be NULL). */
+static int cli_run(const char *args, char *out, size_t nout, char *err, size_t nerr)
+{
+    char cmd[4096], path[1200];
+    int rc, k;
+    snprintf(cmd, sizeof cmd, "%s %s > %s/out.txt 2> %s/err.txt", t_cli, args, t_dir, t_dir);
+    rc = system(cmd);
+    for (k = 0; k < 2; k++) {
+        char *buf = k ? err : out;
+        size_t n = k ? nerr : nout, got = 0;
+        FILE *f;
+        if (buf == NULL)
+            continue;
+        snprintf(path, sizeof path, "%s/%s", t_dir, k ? "err.txt" : "out.txt");
+        f = fopen(path, "r");
+        if (f != NULL) {
+            got = fread(buf, 1, n - 1, f);
+            fclose(f);
+        }
+        buf[got] = '\0';
+    }
+    if (rc == -1 || !WIFEXITED(rc))
+        return -1;
+    return WEXITSTATUS(rc);
+}
+
+/* args must fail with status 2 and exactly one stderr line equal to msg. */
+#define expect_error(args, msg) expect_error_at(__LINE__, args, msg)
+static void expect_error_at(int line_no, const char *args, const char *msg)
+{
+    char err[2048], line[2048];
+    int rc = cli_run(args, NULL, 0, err, sizeof err);
+    snprintf(line, sizeof line, "%s\n", msg);
+    if (rc != 2 || strcmp(err, line) != 0)
+        t_fail_msg(__FILE__, line_no, "fieldloc %s: status %d, stderr \"%s\" (want 2, \"%s\")",
+                   args, rc, err, msg);
+    else
+        CHECK(1);
+}
+
+#define FRAME_FAR "fixtures/frames/spl2013_t_far.raw"
+#define CAM_FAR "--field spl2013 --camera nao4-top-320"
+
+static void t_numbers(void)
+{
+    char out[4096], err[2048];
+    if (t_quick)
+        return;
+    if (cli_find() != 0) {
+        t_info("skipped: %s not built", t_cli);
+        return;
+    }
+    /* not a number, out of range (radians, with the NAO joint in degrees) */
+    expect_error("detect " CAM_FAR " --head abc 0 " FRAME_FAR,
+                 "fieldloc detect: --head pitch: \"abc\" is not a number");
+    expect_error("detect " CAM_FAR " --head 100 0 " FRAME_FAR,
+                 "fieldloc detect: --head pitch: 100 is out of range -0.6720..0.5149 rad "
+                 "(-38.5..29.5 degrees, NAO HeadPitch)");
+    expect_error("detect " CAM_FAR " --head 0 2.1 " FRAME_FAR,
+                 "fieldloc detect: --head yaw: 2.1 is out of range -2.0857..2.0857 rad "
+                 "(-119.5..119.5 degrees, NAO HeadYaw)");
+    expect_error("detect " CAM_FAR " --head 0x1 0 " FRAME_FAR,
+                 "fieldloc detect: --head pitch: \"0x1\" is not a number");
+    expect_error("detect " CAM_FAR " --head nan 0 " FRAME_FAR,
+                 "fieldloc detect: --head pitch: \"nan\" is not a number");
+    expect_error("detect " CAM_FAR " --neck 20 " FRAME_FAR,
+                 "fieldloc detect: --neck: 20 is out of range 50..2000 mm");
+    expect_error("detect " CAM_FAR " --repeat -3 " FRAME_FAR,
+                 "fieldloc detect: --repeat: -3 is out of range 1..1000000");
+    expect_error("detect " CAM_FAR " --repeat 2.5 " FRAME_FAR,
+                 "fieldloc detect: --repeat: \"2.5\" is not an integer");
+    expect_error("detect " CAM_FAR " --repeat 7x " FRAME_FAR,
+                 "fieldloc detect: --repeat: \"7x\" is not a number");
+    expect_error("detect " CAM_FAR " --repeat 99999999999999999999 " FRAME_FAR,
+                 "fieldloc detect: --repeat: 99999999999999999999 is out of range 1..1000000");
+    expect_error("detect " CAM_FAR " --repeat '' " FRAME_FAR,
+                 "fieldloc detect: --repeat: \"\" is not a number");
+    expect_error("detect " CAM_FAR " --show rings " FRAME_FAR,
+                 "fieldloc detect: --show: unknown layer \"rings\" (border, classes)");
+    expect_error("detect " CAM_FAR " --bogus " FRAME_FAR,
+                 "fieldloc detect: unknown option --bogus (fieldloc detect --help)");
+    expect_error("detect " CAM_FAR " " FRAME_FAR " --neck",
+                 "fieldloc detect: --neck needs 1 value");
+    /* the camera decides the head range: the AIBO's limit is its tilt */
+    expect_error("render --field aibo2004 --camera aibo-ers7 --head 2 0 --out /dev/null",
+                 "fieldloc render: --head pitch: 2 is out of range -1.5708..1.5708 rad "
+                 "(-90.0..90.0 degrees, camera limit: optical axis within 90 degrees of level)");
+    expect_error("render --pose 6300 0 0 --out /dev/null",
+                 "fieldloc render: --pose X: 6300 is out of range -6200..6200 mm "
+                 "(the spl2013 carpet's half length plus 1000 mm)");
+    expect_error("render --seed -1 --out /dev/null",
+                 "fieldloc render: --seed: -1 is out of range 0..4294967295");
+    expect_error("render --jpeg 5 --out /dev/null",
+                 "fieldloc render: --jpeg: 5 is out of range 0..4");
+    expect_error("render --robot 0 0 0 green --out /dev/null",
+                 "fieldloc render: --robot: jersey \"green\" is not red or blue");
+    expect_error("project --camera uva2013 --neck 3000 160 200",
+                 "fieldloc project: --neck: 3000 is out of range 50..2000 mm");
+    expect_error("project --camera uva2013 160 240",
+                 "fieldloc project: V: 240 is out of range -0.5..239.5 px");
+    expect_error("scan " FRAME_FAR " --step 0 2",
+                 "fieldloc scan: --step COL: 0 is out of range 1..16 px");
+    expect_error("simulate --field spl2013 --seed -1",
+                 "fieldloc simulate: --seed: -1 is out of range 0..2147483647");
+    expect_error("simulate --field spl2013 --steps ten",
+                 "fieldloc simulate: --steps: \"ten\" is not a number");
+    expect_error("localize x.txt --picture-every 0",
+                 "fieldloc localize: --picture-every: 0 is out of range 1..1000000");
+    expect_error("demo --every 0", "fieldloc demo: --every: 0 is out of range 1..1000");
+    expect_error("demo --seconds -1", "fieldloc demo: --seconds: -1 is out of range 0..86400 s");
+    expect_error("eval-detect --tol 46", "fieldloc eval-detect: --tol: 46 is out of range 1..45 deg");
+    expect_error("fields --all", "fieldloc fields: unknown option --all (fieldloc fields --help)");
+    /* good values still work */
+    CHECK_EQ(cli_run("project --camera uva2013 --head -0.54 0 160 200", out, sizeof out, err,
+                     sizeof err), 0);
+    CHECK(strncmp(out, "ground x_mm ", 12) == 0);
+    CHECK_EQ(err[0], '\0');
+    CHECK_EQ(cli_run("detect " CAM_FAR " --head 0.05 0 --neck 450 --repeat 2 " FRAME_FAR, out,
+                     sizeof out, err, sizeof err), 0);
+    CHECK(strstr(out, "\nG\t") != NULL || strncmp(out, "G\t", 2) == 0);
+    CHECK_EQ(cli_run("simulate --field spl2013 --seed 3 --steps 20 --quiet", out, sizeof out, err,
+                     sizeof err), 0);
+    CHECK(strstr(out, "pos_rmse_mm") != NULL);
+    CHECK_EQ(cli_run("detect --help", NULL, 0, err, sizeof err), 0);
+    CHECK(strncmp(err, "usage: fieldloc detect", 22) == 0);
+}
+
+/* Read a picture written by the CLI; 0 when read. */
+static int read_pic(const char *name, host_image_t *img)
+{
+    char path[1300], err[256];
+    snprintf(path, sizeof path, "%s/%s", t_dir, name);
+    return ppm_read(path, img, err, (int)sizeof err);
+}
+
+static void t_pictures(void)
+{
+    char args[4096], out[4096], err[2048];
+    host_image_t plain, classes, border, scan, mask, belief;
+    int hplain;
+    if (t_quick)
+        return;
+    if (cli_find() != 0) {
+        t_info("skipped: %s not built", t_cli);
+        return;
+    }
+    /* detect --picture: the frame (320 x 240) with the legend strip below */
+    snprintf(args, sizeof args, "detect " CAM_FAR " --head 0.05 0 " FRAME_FAR
+             " --picture %s/plain.ppm", t_dir);
+    CHECK_EQ(cli_run(args, out, sizeof out, err, sizeof err), 0);
+    snprintf(args, sizeof args, "detect " CAM_FAR " --head 0.05 0 " FRAME_FAR
+             " --picture %s/classes.ppm --show classes", t_dir);
+    CHECK_EQ(cli_run(args, NULL, 0, err, sizeof err), 0);
+    snprintf(args, sizeof args, "detect " CAM_FAR " --head 0.05 0 " FRAME_FAR
+             " --picture %s/border.ppm --show border", t_dir);
+    CHECK_EQ(cli_run(args, NULL, 0, err, sizeof err), 0);
+    if (read_pic("plain.ppm", &plain) != 0 || read_pic("classes.ppm", &classes) != 0 ||
+        read_pic("border.ppm", &border) != 0) {
+        t_fail_msg(__FILE__, __LINE__, "detect pictures readable");
+        return;
+    }
+    hplain = plain.height - 240;
+    CHECK_EQ(plain.width, 320);
+    CHECK_EQ(hplain, pic_legend_height(320, PIC_LEGEND_DETECT, "spl2013_t_far.raw: 10 features "
+                                       "(field spl2013, camera nao4-top-320)"));
+    CHECK(count_color(&plain, 240, plain.height, PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG) >
+          500);
+    {
+        /* the caption starts with the file name, drawn by the font */
+        host_image_t ref = host_image_new(320, FONT_LINE, PIC_LEGEND_BG, PIC_LEGEND_BG,
+                                          PIC_LEGEND_BG);
+        static const uint8_t fg[3] = {PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG};
+        int v, w = font_text_width("spl2013_t_far.raw:", 1);
+        font_draw(&ref, 4, 0, "spl2013_t_far.raw:", fg, 1);
+        for (v = 0; v < FONT_H; v++)
+            CHECK(memcmp(plain.rgb + 3 * ((size_t)(240 + 4 + v) * 320 + 4),
+                         ref.rgb + 3 * ((size_t)v * 320 + 4), 3 * (size_t)w) == 0);
+        host_image_free(&ref);
+    }
+    /* the class map changes the image part (every cell tinted) and adds its
+     * legend; the border layer draws the red border into the image */
+    CHECK(classes.height > plain.height);
+    CHECK(memcmp(classes.rgb, plain.rgb, 320 * 240 * 3) != 0);
+    CHECK(count_color(&classes, 0, 240, 255, 0, 0) <= count_color(&border, 0, 240, 255, 0, 0));
+    CHECK(count_color(&border, 0, 240, 255, 0, 0) > count_color(&plain, 0, 240, 255, 0, 0) + 100);
+    CHECK(count_color(&classes, 240, classes.height, 0, 170, 0) > 0);   /* green swatch */
+    host_image_free(&plain);
+    host_image_free(&classes);
+    host_image_free(&border);
+    /* scan --picture and render --mask */
+    snprintf(args, sizeof args, "scan " FRAME_FAR " --quiet --picture %s/scan.ppm", t_dir);
+    CHECK_EQ(cli_run(args, NULL, 0, err, sizeof err), 0);
+    if (read_pic("scan.ppm", &scan) == 0) {
+        CHECK_EQ(scan.height, 240 + pic_legend_height(320, PIC_LEGEND_SCAN,
+                                                      "spl2013_t_far.raw: grid 160x120 (step 2 "
+                                                      "2), border in 160/160 columns"));
+        CHECK(count_color(&scan, 240, scan.height, PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG) >
+              200);
+        host_image_free(&scan);
+    } else
+        t_fail_msg(__FILE__, __LINE__, "scan picture readable");
+    snprintf(args, sizeof args, "render --out %s/r.ppm --mask %s/mask.ppm", t_dir, t_dir);
+    CHECK_EQ(cli_run(args, NULL, 0, err, sizeof err), 0);
+    if (read_pic("mask.ppm", &mask) == 0) {
+        CHECK(mask.height > 240);
+        CHECK(count_color(&mask, 240, mask.height, 255, 120, 0) > 0);   /* ball swatch */
+        host_image_free(&mask);
+    } else
+        t_fail_msg(__FILE__, __LINE__, "mask picture readable");
+    /* demo: the belief picture's strip has the time, error and reliability */
+    snprintf(args, sizeof args, "demo --seconds 0.5 --picture-every-s 0 --no-png --out %s/demo",
+             t_dir);
+    CHECK_EQ(cli_run(args, out, sizeof out, err, sizeof err), 0);
+    if (read_pic("demo/belief_final.ppm", &belief) == 0) {
+        /* spl2013 grid: 104 x 74 cells at 8 px */
+        CHECK_EQ(belief.width, 832);
+        CHECK(belief.height > 592);
+        CHECK(count_color(&belief, 592, belief.height, PIC_LEGEND_FG, PIC_LEGEND_FG,
+                          PIC_LEGEND_FG) > 500);
+        {
+            /* first caption line: "t 0.5 s  frame 5  estimate ..." */
+            host_image_t ref = host_image_new(832, FONT_LINE, PIC_LEGEND_BG, PIC_LEGEND_BG,
+                                              PIC_LEGEND_BG);
+            static const uint8_t fg[3] = {PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG};
+            int v, w = font_text_width("t 0.5 s  frame 5  estimate", 1);
+            font_draw(&ref, 4, 0, "t 0.5 s  frame 5  estimate", fg, 1);
+            for (v = 0; v < FONT_H; v++)
+                CHECK(memcmp(belief.rgb + 3 * ((size_t)(592 + 4 + v) * 832 + 4),
+                             ref.rgb + 3 * ((size_t)v * 832 + 4), 3 * (size_t)w) == 0);
+            host_image_free(&ref);
+        }
+        host_image_free(&belief);
+    } else
+        t_fail_msg(__FILE__, __LINE__, "demo belief picture readable");
+}
+
+void suite_cli(void)
+{
+    t_run("cli.font", t_font);
+    t_run("cli.legend", t_legend);
+    t_run("cli.caption", t_caption);
+    t_run("cli.numbers", t_numbers);
+    t_run("cli.pictures", t_pictures);
+}
