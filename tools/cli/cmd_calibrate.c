@@ -2,7 +2,7 @@
  * tools/cli/cmd_calibrate.c - camera calibration.
  *
  * `fieldloc calibrate --field F --camera C --frames FILE [--out CALIB]
- * [--no-roll]`: per-robot calibration from the user's own frames taken at
+ * [--no-roll] [--fit-heading]`: per-robot calibration from the user's own frames taken at
  * known poses (format of FILE and the fit: tools/eval/calib_frames.h; in
  * short one line per frame "IMAGE X_MM Y_MM HEADING_DEG HEAD_YAW_DEG
  * HEAD_PITCH_DEG [TORSO_PITCH_DEG TORSO_ROLL_DEG]", '#' comments, paths
@@ -10,8 +10,11 @@
  * (not with --no-roll) to the detected field lines, prints per frame and
  * in total the residuals with the camera's default pose and with the
  * fitted one, and writes CALIB (fieldloc/calib.h format) for `detect
- * --calib`, `localize --calib` and fl_calib_parse on the robot.  A
- * malformed FILE is refused with its line (exit status 2).
+ * --calib`, `localize --calib` and fl_calib_parse on the robot.
+ * --fit-heading also refits each frame's heading and x/y (priors 5 deg,
+ * 100 mm) for robots put down by hand.  A malformed FILE is refused with
+ * its line (exit status 2); an unreadable image skips its frame with a
+ * message.
  *
  * `fieldloc calibrate [--dir DIR] [--verbose] [--out CALIB]`: fit
  * the UvA 2013 camera (calibrate.h) to ../shared/realdata's hand labels
@@ -21,7 +24,8 @@
  * leave-one-image-out residuals and the check of the committed catalogue
  * camera "uva2013" through the firmware projection; then the same frames
  * as a frame list through the detection-driven fit of --frames (from the
- * nominal NAO v4 pose) for comparison.  --out writes the hand-label fit
+ * nominal NAO v4 pose, with --fit-heading: the file-name poses are off)
+ * for comparison ([10]).  --out writes the hand-label fit
  * [4] as a calibration of camera uva2013.
  * Says "skipped: ..." and exits 0 when the folder is absent.
  */
