@@ -524,7 +524,7 @@ static void ignorance_pose(const fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
  * fitted by tools/build/fit_reliability.py on the records of tracked,
  * half-decided estimates of the training walks
  *     build/fieldloc reliability --seeds 11,12,...,40
- *         --frame-seeds 11,12,13,14 --obs-cache-dir DIR --dump train.tsv
+ *         --frame-seeds 11,12,13 --obs-cache-dir DIR --dump train.tsv
  * (share of good records per raw interval, made monotone, lowered by two
  * standard errors, the smaller of feature mode and frames mode, capped at
  * 0.97; each knot at its interval's upper end so that the interpolation
@@ -535,8 +535,10 @@ static void ignorance_pose(const fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
  * FZ_CAL_LOST / 256; no information at all: 0. */
 #define FZ_CAL_KNOTS 15
 #define FZ_CAL_LOST 128u
-static const uint16_t fz_cal_raw[FZ_CAL_KNOTS] = {0, 956, 1612, 2347, 3061, 3722, 5021, 6405, 8982, 11502, 13830, 18649, 22939, 30711, 65535};
-static const uint16_t fz_cal_rel[FZ_CAL_KNOTS] = {0, 17978, 37943, 50933, 56727, 58508, 59381, 60100, 61207, 62351, 63568, 63568, 63568, 63568, 63568};
+static const uint16_t fz_cal_raw[FZ_CAL_KNOTS] = {
+    0, 1021, 1641, 2247, 2912, 3538, 4727, 5968, 8496, 11011, 13350, 18288, 22605, 30452, 65535};
+static const uint16_t fz_cal_rel[FZ_CAL_KNOTS] = {
+    0, 12700, 29276, 51978, 56046, 59224, 59224, 59769, 60901, 61840, 63251, 63568, 63568, 63568, 63568};
 
 static uint16_t fz_calibrate(const fl_fuzzy_estimate_t *e)
 {
