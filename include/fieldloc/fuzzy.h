@@ -488,9 +488,11 @@ uint16_t fl_fuzzy_update_view(fl_fuzzy_t *g, const fl_obs_list_t *obs,
 
 /* The estimate: centre of gravity of the dominant mode (the tracked mode or
  * the prior's while its peak is at least switch_q8 x the global peak),
- * heading = weighted circular mean of the trapezoid centres, reliability.
- * Updates the tracked mode.  false (and *out zeroed) only for NULL or an
- * uninitialized grid. */
+ * heading = weighted circular mean of the trapezoid centres, reliability;
+ * then the confidence (spread, mirror, the calibrated reliability of
+ * localizer.h).  A flat grid (no information) gives the centre of the
+ * prior's region instead of a mode.  Updates the tracked mode.  false (and
+ * *out zeroed) only for NULL or an uninitialized grid. */
 bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out);
 
 /* ---- inspection --------------------------------------------------------- */

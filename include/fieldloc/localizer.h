@@ -59,7 +59,8 @@ typedef enum {
     FL_LOC_AMBIGUOUS = 1,   /* a mode is tracked but on a symmetric field the
                                pose rotated 180 deg about the centre is as
                                possible (mirror_q16 >= 1/2): nothing told the
-                               half since a kidnap; the pose or its mirror */
+                               half (no prior, or a kidnap since): the pose
+                               or its mirror */
     FL_LOC_TRACKING = 2     /* a mode is tracked and its half is decided */
 } fl_loc_state_t;
 
@@ -83,8 +84,9 @@ typedef enum {
  *    localizer's own measures only (peak, mode size, spread, mirror,
  *    time since an observation was applied, ...), fitted on training walks
  *    and checked on other seeds; not a probability of anything else.
- *  - Under total ignorance (after init or a reset to ignorance with no
- *    prior, after a detected kidnap) the estimate is the field's centre
+ *  - Under total ignorance (after init or a reset to ignorance, after a
+ *    detected kidnap, until an observation tells something) the estimate
+ *    is the field's centre
  *    (the centre of the prior's region with a prior), sd_x_mm / sd_y_mm the
  *    spread of a uniform distribution over that region, sd_heading 32767,
  *    reliability 0, state FL_LOC_LOST, localized false: never a pose in a

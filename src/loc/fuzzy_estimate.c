@@ -24,6 +24,11 @@
  * / the peak; the mirror of a symmetric field is not "elsewhere").  The
  * estimate becomes the tracked mode once the reliability reaches
  * track_min_q16; predict moves the track by the odometry.
+ * Confidence (step 7, read by nothing above): the spread of the possibility
+ * mass around the estimate, the heading spread of the mode, the mirror
+ * pose's possibility when the half is not decided, and the reliability
+ * calibrated to the contract of localizer.h (fz_calibrate); a flat grid
+ * reports the centre of the prior's region, not the first cell scanned.
  * Cost: O(cells) (peak, uniqueness) + O(window) per mean-shift
  * iteration.
  */

@@ -1,6 +1,8 @@
 #!/bin/sh
 # Generate docs/RESULTS.md: machine, test-runner notes, bench table,
-# callgrind rows, simulated walks and detection scoring.  Run through
+# callgrind rows, simulated walks, the reliability diagram (fieldloc
+# reliability over the frames walks' observations, kept with --obs-cache)
+# and detection scoring.  Run through
 # `make results` (which runs `make test` first, so BUILD/test.log is fresh);
 # the generated file is never edited by hand.
 # Usage: tools/build/results.sh BUILD OUT
