@@ -12,6 +12,7 @@ T_SUITE(color);
 T_SUITE(scan);
 T_SUITE(fuzzy);
 T_SUITE(localizer);
+T_SUITE(confidence);
 T_SUITE(lines);
 T_SUITE(features);
 T_SUITE(camera_vision);

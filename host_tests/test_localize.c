@@ -257,14 +257,20 @@ static void t_sequence_run(void)
     o.out = out;
     o.quiet = 1;
     CHECK_EQ(lr_seq_run(&seq, &o, res), 0);
-    /* one "pose X Y THETA REL" line per frame */
+    /* one "pose X Y THETA REL STATE sd SDX SDY SDH mirror M" line per frame */
     if (out != NULL) {
         rewind(out);
         while (fgets(line, sizeof line, out) != NULL) {
-            int x, y;
-            double th, rel;
-            CHECK_EQ(sscanf(line, "pose %d %d %lf %lf", &x, &y, &th, &rel), 4);
+            int x, y, sdx, sdy;
+            double th, rel, mir;
+            char state[16], sdh[16];
+            CHECK_EQ(sscanf(line, "pose %d %d %lf %lf %15s sd %d %d %15s mirror %lf", &x, &y, &th,
+                            &rel, state, &sdx, &sdy, sdh, &mir),
+                     9);
             CHECK(rel >= 0 && rel <= 1 && th > -180 && th <= 180);
+            CHECK(!strcmp(state, "LOST") || !strcmp(state, "AMBIGUOUS") ||
+                  !strcmp(state, "TRACKING"));
+            CHECK(sdx >= 0 && sdy >= 0 && mir >= 0 && mir <= 1);
             n_lines++;
         }
         fclose(out);

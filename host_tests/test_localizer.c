@@ -206,7 +206,17 @@ static void test_same_as_direct(void)
         CHECK_EQ(le.x_mm, e.x_mm);
         CHECK_EQ(le.y_mm, e.y_mm);
         CHECK_EQ(le.heading, e.heading);
-        CHECK_EQ(le.reliability_q16, e.reliability_q16);
+        /* the interface's reliability is the calibrated one; the grid's
+         * own measure is its score */
+        CHECK_EQ(le.reliability_q16, e.calibrated_q16);
+        CHECK_EQ(le.score_q16, e.reliability_q16);
+        CHECK_EQ(le.sd_x_mm, e.sd_x_mm);
+        CHECK_EQ(le.sd_y_mm, e.sd_y_mm);
+        CHECK_EQ(le.cov_xy_mm2, e.cov_xy_mm2);
+        CHECK_EQ(le.sd_heading, e.sd_heading);
+        CHECK_EQ(le.mirror_q16, e.mirror_q16);
+        CHECK_EQ(le.since_obs, e.since_obs);
+        CHECK_EQ(le.state == FL_LOC_LOST, !e.tracking || e.ignorance);
         CHECK_EQ(le.peak_q8, e.peak_q8);
         CHECK_EQ(le.mode_cells, e.mode_cells);
         CHECK_EQ(le.switched, e.switched);

@@ -284,6 +284,30 @@ typedef struct {
     uint8_t peak_q8;             /* height of the chosen mode's peak */
     uint16_t mode_cells;         /* cells of the mode with height >= peak/2 */
     bool switched;               /* the estimate left the tracked mode */
+    /* confidence (fuzzy_estimate.c; localizer.h gives the contract) */
+    bool ignorance;              /* the grid holds no information (flat):
+                                    the pose is the centre of the prior's
+                                    region (the field's centre without one) */
+    bool tracking;               /* a mode is tracked (after this call) */
+    bool half_known;             /* the game told the half (prior, placement,
+                                    pose reset) and no kidnap since */
+    uint16_t sd_x_mm, sd_y_mm;   /* spread of the possibility mass around
+                                    the estimate (cells at least half the
+                                    peak, the mirror's side excluded) */
+    int32_t cov_xy_mm2;          /* its covariance */
+    fl_angle_t sd_heading;       /* heading spread of the mode (binary
+                                    angle; 32767: no heading information) */
+    uint16_t mirror_q16;         /* possibility of the 180-degree mirror
+                                    pose relative to the estimate's, given
+                                    the half (0 when half_known or the
+                                    field is not symmetric) */
+    uint16_t since_obs;          /* predict calls since an observation was
+                                    last applied (saturating) */
+    uint16_t calibrated_q16;     /* reliability_q16 and the rest mapped to
+                                    the probability that the pose is within
+                                    500 mm and 20 deg of the truth
+                                    (fuzzy_estimate.c, fitted on simulated
+                                    walks) */
 } fl_fuzzy_estimate_t;
 
 /* Scratch of one call (not state: contents are dead between calls). */
@@ -341,6 +365,10 @@ typedef struct {
                                     reset until the next update) */
     int32_t track_x_mm, track_y_mm;
     fl_angle_t track_heading;
+    bool half_known;             /* the half was told (prior, placement,
+                                    pose reset) and no kidnap since */
+    uint16_t since_obs;          /* predict calls since an observation was
+                                    last applied (saturating) */
     fl_fuzzy_stats_t stats;
     uint8_t row_lo[FL_FUZZY_MAX_NY];  /* live cells of row iy lie in columns */
     uint8_t row_hi[FL_FUZZY_MAX_NY];  /* row_lo..row_hi (lo > hi: none); a
@@ -467,9 +495,11 @@ uint16_t fl_fuzzy_update_view(fl_fuzzy_t *g, const fl_obs_list_t *obs,
 
 /* The estimate: centre of gravity of the dominant mode (the tracked mode or
  * the prior's while its peak is at least switch_q8 x the global peak),
- * heading = weighted circular mean of the trapezoid centres, reliability.
- * Updates the tracked mode.  false (and *out zeroed) only for NULL or an
- * uninitialized grid. */
+ * heading = weighted circular mean of the trapezoid centres, reliability;
+ * then the confidence (spread, mirror, the calibrated reliability of
+ * localizer.h).  A flat grid (no information) gives the centre of the
+ * prior's region instead of a mode.  Updates the tracked mode.  false (and
+ * *out zeroed) only for NULL or an uninitialized grid. */
 bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out);
 
 /* ---- inspection --------------------------------------------------------- */

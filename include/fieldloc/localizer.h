@@ -50,16 +50,81 @@ typedef enum {
  * below). */
 fl_loc_preset_t fl_loc_preset_for_width(int32_t width_px);
 
-/* One estimate, common to every localizer. */
+/* Whether the robot knows where it is. */
+typedef enum {
+    FL_LOC_LOST = 0,        /* no mode is tracked: the pose is a guess (under
+                               total ignorance: the centre of the region the
+                               prior allows, the field's centre without one,
+                               with that region's spread) */
+    FL_LOC_AMBIGUOUS = 1,   /* a mode is tracked but on a symmetric field the
+                               pose rotated 180 deg about the centre is as
+                               possible (mirror_q16 >= 1/2): nothing told the
+                               half (no prior, or a kidnap since): the pose
+                               or its mirror */
+    FL_LOC_TRACKING = 2     /* a mode is tracked and its half is decided */
+} fl_loc_state_t;
+
+/* The reliability at which an estimate counts as localized. */
+#define FL_LOC_LOCALIZED_Q16 32768u
+/* The tolerance the reliability refers to. */
+#define FL_LOC_GOOD_MM 500
+#define FL_LOC_GOOD_DEG 20
+
+/*
+ * One estimate, common to every localizer.
+ *
+ * Contract (every localizer meets it; `fieldloc reliability` measures it
+ * and a host test asserts it):
+ *  - reliability_q16 is calibrated: over the simulated walks of every field
+ *    (`fieldloc simulate`, feature-level observations and rendered frames
+ *    through vision), of the estimates reported with reliability >= r, at
+ *    least the share r is within FL_LOC_GOOD_MM and FL_LOC_GOOD_DEG of the
+ *    true pose, for every r (the truth itself, not modulo the symmetry: a
+ *    pose on the wrong half is wrong).  It is a function of the
+ *    localizer's own measures only (peak, mode size, spread, mirror,
+ *    time since an observation was applied, ...), fitted on training walks
+ *    and checked on other seeds; not a probability of anything else.
+ *  - Under total ignorance (after init or a reset to ignorance, after a
+ *    detected kidnap, until an observation tells something) the estimate
+ *    is the field's centre
+ *    (the centre of the prior's region with a prior), sd_x_mm / sd_y_mm the
+ *    spread of a uniform distribution over that region, sd_heading 32767,
+ *    reliability 0, state FL_LOC_LOST, localized false: never a pose in a
+ *    corner of the carpet.
+ *  - localized = state == FL_LOC_TRACKING && reliability_q16 >=
+ *    FL_LOC_LOCALIZED_Q16: the pose is right at least half the time.
+ *    A behaviour gates on reliability_q16 (the share it can accept), or on
+ *    localized.
+ *  - sd_x_mm, sd_y_mm, cov_xy_mm2: the spread of the belief around the
+ *    estimate (second moments about it; the mirror hypothesis excluded);
+ *    sd_heading the heading's (binary angle; 32767: no heading
+ *    information).  A description of the belief, not calibrated errors.
+ *  - mirror_q16: on a symmetric field, the weight of the pose rotated
+ *    180 deg about the centre (-x, -y, heading + 180 deg) relative to the
+ *    estimate's, given the belief and what the game told (65535: as
+ *    possible, 0: excluded or an asymmetric field).
+ */
 typedef struct {
     int32_t x_mm, y_mm;          /* field frame */
     fl_angle_t heading;
-    uint16_t reliability_q16;    /* Q0.16 in [0, 65535] ~ [0, 1] */
+    uint16_t reliability_q16;    /* Q0.16 in [0, 65535] ~ [0, 1]: calibrated,
+                                    see above */
     uint8_t peak_q8;             /* the chosen mode's peak (localizer's own
                                     measure of belief; 255 = 1) */
     uint16_t mode_cells;         /* size of the chosen mode (cells,
                                     particles, ...: the localizer's unit) */
     bool switched;               /* the estimate left the tracked mode */
+    fl_loc_state_t state;        /* LOST, AMBIGUOUS, TRACKING */
+    bool localized;              /* TRACKING and reliability >= 1/2 */
+    uint16_t sd_x_mm, sd_y_mm;   /* spread of the belief around the pose */
+    int32_t cov_xy_mm2;          /* its covariance (mm^2) */
+    fl_angle_t sd_heading;       /* heading spread (32767: unknown) */
+    uint16_t mirror_q16;         /* mirror pose's weight / the estimate's */
+    uint16_t score_q16;          /* the localizer's own uncalibrated measure
+                                    (fuzzy: consistency x compactness x
+                                    (1 - bias) x uniqueness) */
+    uint16_t since_obs;          /* predict calls since an observation was
+                                    last applied (saturating) */
 } fl_loc_estimate_t;
 
 /* Counters every localizer keeps (0 when a localizer has no such event);

@@ -212,6 +212,8 @@ void fl_fuzzy_internal_ignorance(fl_fuzzy_t *g)
     g->contra_rate_q8 = 0;
     g->track_valid = false;
     g->sym_exact = g->field->symmetric;
+    g->half_known = g->prior.kind != FL_FUZZY_PRIOR_NONE;
+    g->since_obs = 0;
 }
 
 fl_status_t fl_fuzzy_init_cfg(fl_fuzzy_t *g, const fl_field_t *field,
@@ -517,6 +519,7 @@ void fl_fuzzy_reset_pose(fl_fuzzy_t *g, int32_t x_mm, int32_t y_mm,
     /* the pose is known: track it (on a symmetric field the update makes
      * the mirror equally possible; the track keeps the estimate here) */
     g->track_valid = true;
+    g->half_known = true;
     g->track_x_mm = fz_clamp32(x_mm, -g->half_x_mm, g->half_x_mm);
     g->track_y_mm = fz_clamp32(y_mm, -g->half_y_mm, g->half_y_mm);
     g->track_heading = heading;
@@ -538,6 +541,7 @@ void fl_fuzzy_reset_penalty(fl_fuzzy_t *g, int32_t x_mm, int32_t pos_unc_mm,
      * line, where they are each other's mirror) */
     if (x_mm != 0)
         fl_fuzzy_set_prior_half(g, x_mm < 0 ? -1 : 1);
+    g->half_known = g->prior.kind != FL_FUZZY_PRIOR_NONE;
 }
 
 /* ---- priors --------------------------------------------------------------- */
@@ -548,6 +552,8 @@ void fl_fuzzy_set_prior_half(fl_fuzzy_t *g, int half)
         return;
     g->prior.kind = half == 0 ? FL_FUZZY_PRIOR_NONE : FL_FUZZY_PRIOR_HALF;
     g->prior.half = (int8_t)(half < 0 ? -1 : 1);
+    /* no half: a tracked mode still carries the half it was told */
+    g->half_known = half != 0 || (g->half_known && g->track_valid);
 }
 
 void fl_fuzzy_set_prior_pose(fl_fuzzy_t *g, int32_t x_mm, int32_t y_mm,
@@ -560,6 +566,7 @@ void fl_fuzzy_set_prior_pose(fl_fuzzy_t *g, int32_t x_mm, int32_t y_mm,
     g->prior.y_mm = fz_clamp32(y_mm, -100000, 100000);
     g->prior.heading = heading;
     g->prior.radius_mm = fz_clamp32(radius_mm, FZ_CELL, 20000);
+    g->half_known = true;
 }
 
 void fl_fuzzy_clear_prior(fl_fuzzy_t *g)
@@ -567,6 +574,7 @@ void fl_fuzzy_clear_prior(fl_fuzzy_t *g)
     if (g == NULL)
         return;
     g->prior.kind = FL_FUZZY_PRIOR_NONE;
+    g->half_known = g->half_known && g->track_valid;
 }
 
 /* ---- inspection ----------------------------------------------------------- */

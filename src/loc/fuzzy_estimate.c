@@ -24,6 +24,11 @@
  * / the peak; the mirror of a symmetric field is not "elsewhere").  The
  * estimate becomes the tracked mode once the reliability reaches
  * track_min_q16; predict moves the track by the odometry.
+ * Confidence (step 7, read by nothing above): the spread of the possibility
+ * mass around the estimate, the heading spread of the mode, the mirror
+ * pose's possibility when the half is not decided, and the reliability
+ * calibrated to the contract of localizer.h (fz_calibrate); a flat grid
+ * reports the centre of the prior's region, not the first cell scanned.
  * Cost: O(cells) (peak, uniqueness) + O(window) per mean-shift
  * iteration.
  */
@@ -257,6 +262,8 @@ static int mode_cell(const fl_fuzzy_t *g, const ref_t *ref, bool *switched)
 typedef struct {
     int64_t sw, sb;                  /* weight, weighted relative bias */
     int64_t scos, ssin, swh;         /* heading: all cells */
+    int64_t swcore2;                 /* heading: sum wh x core^2 (binary
+                                        angle^2 / 2^8) */
     int64_t tcos, tsin, twh;         /* heading: within TRIM_ANGLE of rh */
     int32_t bin[HBINS];              /* heading histogram */
     uint32_t nmode;                  /* cells in the window */
@@ -321,6 +328,9 @@ static void mean_shift(const fl_fuzzy_t *g, int32_t *px, int32_t *py, fl_angle_t
                     s->scos += (int64_t)wh * fl_cos_q15(c->centre);
                     s->ssin += (int64_t)wh * fl_sin_q15(c->centre);
                     s->swh += wh;
+                    s->swcore2 += (int64_t)wh *
+                                  (((int64_t)c->core * FL_FUZZY_AUNIT *
+                                    c->core * FL_FUZZY_AUNIT) >> 8);
                     s->bin[(uint16_t)c->centre >> (16 - HBIN_BITS)] += wh;
                     if (dh <= TRIM_ANGLE && dh >= -TRIM_ANGLE) {
                         s->tcos += (int64_t)wh * fl_cos_q15(c->centre);
@@ -392,6 +402,170 @@ static uint32_t reliability(const fl_fuzzy_t *g, const msum_t *s, int32_t px, in
     return rel > 65535u ? 65535u : rel;
 }
 
+/* Spread of the possibility mass around the estimate (px, py): second
+ * moments about it of the cell contents at least half the peak, weighted
+ * by height - 127 (like the mean shift), over the whole grid except, on a
+ * symmetric field, the cells nearer the mirror pose (the mirror is its own
+ * hypothesis, mirror_q16).  Also tells whether the grid is flat (every
+ * cell height 1 with bias 1: no information at all).  Scaling: |d| <
+ * 2^15 mm, d^2 < 2^30, x weight 128 < 2^37, x 2^14 cells < 2^51 (int64).
+ * Cost: O(cells). */
+static bool spread(const fl_fuzzy_t *g, int32_t px, int32_t py, fl_fuzzy_estimate_t *out)
+{
+    int64_t sw = 0, sxx = 0, syy = 0, sxy = 0;
+    bool flat = true;
+    int ix, iy;
+    for (iy = 0; iy < g->ny; iy++) {
+        const fl_fuzzy_cell_t *row = &g->cell[iy * g->nx];
+        for (ix = 0; ix < g->nx; ix++) {
+            const fl_fuzzy_cell_t *c = &row[ix];
+            int32_t cx, cy, dx, dy, w;
+            if (c->height != 255 || c->bias != 255)
+                flat = false;
+            if (c->height < 128)
+                continue;
+            cx = fz_centre_x(g, ix) + c->off_x_mm;
+            cy = fz_centre_y(g, iy) + c->off_y_mm;
+            dx = cx - px;
+            dy = cy - py;
+            if (g->field->symmetric &&
+                (int64_t)(cx + px) * (cx + px) + (int64_t)(cy + py) * (cy + py) <
+                    (int64_t)dx * dx + (int64_t)dy * dy)
+                continue;
+            w = (int32_t)c->height - 127;
+            sw += w;
+            sxx += (int64_t)w * dx * dx;
+            syy += (int64_t)w * dy * dy;
+            sxy += (int64_t)w * dx * dy;
+        }
+    }
+    if (sw > 0) {
+        uint32_t vx = (uint32_t)(sxx / sw), vy = (uint32_t)(syy / sw);
+        out->sd_x_mm = (uint16_t)fl_isqrt32(vx);
+        out->sd_y_mm = (uint16_t)fl_isqrt32(vy);
+        out->cov_xy_mm2 = (int32_t)(sxy / sw);
+    }
+    return flat;
+}
+
+/* Heading spread of the mode window: the circular spread of the trapezoid
+ * centres, sqrt(2 (1 - R)) rad (R: mean resultant length; the small-angle
+ * form of the circular standard deviation), combined with the mean core
+ * half-width as a uniform spread (core^2 / 3).  32767 without heading
+ * information. */
+static fl_angle_t heading_spread(const msum_t *s)
+{
+    int64_t sc = s->scos, ss = s->ssin, sw = s->swh;
+    uint32_t r_q16, v_q16, sd_q16;
+    int64_t var;
+    if (sw <= 0)
+        return (fl_angle_t)32767;
+    while (sc > (1 << 30) || sc < -(1 << 30) || ss > (1 << 30) || ss < -(1 << 30)) {
+        sc /= 2;
+        ss /= 2;
+        sw /= 2;
+    }
+    if (sw <= 0)
+        return (fl_angle_t)32767;
+    r_q16 = (uint32_t)(((uint64_t)fl_hypot((int32_t)sc, (int32_t)ss) * 2u) / (uint64_t)sw);
+    v_q16 = r_q16 >= 65536u ? 0u : 2u * (65536u - r_q16);       /* rad^2, Q16 */
+    sd_q16 = fl_isqrt64((uint64_t)v_q16 << 16);                  /* rad, Q16 */
+    /* rad -> binary angle: x 65536 / 2 pi = 10430.4 */
+    var = (int64_t)(((uint64_t)sd_q16 * 10430u) >> 16);
+    var = var * var + ((s->swcore2 / s->swh) << 8) / 3;
+    var = (int64_t)fl_isqrt64((uint64_t)var);
+    return (fl_angle_t)(var > 32767 ? 32767 : var);
+}
+
+/* The mirror hypothesis: on a symmetric field whose half nothing told,
+ * the possibility of (-x, -y, h + 180) relative to the estimate's (Q16,
+ * 65535 = as possible); 0 otherwise. */
+static uint16_t mirror_ratio(const fl_fuzzy_t *g, int32_t px, int32_t py, fl_angle_t h)
+{
+    uint32_t pe, pm;
+    if (!g->field->symmetric || g->half_known)
+        return 0;
+    pe = fl_fuzzy_possibility_q16(g, px, py, h);
+    pm = fl_fuzzy_possibility_q16(g, -px, -py, fl_angle_add(h, FL_ANGLE_180));
+    if (pm >= pe)
+        return pm > 0 ? 65535u : 0u;
+    return (uint16_t)(((uint64_t)pm * 65535u) / pe);
+}
+
+/* No information (a flat grid): the pose is the centre of the region the
+ * prior allows (own half, a pose's disc, else the field), heading the
+ * prior's (else 0); spread: a uniform distribution over that region
+ * (sd = extent / sqrt(12)), no heading information. */
+static void ignorance_pose(const fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
+{
+    int32_t hx = g->half_x_mm, hy = g->half_y_mm;
+    out->ignorance = true;
+    out->x_mm = 0;
+    out->y_mm = 0;
+    out->heading = 0;
+    out->sd_x_mm = (uint16_t)((2 * hx * 1000) / 3464);
+    out->sd_y_mm = (uint16_t)((2 * hy * 1000) / 3464);
+    out->cov_xy_mm2 = 0;
+    out->sd_heading = (fl_angle_t)32767;
+    if (g->prior.kind == FL_FUZZY_PRIOR_HALF) {
+        out->x_mm = g->prior.half * (hx / 2);
+        out->sd_x_mm = (uint16_t)((hx * 1000) / 3464);
+    } else if (g->prior.kind == FL_FUZZY_PRIOR_POSE) {
+        int32_t r = fz_clamp32(g->prior.radius_mm, FZ_CELL, hx);
+        out->x_mm = fz_clamp32(g->prior.x_mm, -hx, hx);
+        out->y_mm = fz_clamp32(g->prior.y_mm, -hy, hy);
+        out->heading = g->prior.heading;
+        out->sd_x_mm = (uint16_t)(r / 2);
+        out->sd_y_mm = (uint16_t)(r / 2);
+    }
+}
+
+/* Calibration of the reliability (localizer.h: of the estimates reported
+ * with reliability >= r, at least the share r is within 500 mm and 20 deg
+ * of the truth).  Raw score: the grid's reliability x 16 / (16 + predict
+ * calls since an observation was applied) (a belief that has only been
+ * moved by odometry for a while is worth less than its shape says).  The
+ * map raw -> reliability is piecewise linear through the knots below,
+ * fitted by tools/build/fit_reliability.py on the records of tracked,
+ * half-decided estimates of the training walks
+ *     build/fieldloc reliability --seeds 11,12,...,40
+ *         --frame-seeds 11,12,13 --obs-cache-dir DIR --dump train.tsv
+ * (share of good records per raw interval, made monotone, lowered by two
+ * standard errors, the smaller of feature mode and frames mode, capped at
+ * 0.97; each knot at its interval's upper end so that the interpolation
+ * never exceeds the interval's share).  The held-out walks (seeds 1-3)
+ * are `fieldloc reliability`'s default.  Then: on a symmetric field whose
+ * half is not decided, x 1 / (1 + mirror) (the pose or its mirror, the
+ * grid cannot tell: measured 0.50 good); without a tracked mode x
+ * FZ_CAL_LOST / 256; no information at all: 0. */
+#define FZ_CAL_KNOTS 15
+#define FZ_CAL_LOST 128u
+static const uint16_t fz_cal_raw[FZ_CAL_KNOTS] = {
+    0, 1021, 1641, 2247, 2912, 3538, 4727, 5968, 8496, 11011, 13350, 18288, 22605, 30452, 65535};
+static const uint16_t fz_cal_rel[FZ_CAL_KNOTS] = {
+    0, 12700, 29276, 51978, 56046, 59224, 59224, 59769, 60901, 61840, 63251, 63568, 63568, 63568, 63568};
+
+static uint16_t fz_calibrate(const fl_fuzzy_estimate_t *e)
+{
+    uint32_t raw, rel;
+    int k;
+    if (e->ignorance)
+        return 0;
+    raw = ((uint32_t)e->reliability_q16 * 16u) / (16u + (uint32_t)e->since_obs);
+    for (k = 1; k < FZ_CAL_KNOTS - 1 && raw > fz_cal_raw[k]; k++)
+        ;
+    rel = fz_cal_rel[k - 1];
+    if (raw > fz_cal_raw[k - 1])
+        rel += (uint32_t)(((uint64_t)(fz_cal_rel[k] - fz_cal_rel[k - 1]) *
+                           (raw - fz_cal_raw[k - 1])) / (uint32_t)(fz_cal_raw[k] - fz_cal_raw[k - 1]));
+    if (rel > fz_cal_rel[k])
+        rel = fz_cal_rel[k];
+    if (!e->tracking)
+        rel = (rel * FZ_CAL_LOST) >> 8;
+    rel = (uint32_t)(((uint64_t)rel * 65536u) / (65536u + e->mirror_q16));
+    return (uint16_t)(rel > 65535u ? 65535u : rel);
+}
+
 bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
 {
     int ci;
@@ -433,5 +607,16 @@ bool fl_fuzzy_estimate(fl_fuzzy_t *g, fl_fuzzy_estimate_t *out)
         g->track_y_mm = py;
         g->track_heading = heading;
     }
+    /* step 7: the confidence */
+    out->tracking = g->track_valid;
+    out->half_known = g->half_known || !g->field->symmetric;
+    out->since_obs = g->since_obs;
+    out->sd_heading = heading_spread(&s);
+    if (spread(g, px, py, out)) {
+        ignorance_pose(g, out);
+    } else {
+        out->mirror_q16 = mirror_ratio(g, px, py, heading);
+    }
+    out->calibrated_q16 = fz_calibrate(out);
     return true;
 }

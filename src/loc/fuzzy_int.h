@@ -122,6 +122,7 @@ static inline bool fz_kidnapped(fl_fuzzy_t *g)
         g->stats.kidnaps = fz_sat_inc(g->stats.kidnaps);
         fl_fuzzy_internal_ignorance(g);
         g->prior.kind = FL_FUZZY_PRIOR_NONE;
+        g->half_known = false;
         return true;
     }
     return false;

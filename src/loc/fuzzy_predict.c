@@ -210,6 +210,8 @@ void fl_fuzzy_predict(fl_fuzzy_t *g, int32_t dx_mm, int32_t dy_mm,
         return;
     p = &g->params;
     g->stats.predicts = fz_sat_inc(g->stats.predicts);
+    if (g->since_obs < UINT16_MAX)
+        g->since_obs++;
     g->contra_rate_q8 = (uint16_t)(g->contra_rate_q8 - (g->contra_rate_q8 >> 3));
     maxodo = fz_clamp32(p->odo_max_mm, 1, 2000);
     if (dx_mm < -maxodo || dx_mm > maxodo || dy_mm < -maxodo || dy_mm > maxodo) {

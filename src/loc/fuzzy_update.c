@@ -796,6 +796,7 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
         g->sym_exact = true;
     }
     g->stats.obs_used = fz_sat_inc(g->stats.obs_used);
+    g->since_obs = 0;
     if (!g->track_valid)
         fz_update_consistency(g, maxh);
     fl_fuzzy_internal_normalize(g, maxh);

@@ -85,10 +85,22 @@ static bool fz_estimate(void *state, fl_loc_estimate_t *out)
     out->x_mm = e.x_mm;
     out->y_mm = e.y_mm;
     out->heading = e.heading;
-    out->reliability_q16 = e.reliability_q16;
     out->peak_q8 = e.peak_q8;
     out->mode_cells = e.mode_cells;
     out->switched = e.switched;
+    out->reliability_q16 = e.calibrated_q16;
+    out->score_q16 = e.reliability_q16;
+    out->sd_x_mm = e.sd_x_mm;
+    out->sd_y_mm = e.sd_y_mm;
+    out->cov_xy_mm2 = e.cov_xy_mm2;
+    out->sd_heading = e.sd_heading;
+    out->mirror_q16 = e.mirror_q16;
+    out->since_obs = e.since_obs;
+    out->state = !e.tracking || e.ignorance ? FL_LOC_LOST
+                 : e.mirror_q16 >= 32768u   ? FL_LOC_AMBIGUOUS
+                                            : FL_LOC_TRACKING;
+    out->localized = out->state == FL_LOC_TRACKING &&
+                     out->reliability_q16 >= FL_LOC_LOCALIZED_Q16;
     return ok;
 }
 

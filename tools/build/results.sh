@@ -1,6 +1,8 @@
 #!/bin/sh
 # Generate docs/RESULTS.md: machine, test-runner notes, bench table,
-# callgrind rows, simulated walks and detection scoring.  Run through
+# callgrind rows, simulated walks, the reliability diagram (fieldloc
+# reliability over the frames walks' observations, kept with --obs-cache)
+# and detection scoring.  Run through
 # `make results` (which runs `make test` first, so BUILD/test.log is fresh);
 # the generated file is never edited by hand.
 # Usage: tools/build/results.sh BUILD OUT
@@ -71,14 +73,25 @@ for mode in features frames; do
     for f in $FIELDS; do
         for s in $seeds; do
             w=$f.$mode.$s
-            echo "$CLI simulate --field $f --localizer fuzzy --seed $s --$mode --quiet" > "$WORK/$w.cmd"
-            run "$WORK/$w.out" "$CLI" simulate --field "$f" --localizer fuzzy --seed "$s" --"$mode" --quiet
+            # frames: the vision observations are kept for the reliability
+            # diagram below (simulate --obs-cache; nothing is rendered twice)
+            cache=""
+            [ $mode = frames ] && cache="--obs-cache $WORK/$f.$s.obs"
+            echo "$CLI simulate --field $f --localizer fuzzy --seed $s --$mode --quiet $cache" > "$WORK/$w.cmd"
+            # shellcheck disable=SC2086
+            run "$WORK/$w.out" "$CLI" simulate --field "$f" --localizer fuzzy --seed "$s" --"$mode" --quiet $cache
             grep -q '^flips ' "$WORK/$w.out" || die "$w: no summary lines in $WORK/$w.out"
             walks="$walks $w"
         done
     done
 done
 walk_s=$(( $(date +%s) - start - bench_s ))
+
+# the reliability diagram over the same (held-out) seeds; fails when the
+# calibration contract of localizer.h fails
+rel_cmd="$CLI reliability --localizer fuzzy --seeds $(echo $FEATURE_SEEDS | tr ' ' ,) --frame-seeds $(echo $FRAME_SEEDS | tr ' ' ,) --obs-cache-dir $WORK"
+# shellcheck disable=SC2086
+run "$WORK/reliability.out" $rel_cmd
 
 run "$WORK/eval.out" "$CLI" eval-detect
 
@@ -166,6 +179,20 @@ for w in $walks; do
     echo "\$ $(cat "$WORK/$w.cmd")"
     grep -E '^# simulate |^(pos_rmse_mm|heading_rmse_deg|converge_s|kidnap_recover_s|flips) ' "$WORK/$w.out"
 done
+echo '```'
+echo
+echo "## Reliability"
+echo
+echo "Command: \`$rel_cmd\`"
+echo
+echo "The contract of include/fieldloc/localizer.h: of the estimates reported with reliability >= r, at"
+echo "least the share r is within 500 mm and 20 degrees of the true pose (the plain truth: a pose on the"
+echo "wrong half is wrong), for every r. Records of the walks above (held-out seeds: the calibration in"
+echo "src/loc/fuzzy_estimate.c was fitted on seeds 11 and up), binned by reported reliability; the"
+echo "command fails (and so does this script) when the contract fails."
+echo
+echo '```'
+cat "$WORK/reliability.out"
 echo '```'
 echo
 echo "## Detection scoring"

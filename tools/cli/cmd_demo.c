@@ -130,10 +130,11 @@ static void demo_hook(void *user, const lr_walk_step_t *ws)
                "both spots of its half\n",
                ws->t_s);
     if (ws->t_s + 1e-9 >= d->next_progress_s) {
-        printf("  t %6.1f s  est %6d %6d %6.1f  rel %.2f  truth %6d %6d %6.1f  err %5.0f mm "
+        printf("  t %6.1f s  est %6d %6d %6.1f  rel %.2f %-9s  truth %6d %6d %6.1f  err %5.0f mm "
                "%5.1f deg  obs %2d  (%.0f s)\n",
                ws->t_s, (int)e->x_mm, (int)e->y_mm, lr_deg(e->heading),
-               e->reliability_q16 / 65536.0, (int)ws->st->x_mm, (int)ws->st->y_mm,
+               e->reliability_q16 / 65536.0, lr_state_name(e->state), (int)ws->st->x_mm,
+               (int)ws->st->y_mm,
                lr_deg(ws->st->heading), ws->pos_err_mm, ws->head_err_deg, (int)ws->lr->obs.n,
                demo_now() - d->wall0);
         fflush(stdout);

@@ -11,8 +11,10 @@
  * by lr_predict) ; read the image ; vision (fl_vision_frame, default color
  * tables; camera = the `camera` model at its default neck height and pitch
  * offset with the line's head angles) ; update ; estimate, and print
- *     pose X_MM Y_MM THETA_DEG RELIABILITY
- * (integers, one decimal in (-180, 180], three decimals in [0, 1]), one
+ *     pose X_MM Y_MM THETA_DEG RELIABILITY STATE sd SDX_MM SDY_MM SDH_DEG mirror M
+ * (integers, one decimal in (-180, 180], three decimals in [0, 1]; the
+ * confidence of localizer.h: state LOST / AMBIGUOUS / TRACKING, spread,
+ * heading spread ("-": none), the mirror pose's weight), one
  * line per frame line, nothing else on stdout.  Localizer parameters:
  * lr_params_frames (tools/loc/locrun.c), changed by --param NAME=VALUE.  Start: total ignorance
  * without a prior; with `prior X Y THETA`: the known pose (reset_pose, 300
@@ -79,7 +81,7 @@ static int lz_usage(void)
             "        [--calib CALIB] per-robot calibration from `fieldloc calibrate --out`)\n"
             "  SEQUENCE.txt: 'field NAME', 'camera NAME', optional 'prior X_MM Y_MM THETA_DEG',\n"
             "  then per frame 'frame IMAGE.ppm odo DX_MM DY_MM DTHETA_DEG head PITCH_RAD YAW_RAD'\n"
-            "  prints per frame: pose X_MM Y_MM THETA_DEG RELIABILITY\n"
+            "  prints per frame: pose X_MM Y_MM THETA_DEG RELIABILITY STATE sd X Y DEG mirror M\n"
             "  --picture-every 1..1000000\n");
     return 2;
 }
@@ -221,10 +223,11 @@ static int lz_uva_spots(const char *pictures, const char *write_seq,
                           &mhe);
             mir = mpe + 17.5 * mhe < pe + 17.5 * he;   /* the mirror is closer */
             printf("spot %.0f %.0f frame %d %s theta %.0f obs %d used %d est %d %d %.1f rel %.3f "
-                   "err %.0f mm %.1f deg%s\n",
+                   "%s err %.0f mm %.1f deg%s\n",
                    sp->x_cm, sp->y_cm, i + 1, r->index, r->theta_deg, res[i].obs,
                    res[i].used < 0 ? 0 : res[i].used, (int)e->x_mm, (int)e->y_mm, eh,
-                   e->reliability_q16 / 65536.0, mir ? mpe : pe, mir ? mhe : he,
+                   e->reliability_q16 / 65536.0, lr_state_name(e->state), mir ? mpe : pe,
+                   mir ? mhe : he,
                    mir ? " (mirror)" : "");
             if (i == sp->n - 1) {
                 double fp = mir ? mpe : pe, fh = mir ? mhe : he;

@@ -59,6 +59,10 @@
  *
  * Output: per record (unless --quiet)
  *   step K T_S est X_MM Y_MM DEG REL truth X_MM Y_MM DEG err MM DEG
+ *        STATE sd SDX_MM SDY_MM SDH_DEG mirror M
+ * (on one line; REL the calibrated reliability, then the confidence of
+ * localizer.h: LOST / AMBIGUOUS / TRACKING, the belief's spread, heading
+ * spread ("-": none), the mirror pose's weight)
  * (K the simulator step) then "# ..." information lines and exactly these
  * summary lines:
  *   pos_rmse_mm X       root mean square position error over the records

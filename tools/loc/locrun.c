@@ -241,6 +241,22 @@ int lr_mkdirs(const char *path)
     return stat(path, &sb) == 0 && S_ISDIR(sb.st_mode) ? 0 : -1;
 }
 
+const char *lr_state_name(fl_loc_state_t s)
+{
+    return s == FL_LOC_TRACKING ? "TRACKING" : s == FL_LOC_AMBIGUOUS ? "AMBIGUOUS" : "LOST";
+}
+
+void lr_print_conf(FILE *f, const fl_loc_estimate_t *e)
+{
+    fprintf(f, " %s sd %u %u ", lr_state_name(e->state), (unsigned)e->sd_x_mm,
+            (unsigned)e->sd_y_mm);
+    if (e->sd_heading >= 32767)
+        fprintf(f, "-");
+    else
+        fprintf(f, "%.1f", e->sd_heading * (360.0 / 65536.0));
+    fprintf(f, " mirror %.2f", e->mirror_q16 / 65536.0);
+}
+
 double lr_deg(fl_angle_t a)
 {
     return (double)a * (180.0 / 32768.0);
@@ -555,8 +571,10 @@ int lr_seq_run(const lr_seq_t *seq, const lr_seq_opts_t *o, lr_frame_result_t *r
             double h = lr_deg(est.heading);
             if (h <= -180.0)
                 h += 360.0;
-            fprintf(o->out, "pose %d %d %.1f %.3f\n", (int)est.x_mm, (int)est.y_mm, h,
+            fprintf(o->out, "pose %d %d %.1f %.3f", (int)est.x_mm, (int)est.y_mm, h,
                     est.reliability_q16 / 65536.0);
+            lr_print_conf(o->out, &est);
+            fputc('\n', o->out);
         }
         if (res != NULL) {
             res[k].est = est;
@@ -975,10 +993,14 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
                       sp->y_mm, lr_deg(sp->heading));
             if (o->steps != NULL)
                 fprintf(o->steps,
-                        "step %ld %.3f est %d %d %.1f %.3f truth %d %d %.1f err %.0f %.1f\n",
+                        "step %ld %.3f est %d %d %.1f %.3f truth %d %d %.1f err %.0f %.1f",
                         (long)sp->index, t, (int)est.x_mm, (int)est.y_mm, lr_deg(est.heading),
                         est.reliability_q16 / 65536.0, (int)sp->x_mm, (int)sp->y_mm,
                         lr_deg(sp->heading), rec[n].pos_err, rec[n].head_err);
+            if (o->steps != NULL) {
+                lr_print_conf(o->steps, &est);
+                fputc('\n', o->steps);
+            }
             if (o->steps != NULL && o->print_obs) {
                 static const char kc[] = "LTXPCGOB";
                 const fl_obs_list_t *ol = o->frames ? &lr.obs : &sp->obs;

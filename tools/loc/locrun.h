@@ -112,6 +112,12 @@ int lr_mkdirs(const char *path);
 /* Binary angle -> degrees in [-180, 180). */
 double lr_deg(fl_angle_t a);
 
+/* "LOST", "AMBIGUOUS", "TRACKING" (localizer.h fl_loc_state_t). */
+const char *lr_state_name(fl_loc_state_t s);
+/* The confidence of an estimate, appended to a line: " STATE sd X_MM Y_MM
+ * HEAD_DEG mirror M" (sd_heading 32767, no heading information: "-"). */
+void lr_print_conf(FILE *f, const fl_loc_estimate_t *e);
+
 /* The localizer parameters used with the vision path (simulate --frames,
  * localize, demo): the localizer's FL_LOC_PRESET_VISION (a NAO camera;
  * fuzzy: fl_fuzzy_params_vision); lr_init applies params_adapt for the
