@@ -2,6 +2,7 @@
 T_SUITE(fixed);
 T_SUITE(image);
 T_SUITE(camera);
+T_SUITE(calib);
 T_SUITE(field);
 T_SUITE(obs);
 T_SUITE(render);

@@ -12,6 +12,7 @@
  * is absent (e.g. `make sanitize` builds the runner only).
  */
 #include "test.h"
+#include "fieldloc/fieldloc.h"
 #include "eval/picture.h"
 #include "io/font.h"
 #include "io/ppm.h"
@@ -419,6 +420,128 @@ static void t_pictures(void)
         t_fail_msg(__FILE__, __LINE__, "demo belief picture readable");
 }
 
+/* ---- calibration files end to end ------------------------------------------ */
+
+static int write_text(const char *name, const char *text)
+{
+    char path[1200];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/%s", t_dir, name);
+    f = fopen(path, "w");
+    if (f == NULL)
+        return -1;
+    fputs(text, f);
+    return fclose(f);
+}
+
+/* calibrate --frames: frames rendered by `fieldloc render` with a neck of
+ * 480 mm and a pitch offset of 0.04 rad (2.29 deg) against the camera's
+ * 445 mm / 0, fitted, written, read back by detect --calib and localize
+ * --calib; malformed frames and calibration files refused with their line
+ * (status 2, one stderr line). */
+static void t_calib_files(void)
+{
+    static const int shot[4][5] = {
+        {-2500, 0, 0, 0, 18}, {-1500, 1500, -30, 10, 20}, {0, -1500, 90, -20, 16},
+        {2000, 1000, 0, 0, 20}};
+    char args[4096], out[8192], err[2048], want[1400], frames[1024] = "";
+    int k, rc;
+    if (t_quick)
+        return;
+    if (cli_find() != 0) {
+        t_info("skipped: %s not built", t_cli);
+        return;
+    }
+    for (k = 0; k < 4; k++) {
+        char line[128];
+        snprintf(args, sizeof args,
+                 "render --field spl2013 --camera nao4-top-320 --pose %d %d %d --head %.6f %.6f "
+                 "--neck 480 --pitch-offset 0.04 --seed %d --out %s/cal%d.ppm",
+                 shot[k][0], shot[k][1], shot[k][2], shot[k][4] * 3.14159265358979 / 180,
+                 shot[k][3] * 3.14159265358979 / 180, k + 1, t_dir, k);
+        CHECK_EQ(cli_run(args, NULL, 0, err, sizeof err), 0);
+        snprintf(line, sizeof line, "cal%d.ppm %d %d %d %d %d\n", k, shot[k][0], shot[k][1],
+                 shot[k][2], shot[k][3], shot[k][4]);
+        strcat(frames, line);
+    }
+    CHECK_EQ(write_text("cal_frames.txt", frames), 0);
+    snprintf(args, sizeof args,
+             "calibrate --field spl2013 --camera nao4-top-320 --frames %s/cal_frames.txt "
+             "--out %s/robot.calib", t_dir, t_dir);
+    rc = cli_run(args, out, sizeof out, err, sizeof err);
+    CHECK_EQ(rc, 0);
+    CHECK(strstr(out, "total: 4 frames (0 skipped)") != NULL);
+    {
+        char path[1200], text[FL_CALIB_TEXT_MAX + 1];
+        FILE *f;
+        size_t n = 0;
+        fl_calib_t c;
+        snprintf(path, sizeof path, "%s/robot.calib", t_dir);
+        f = fopen(path, "rb");
+        if (f != NULL) {
+            n = fread(text, 1, sizeof text, f);
+            fclose(f);
+        }
+        CHECK_EQ(fl_calib_parse(text, n, &c, NULL, NULL), FL_OK);
+        CHECK(strcmp(c.camera, "nao4-top-320") == 0);
+        /* 10 mm, 0.3 deg (55 binary units) as in calib.fit_recovers */
+        CHECK(abs(c.neck_height_mm - 480) <= 10);
+        CHECK(abs(c.pitch_offset - fl_angle_from_urad(40000)) <= 55);
+        CHECK(abs(c.roll_offset) <= 55);
+        t_info("fitted neck %d mm, pitch offset %d, roll offset %d (binary units; true 480, %d, 0)",
+               (int)c.neck_height_mm, (int)c.pitch_offset, (int)c.roll_offset,
+               (int)fl_angle_from_urad(40000));
+    }
+    /* detect --calib: seen from (-2500, 0), the centre-circle X crossings
+     * are at sqrt(2500^2 + 750^2) = 2610 mm, the centre mark at 2500 mm
+     * (with the camera's defaults they come out about 17 % long) */
+    snprintf(args, sizeof args,
+             "detect --field spl2013 --camera nao4-top-320 --head 0.314159 0 --calib "
+             "%s/robot.calib %s/cal0.ppm", t_dir, t_dir);
+    CHECK_EQ(cli_run(args, out, sizeof out, err, sizeof err), 0);
+    {
+        const char *p = out;
+        int n_x = 0;
+        while ((p = strstr(p, "X\t")) != NULL) {
+            double u, v, conf, bearing;
+            int range;
+            if (sscanf(p, "X\t%lf\t%lf\t%lf\t%d\t%lf", &u, &v, &conf, &range, &bearing) == 5) {
+                CHECK(abs(range - 2610) <= 40 || abs(range - 2500) <= 40);
+                n_x++;
+            }
+            p += 2;
+        }
+        CHECK_EQ(n_x, 3);
+    }
+    /* errors: the frames file and the calibration file name their line */
+    CHECK_EQ(write_text("bad_frames.txt", "# pose set by hand\ncal0.ppm 0 0 0 0\n"), 0);
+    snprintf(args, sizeof args,
+             "calibrate --field spl2013 --camera nao4-top-320 --frames %s/bad_frames.txt", t_dir);
+    snprintf(want, sizeof want,
+             "calibrate: %s/bad_frames.txt:2: expected: IMAGE X_MM Y_MM HEADING_DEG HEAD_YAW_DEG "
+             "HEAD_PITCH_DEG [TORSO_PITCH_DEG TORSO_ROLL_DEG]", t_dir);
+    expect_error(args, want);
+    CHECK_EQ(write_text("bad.calib", "fieldloc-calibration 1\ncamera nao4-top-320\n"
+                                     "focal_px 280\n"), 0);
+    snprintf(args, sizeof args, "detect " CAM_FAR " --calib %s/bad.calib " FRAME_FAR, t_dir);
+    snprintf(want, sizeof want, "detect: %s/bad.calib:3: unknown key", t_dir);
+    expect_error(args, want);
+    CHECK_EQ(write_text("seq.txt", "field spl2013\ncamera nao4-top-320\n"
+                                   "frame cal0.ppm odo 0 0 0 head 0.314159 0\n"), 0);
+    snprintf(args, sizeof args, "localize %s/seq.txt --calib %s/bad.calib", t_dir, t_dir);
+    snprintf(want, sizeof want, "localize: %s/bad.calib:3: unknown key", t_dir);
+    expect_error(args, want);
+    /* another camera's calibration is refused */
+    CHECK_EQ(write_text("uva.calib", "fieldloc-calibration 1\ncamera uva2013\n"), 0);
+    snprintf(args, sizeof args, "localize %s/seq.txt --calib %s/uva.calib", t_dir, t_dir);
+    snprintf(want, sizeof want,
+             "localize: %s/uva.calib is for camera uva2013, the sequence uses nao4-top-320", t_dir);
+    expect_error(args, want);
+    snprintf(args, sizeof args, "localize %s/seq.txt --calib %s/robot.calib", t_dir, t_dir);
+    CHECK_EQ(cli_run(args, out, sizeof out, err, sizeof err), 0);
+    CHECK(strncmp(out, "pose ", 5) == 0);
+}
+
 void suite_cli(void)
 {
     t_run("cli.font", t_font);
@@ -426,4 +549,5 @@ void suite_cli(void)
     t_run("cli.caption", t_caption);
     t_run("cli.numbers", t_numbers);
     t_run("cli.pictures", t_pictures);
+    t_run("cli.calib_files", t_calib_files);
 }

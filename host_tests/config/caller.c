@@ -59,6 +59,7 @@ int main(void)
     void *state;
     if (!field || !model || !loc)
         return 2;
+    memset(&pose, 0, sizeof pose); /* roll and torso angles 0: level */
     pose.neck_height_mm = model->default_neck_height_mm;
     pose.head_pitch = 0;
     pose.head_yaw = 0;

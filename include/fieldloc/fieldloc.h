@@ -13,6 +13,7 @@
 #include "fieldloc/color.h"
 #include "fieldloc/scan.h"
 #include "fieldloc/camera.h"
+#include "fieldloc/calib.h"
 #include "fieldloc/field.h"
 #include "fieldloc/obs.h"
 #include "fieldloc/lines.h"

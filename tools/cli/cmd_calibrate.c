@@ -1,14 +1,36 @@
 /*
- * tools/cli/cmd_calibrate.c - `fieldloc calibrate [--dir DIR] [--verbose]`: fit
+ * tools/cli/cmd_calibrate.c - camera calibration.
+ *
+ * `fieldloc calibrate --field F --camera C --frames FILE [--out CALIB]
+ * [--no-roll] [--fit-heading]`: per-robot calibration from the user's own frames taken at
+ * known poses (format of FILE and the fit: tools/eval/calib_frames.h; in
+ * short one line per frame "IMAGE X_MM Y_MM HEADING_DEG HEAD_YAW_DEG
+ * HEAD_PITCH_DEG [TORSO_PITCH_DEG TORSO_ROLL_DEG]", '#' comments, paths
+ * relative to FILE).  Fits the neck height, pitch offset and roll offset
+ * (not with --no-roll) to the detected field lines, prints per frame and
+ * in total the residuals with the camera's default pose and with the
+ * fitted one, and writes CALIB (fieldloc/calib.h format) for `detect
+ * --calib`, `localize --calib` and fl_calib_parse on the robot.
+ * --fit-heading also refits each frame's heading and x/y (priors 5 deg,
+ * 100 mm) for robots put down by hand.  A malformed FILE is refused with
+ * its line (exit status 2); an unreadable image skips its frame with a
+ * message.
+ *
+ * `fieldloc calibrate [--dir DIR] [--verbose] [--out CALIB]`: fit
  * the UvA 2013 camera (calibrate.h) to ../shared/realdata's hand labels
  * and print the fitted values, the residuals per kind and per image, the
  * alternatives tried (top vs bottom mounting, extra parameters, with and
  * without per-image pose corrections), the field dimension check, the
  * leave-one-image-out residuals and the check of the committed catalogue
- * camera "uva2013" through the firmware projection.
+ * camera "uva2013" through the firmware projection; then the same frames
+ * as a frame list through the detection-driven fit of --frames (from the
+ * nominal NAO v4 pose, with --fit-heading: the file-name poses are off)
+ * for comparison ([10]).  --out writes the hand-label fit
+ * [4] as a calibration of camera uva2013.
  * Says "skipped: ..." and exits 0 when the folder is absent.
  */
 #include "eval/calibrate.h"
+#include "eval/calib_frames.h"
 #include "fieldloc/fieldloc.h"
 #include "cli/args.h"
 #include "cli/registry.h"
@@ -189,6 +211,193 @@ static void firmware_check(const rd_uva_set_t *set, const fl_field_t *f,
     }
 }
 
+/* ---- --frames: the user's own frames ------------------------------------------- */
+
+static int cal_usage(void)
+{
+    fprintf(stderr,
+            "usage: fieldloc calibrate --field NAME --camera NAME --frames FILE [--out CALIB]\n"
+            "                          [--no-roll] [--fit-heading]\n"
+            "       fieldloc calibrate [--dir REALDATA_DIR] [--verbose] [--out CALIB]  (UvA 2013)\n"
+            "  FILE: one frame per line, '#' comments, image paths relative to FILE:\n"
+            "    IMAGE X_MM Y_MM HEADING_DEG HEAD_YAW_DEG HEAD_PITCH_DEG [TORSO_PITCH_DEG "
+            "TORSO_ROLL_DEG]\n"
+            "  (robot pose in the field frame; NAOqi head angles in degrees, pitch > 0 = down;\n"
+            "  optional IMU torso angles).  Fits neck height, pitch offset and roll offset to\n"
+            "  the detected field lines; CALIB (for detect/localize --calib, fl_calib_parse):\n"
+            "    fieldloc-calibration 1 / camera NAME / neck_height_mm N / pitch_offset_deg D /\n"
+            "    roll_offset_deg D\n"
+            "  --no-roll: roll offset stays 0; --fit-heading: each frame's heading and x/y are\n"
+            "  refitted too (priors 5 deg, 100 mm) for poses set by hand\n");
+    return 2;
+}
+
+static void cal_warn(const char *msg, void *user)
+{
+    fprintf(stderr, "calibrate: %s: %s\n", (const char *)user, msg);
+}
+
+static void cal_print_params(const char *what, const cf_params_t *p, const double *sigma)
+{
+    if (sigma)
+        printf("%s: neck_height_mm %.1f +- %.1f, pitch_offset_deg %.3f +- %.3f, "
+               "roll_offset_deg %.3f +- %.3f\n",
+               what, p->neck_mm, sigma[0], p->pitch_offset_deg, sigma[1], p->roll_offset_deg,
+               sigma[2]);
+    else
+        printf("%s: neck_height_mm %.1f, pitch_offset_deg %.3f, roll_offset_deg %.3f\n", what,
+               p->neck_mm, p->pitch_offset_deg, p->roll_offset_deg);
+}
+
+/* Fit, print before/after per frame and in total.  0 or -1. */
+static int cal_frames_run(const cf_frames_t *fr, const char *name, const fl_field_t *field,
+                          const fl_camera_model_t *m, const cf_options_t *o, cf_params_t *p,
+                          int per_frame)
+{
+    cf_result_t res;
+    char err[512];
+    int k;
+    cal_print_params("start", p, NULL);
+    if (cf_fit(fr, field, m, o, p, &res, cal_warn, (void *)name, err, sizeof err) != 0) {
+        fprintf(stderr, "calibrate: %s: %s\n", name, err);
+        return -1;
+    }
+    printf("residual = distance of a detected line point, projected to the field at the known\n"
+           "pose, to the nearest field line, in image px (mm * f / distance); 'in' = within %.0f "
+           "px\n",
+           o->gate_px);
+    if (per_frame) {
+        printf("%5s %-28s %6s | %5s %6s %6s | %5s %6s %6s%s\n", "line", "image", "points",
+               "in", "median", "rms", "in", "median", "rms", res.corr ? "   dth_deg  dx_mm  dy_mm" : "");
+        printf("%5s %-28s %6s | %-19s | %-19s\n", "", "", "", "  start", "  fitted");
+        for (k = 0; k < fr->n; k++) {
+            const char *img = strrchr(fr->f[k].image, '/');
+            const cf_stats_t *b = &res.before[k], *a = &res.after[k];
+            img = img ? img + 1 : fr->f[k].image;
+            printf("%5d %-28.28s %6d | %5d %6.2f %6.2f | %5d %6.2f %6.2f", fr->f[k].line, img,
+                   a->n_points, b->n_in, b->median_px, b->rms_px, a->n_in, a->median_px,
+                   a->rms_px);
+            if (res.corr)
+                printf(" %+9.2f %+6.0f %+6.0f", res.corr[3 * k], res.corr[3 * k + 1],
+                       res.corr[3 * k + 2]);
+            printf("\n");
+        }
+    }
+    printf("total: %d frames (%d skipped), %d line points; start: %d in, median %.2f px, rms "
+           "%.2f px; fitted: %d in, median %.2f px, rms %.2f px\n",
+           res.n_frames, res.n_skipped, res.after_all.n_points, res.before_all.n_in,
+           res.before_all.median_px, res.before_all.rms_px, res.after_all.n_in,
+           res.after_all.median_px, res.after_all.rms_px);
+    cal_print_params("fitted", &res.fit, res.sigma);
+    cf_result_free(&res);
+    return 0;
+}
+
+static int cal_write(const char *out, const char *camera, const cf_params_t *p, int roll,
+                     const char *comment)
+{
+    fl_calib_t c;
+    char err[512];
+    memset(&c, 0, sizeof c);
+    c.has = FL_CALIB_HAS_CAMERA | FL_CALIB_HAS_NECK | FL_CALIB_HAS_PITCH |
+            (roll ? FL_CALIB_HAS_ROLL : 0u);
+    snprintf(c.camera, sizeof c.camera, "%s", camera);
+    c.neck_height_mm = (int32_t)lround(p->neck_mm);
+    c.pitch_offset = fl_angle_from_mdeg((int32_t)lround(p->pitch_offset_deg * 1000.0));
+    c.roll_offset = fl_angle_from_mdeg((int32_t)lround(p->roll_offset_deg * 1000.0));
+    if (cf_calib_save(out, &c, comment, err, sizeof err) != 0) {
+        fprintf(stderr, "calibrate: %s\n", err);
+        return 1;
+    }
+    printf("wrote %s\n", out);
+    return 0;
+}
+
+static int cal_frames_cmd(const char *frames, const char *field_name, const char *cam_name,
+                          const char *out, int roll, int heading)
+{
+    const fl_field_t *field = field_name ? fl_field_find(field_name) : NULL;
+    const fl_camera_model_t *m = cam_name ? fl_camera_model_find(cam_name) : NULL;
+    cf_frames_t fr;
+    cf_options_t o;
+    cf_params_t p;
+    char err[CF_PATH_MAX + 256], comment[256];
+    int rc;
+    if (!field_name || !cam_name)
+        return cal_usage();
+    if (!field) {
+        fprintf(stderr, "calibrate: unknown field %s (see: fieldloc fields)\n", field_name);
+        return 2;
+    }
+    if (!m) {
+        fprintf(stderr, "calibrate: unknown camera %s (see: fieldloc cameras)\n", cam_name);
+        return 2;
+    }
+    if (cf_frames_load(frames, &fr, err, sizeof err) != 0) {
+        fprintf(stderr, "calibrate: %s\n", err);
+        return 2;
+    }
+    printf("calibrate: %s: %d frames, field %s, camera %s\n", frames, fr.n, field->name,
+           m->name);
+    cf_options_default(&o);
+    o.fit_roll = roll;
+    o.fit_heading = heading;
+    p.neck_mm = m->default_neck_height_mm;
+    p.pitch_offset_deg = m->default_pitch_offset * 360.0 / 65536.0;
+    p.roll_offset_deg = 0;
+    rc = cal_frames_run(&fr, frames, field, m, &o, &p, 1) != 0 ? 1 : 0;
+    if (rc == 0 && out) {
+        snprintf(comment, sizeof comment, "fieldloc calibrate: %d frames of %.150s", fr.n,
+                 frames);
+        rc = cal_write(out, m->name, &p, roll, comment);
+    }
+    cf_frames_free(&fr);
+    return rc;
+}
+
+/* The UvA frames through the --frames fit, from the nominal NAO v4 pose. */
+static void cal_uva_frames(const rd_uva_set_t *set, const char *dir, const cal_params_t *label)
+{
+    const fl_field_t *field = fl_field_find("uva2013");
+    const fl_camera_model_t *m = fl_camera_model_find("uva2013");
+    const fl_camera_model_t *nominal = fl_camera_model_find("nao4-bottom-320");
+    cf_frames_t fr;
+    cf_options_t o;
+    cf_params_t p;
+    printf("\n[10] The same frames through the detection-driven fit of --frames (camera uva2013's "
+           "focal,\n     start: the nominal nao4-bottom-320 neck and pitch offset, roll 0; "
+           "detected line points, no labels):\n");
+    if (!field || !m || !nominal || cf_frames_from_uva(set, dir, &fr) != 0) {
+        printf("    not available\n");
+        return;
+    }
+    cf_options_default(&o);
+    o.fit_heading = 1; /* the file-name poses are off by several degrees ([8]) */
+    p.neck_mm = nominal->default_neck_height_mm;
+    p.pitch_offset_deg = nominal->default_pitch_offset * 360.0 / 65536.0;
+    p.roll_offset_deg = 0;
+    if (cal_frames_run(&fr, "uva2013 frames", field, m, &o, &p, 0) == 0) {
+        cf_result_t res;
+        char err[256];
+        printf("    hand-label fit [4] for comparison: neck_height_mm %.1f, pitch_offset_deg "
+               "%.3f (roll not fitted)\n",
+               label->p[CAL_NECK], label->p[CAL_PITCH] * CAL_DEG);
+        /* the label camera on the same residual: only the poses refitted */
+        o.fit_neck = o.fit_pitch = o.fit_roll = 0;
+        o.grid = 0;
+        p.neck_mm = label->p[CAL_NECK];
+        p.pitch_offset_deg = label->p[CAL_PITCH] * CAL_DEG;
+        p.roll_offset_deg = 0;
+        if (cf_fit(&fr, field, m, &o, &p, &res, NULL, NULL, err, sizeof err) == 0) {
+            printf("    that camera on this residual (poses refitted): %d in, median %.2f px, "
+                   "rms %.2f px\n",
+                   res.after_all.n_in, res.after_all.median_px, res.after_all.rms_px);
+            cf_result_free(&res);
+        }
+    }
+    cf_frames_free(&fr);
+}
+
 int cmd_calibrate(int argc, char **argv)
 {
     const unsigned POSE = CAL_FIT_POSE_HEADING | CAL_FIT_POSE_XY;
@@ -202,19 +411,40 @@ int cmd_calibrate(int argc, char **argv)
     const fl_camera_model_t *committed = fl_camera_model_find("uva2013");
     cal_params_t p, best;
     cal_result_t r;
-    int i, verbose = 0, n_per[5] = {0};
+    int i, verbose = 0, n_per[5] = {0}, roll = 1, heading = 0;
+    const char *frames = NULL, *field_name = NULL, *cam_name = NULL, *out = NULL;
 
     for (i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--dir") && i + 1 < argc)
             dir = argv[++i];
         else if (!strcmp(argv[i], "--verbose"))
             verbose = 1;
+        else if (!strcmp(argv[i], "--frames") && i + 1 < argc)
+            frames = argv[++i];
+        else if (!strcmp(argv[i], "--field") && i + 1 < argc)
+            field_name = argv[++i];
+        else if (!strcmp(argv[i], "--camera") && i + 1 < argc)
+            cam_name = argv[++i];
+        else if (!strcmp(argv[i], "--out") && i + 1 < argc)
+            out = argv[++i];
+        else if (!strcmp(argv[i], "--no-roll"))
+            roll = 0;
+        else if (!strcmp(argv[i], "--fit-heading"))
+            heading = 1;
         else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            fprintf(stderr, "usage: fieldloc calibrate [--dir REALDATA_DIR] [--verbose]\n");
+            cal_usage();
             return 0;
         } else
-            return arg_unknown("calibrate", argv[i], "--dir=1");
+            return arg_unknown("calibrate", argv[i],
+                               "--dir=1 --frames=1 --field=1 --camera=1 --out=1");
     }
+    if (frames) {
+        if (dir || verbose)
+            return cal_usage();
+        return cal_frames_cmd(frames, field_name, cam_name, out, roll, heading);
+    }
+    if (field_name || cam_name || !roll || heading)
+        return cal_usage();
     if (!dir)
         dir = rd_dir();
     if (!dir) {
@@ -472,7 +702,18 @@ int cmd_calibrate(int argc, char **argv)
     } else
         printf("    not in the catalogue\n");
 
+    cal_uva_frames(&set, dir, &best);
+    i = 0;
+    if (out) {
+        cf_params_t cp;
+        cp.neck_mm = best.p[CAL_NECK];
+        cp.pitch_offset_deg = best.p[CAL_PITCH] * CAL_DEG;
+        cp.roll_offset_deg = 0;
+        i = cal_write(out, "uva2013", &cp, 0,
+                      "fieldloc calibrate: UvA 2013 hand labels, fit [4] (bottom mounting, "
+                      "pose-corrected)");
+    }
     cal_problem_free(&pb);
     rd_uva_free(&set);
-    return 0;
+    return i;
 }

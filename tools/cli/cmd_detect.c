@@ -17,6 +17,10 @@
  * dataset's HeadPitch); the neck height and pitch offset are the
  * camera model's defaults (default_neck_height_mm, default_pitch_offset)
  * unless --neck MM gives the neck height.
+ * --calib CALIB applies a per-robot calibration (fieldloc/calib.h, written by
+ * `fieldloc calibrate --out`; its camera must be --camera's) after the
+ * defaults and before --neck; a file that does not parse is refused with
+ * "FILE:LINE: reason" (exit status 2).
  * --stats prints the stage counters to stderr; --repeat N runs the path N
  * times (for callgrind: instructions per frame).
  * --picture OUT.ppm|.png draws the stages over the frame (det_draw) with a
@@ -29,6 +33,7 @@
  */
 #include "cli/args.h"
 #include "eval/detect.h"
+#include "eval/calib_frames.h"
 #include "eval/picture.h"
 #include "io/ppm.h"
 #include "cli/registry.h"
@@ -42,10 +47,11 @@ static int detect_usage(void)
 {
     fprintf(stderr,
             "usage: fieldloc detect [--field NAME] [--camera NAME] [--head PITCH_RAD YAW_RAD]\n"
-            "                       [--neck MM] [--picture OUT.ppm] [--show border,classes]\n"
-            "                       [--stats] [--repeat N] IMAGE.ppm\n"
+            "                       [--neck MM] [--calib CALIB] [--picture OUT.ppm]\n"
+            "                       [--show border,classes] [--stats] [--repeat N] IMAGE.ppm\n"
             "  --head: NAO HeadPitch -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad\n"
             "  --neck 50..2000 mm, --repeat 1..1000000\n"
+            "  --calib: a calibration file from `fieldloc calibrate --out`\n"
             "  prints: kind<TAB>u<TAB>v<TAB>confidence<TAB>range_mm<TAB>bearing_deg\n"
             "  kind L T X G (post foot) U (post top) C (circle centre)\n");
     return 2;
@@ -116,7 +122,8 @@ static int detect_picture(const det_ctx_t *ctx, const render_frame_t *fr, const 
 int cmd_detect(int argc, char **argv)
 {
     const char *field_name = "uva2013", *cam_name = "uva2013", *path = NULL,
-               *picture = NULL;
+               *picture = NULL, *calib_path = NULL;
+    fl_calib_t calib;
     double pitch = 0, yaw = 0;
     const char *head_text[2] = {NULL, NULL};
     int i, n, stats = 0, rc = 0, repeat = 1, head_given = 0, show_border = 0, show_classes = 0;
@@ -143,7 +150,9 @@ int cmd_detect(int argc, char **argv)
                 arg_double("detect", "--head yaw", head_text[1], -1e9, 1e9, NULL, &yaw))
                 return 2;
             head_given = 1;
-        } else if (!strcmp(argv[i], "--picture") && i + 1 < argc)
+        } else if (!strcmp(argv[i], "--calib") && i + 1 < argc)
+            calib_path = argv[++i];
+        else if (!strcmp(argv[i], "--picture") && i + 1 < argc)
             picture = argv[++i];
         else if (!strcmp(argv[i], "--stats"))
             stats = 1;
@@ -163,7 +172,7 @@ int cmd_detect(int argc, char **argv)
         } else if (argv[i][0] == '-' && argv[i][1] != '\0')
             return arg_unknown("detect", argv[i],
                                "--field=1 --camera=1 --head=2 --picture=1 --repeat=1 --neck=1 "
-                               "--show=1");
+                               "--show=1 --calib=1");
         else if (!path)
             path = argv[i];
         else
@@ -180,6 +189,17 @@ int cmd_detect(int argc, char **argv)
     if (!m) {
         fprintf(stderr, "detect: unknown camera %s (see: fieldloc cameras)\n", cam_name);
         return 2;
+    }
+    if (calib_path) {
+        if (cf_calib_load(calib_path, &calib, err, sizeof err) != 0) {
+            fprintf(stderr, "detect: %s\n", err);
+            return 2;
+        }
+        if ((calib.has & FL_CALIB_HAS_CAMERA) && strcmp(calib.camera, m->name) != 0) {
+            fprintf(stderr, "detect: %s is for camera %s, not %s\n", calib_path, calib.camera,
+                    m->name);
+            return 2;
+        }
     }
     if (render_read_frame(path, &fr, err, sizeof err) != 0) {
         fprintf(stderr, "detect: %s: %s\n", path, err);
@@ -201,6 +221,14 @@ int cmd_detect(int argc, char **argv)
         fprintf(stderr, "detect: invalid head pose\n");
         render_frame_free(&fr);
         return 2;
+    }
+    if (calib_path) {
+        fl_camera_pose_t pose = cam.pose;
+        if (fl_calib_apply(&calib, &pose) != FL_OK || fl_camera_init(&cam, m, &pose) != FL_OK) {
+            fprintf(stderr, "detect: invalid head pose with %s\n", calib_path);
+            render_frame_free(&fr);
+            return 2;
+        }
     }
     if (neck > 0) {  /* --neck MM: another neck height than the model's default */
         fl_camera_pose_t pose = cam.pose;

@@ -30,6 +30,12 @@
  *     its pose line still printed, so the output keeps one line per frame)
  *     and the exit status is 3 at the end (0 when every frame was used).
  *
+ * --calib CALIB (both modes): a per-robot calibration (fieldloc/calib.h,
+ * written by `fieldloc calibrate --out`) applied to every frame's camera
+ * pose after the model's defaults (fl_calib_apply: neck height, pitch and
+ * roll offsets).  A file that does not parse ("FILE:LINE: reason") or is
+ * for another camera than the sequence's: exit status 2.
+ *
  * --pictures DIR writes DIR/frame_NNNNN.ppm (+ .png with OpenCV): the frame
  * with the detected features and the field model seen from the estimate,
  * next to the belief grid (tools/eval/picture.h); every frame, or every Nth with
@@ -50,6 +56,7 @@
  * `fieldloc localize DIR/uva_spot_X_Y.txt` reproduces its pose lines.
  */
 #include "loc/locrun.h"
+#include "eval/calib_frames.h"
 #include "cli/args.h"
 #include "eval/picture.h"
 #include "io/ppm.h"
@@ -70,7 +77,8 @@ static int lz_usage(void)
     fprintf(stderr,
             "usage: fieldloc localize SEQUENCE.txt [--pictures DIR] [--picture-every N]\n"
             "       fieldloc localize --uva-spots [--pictures DIR] [--write-seq DIR]\n"
-            "       (both: [--param NAME=VALUE]... localizer parameters)\n"
+            "       (both: [--param NAME=VALUE]... localizer parameters,\n"
+            "        [--calib CALIB] per-robot calibration from `fieldloc calibrate --out`)\n"
             "  SEQUENCE.txt: 'field NAME', 'camera NAME', optional 'prior X_MM Y_MM THETA_DEG',\n"
             "  then per frame 'frame IMAGE.ppm odo DX_MM DY_MM DTHETA_DEG head PITCH_RAD YAW_RAD'\n"
             "  prints per frame: pose X_MM Y_MM THETA_DEG RELIABILITY STATE sd X Y DEG mirror M\n"
@@ -87,7 +95,7 @@ typedef struct {
 } lz_spot_t;
 
 static int lz_uva_spots(const char *pictures, const char *write_seq,
-                        const fl_localizer_t *loc, const void *params)
+                        const fl_localizer_t *loc, const void *params, const fl_calib_t *calib)
 {
     const char *dir = rd_dir();
     char path[1200], err[256];
@@ -98,6 +106,11 @@ static int lz_uva_spots(const char *pictures, const char *write_seq,
     int n_err = 0;
     const fl_field_t *field = fl_field_find("uva2013");
     const fl_camera_model_t *cam = fl_camera_model_find("uva2013");
+    if (calib != NULL && (calib->has & FL_CALIB_HAS_CAMERA) && strcmp(calib->camera, "uva2013")) {
+        fprintf(stderr, "localize: the calibration is for camera %s, --uva-spots uses uva2013\n",
+                calib->camera);
+        return 2;
+    }
     if (dir == NULL) {
         printf("uva-spots: %s\n", rd_skip_message());
         return 0;
@@ -195,6 +208,7 @@ static int lz_uva_spots(const char *pictures, const char *write_seq,
         o.picture_every = 1;
         o.loc = loc;
         o.params = params;
+        o.calib = calib;
         rc = lr_seq_run(&seq, &o, res);
         if (rc < 0) {
             free(seq.frame);
@@ -242,7 +256,8 @@ int cmd_localize(int argc, char **argv)
     lr_seq_t seq;
     lr_seq_opts_t o;
     char err[512];
-    const char *localizer = NULL, *param[64];
+    const char *localizer = NULL, *param[64], *calib_path = NULL;
+    fl_calib_t calib;
     int n_param = 0;
     const fl_localizer_t *loc;
     void *params;
@@ -256,6 +271,8 @@ int cmd_localize(int argc, char **argv)
             write_seq = argv[++k];
         else if (!strcmp(argv[k], "--uva-spots"))
             uva = 1;
+        else if (!strcmp(argv[k], "--calib") && k + 1 < argc)
+            calib_path = argv[++k];
         else if (!strcmp(argv[k], "--localizer") && k + 1 < argc)
             localizer = argv[++k];
         else if (!strcmp(argv[k], "--param") && k + 1 < argc) {
@@ -268,11 +285,15 @@ int cmd_localize(int argc, char **argv)
         } else if (argv[k][0] == '-' && argv[k][1] != '\0')
             return arg_unknown("localize", argv[k],
                                "--pictures=1 --picture-every=1 --write-seq=1 --localizer=1 "
-                               "--param=1");
+                               "--param=1 --calib=1");
         else if (seq_path == NULL)
             seq_path = argv[k];
         else
             return arg_unknown("localize", argv[k], NULL);
+    }
+    if (calib_path != NULL && cf_calib_load(calib_path, &calib, err, (int)sizeof err) != 0) {
+        fprintf(stderr, "localize: %s\n", err);
+        return 2;
     }
     if ((loc = lr_localizer(localizer, err, (int)sizeof err)) == NULL) {
         fprintf(stderr, "localize: %s\n", err);
@@ -292,7 +313,8 @@ int cmd_localize(int argc, char **argv)
         }
     }
     if (uva) {
-        rc = seq_path != NULL ? lz_usage() : lz_uva_spots(pictures, write_seq, loc, params);
+        rc = seq_path != NULL ? lz_usage() : lz_uva_spots(pictures, write_seq, loc, params,
+                                                           calib_path ? &calib : NULL);
         free(params);
         return rc;
     }
@@ -305,9 +327,18 @@ int cmd_localize(int argc, char **argv)
         free(params);
         return 2;
     }
+    if (calib_path != NULL && (calib.has & FL_CALIB_HAS_CAMERA) &&
+        strcmp(calib.camera, seq.camera->name) != 0) {
+        fprintf(stderr, "localize: %s is for camera %s, the sequence uses %s\n", calib_path,
+                calib.camera, seq.camera->name);
+        lr_seq_free(&seq);
+        free(params);
+        return 2;
+    }
     if (pictures != NULL)
         mkdir(pictures, 0777);
     memset(&o, 0, sizeof o);
+    o.calib = calib_path != NULL ? &calib : NULL;
     o.out = stdout;
     o.name = seq_path;
     o.pictures = pictures;

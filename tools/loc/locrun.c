@@ -554,6 +554,8 @@ int lr_seq_run(const lr_seq_t *seq, const lr_seq_opts_t *o, lr_frame_result_t *r
         } else {
             have = 1;
             lr_camera_pose(seq->camera, f->head_pitch_rad, f->head_yaw_rad, &pose);
+            if (o->calib != NULL)
+                fl_calib_apply(o->calib, &pose);
             used = lr_frame(&lr, &fr.view, &pose);
             if (used < 0 && !o->quiet)
                 fprintf(stderr,

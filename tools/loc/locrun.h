@@ -189,6 +189,9 @@ typedef struct {
     const fl_localizer_t *loc;   /* NULL: "fuzzy" */
     const void *params;          /* NULL: defaults */
     int quiet;                   /* 1: no messages for skipped frames */
+    const fl_calib_t *calib;     /* per-robot calibration applied to every
+                                    frame's camera pose (fl_calib_apply), or
+                                    NULL: the model's defaults */
 } lr_seq_opts_t;
 
 /* res (may be NULL) gets one entry per frame.  Returns the number of
