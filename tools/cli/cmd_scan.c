@@ -6,14 +6,18 @@
  *   fieldloc scan IMAGE.ppm|FRAME.raw [--picture OUT.ppm|OUT.png]
  *        [--format rgb|yuyv|planar] [--step COL ROW] [--full]
  *        [--run N] [--camera NAME --head PITCH_RAD YAW_RAD [--neck MM]]
- *        [--uva] [--adapt] [--repeat N] [--quiet]
+ *        [--uva] [--adapt] [--repeat N] [--quiet] [--colors FILE]
  * --full is --step 1 1.  --uva takes the camera from the UvA 2013 labels
  * (camera "uva2013", the record of the image's file name).  --adapt re-scans
  * once after fl_color_adapt when the field color moved.  --repeat scans
  * the same frame N times (for callgrind: instructions per frame =
- * difference of two N / difference of N).
+ * difference of two N / difference of N).  --colors FILE: the colour
+ * classes of a colour file (fieldloc/color.h; `fieldloc colors` writes the
+ * defaults); one that does not parse: "fieldloc scan: FILE:LINE: reason",
+ * exit status 2.
  */
 #include "eval/scan_tool.h"
+#include "eval/detect.h"
 
 #include "io/ppm.h"
 #include "io/realdata.h"
@@ -31,7 +35,7 @@ static int usage(void)
             "usage: fieldloc scan IMAGE.ppm|FRAME.raw [--picture OUT.ppm|.png]\n"
             "         [--format rgb|yuyv|planar] [--step COL ROW] [--full] [--run N]\n"
             "         [--camera NAME --head PITCH_RAD YAW_RAD [--neck MM]] [--uva]\n"
-            "         [--adapt] [--repeat N] [--quiet]\n");
+            "         [--adapt] [--repeat N] [--quiet] [--colors FILE]\n");
     return 2;
 }
 
@@ -68,7 +72,7 @@ static int uva_camera(const char *path, fl_camera_t *cam)
 
 int cmd_scan(int argc, char **argv)
 {
-    const char *in = NULL, *picture = NULL, *camname = NULL;
+    const char *in = NULL, *picture = NULL, *camname = NULL, *colors_path = NULL;
     fl_pixel_format_t fmt = 0;
     fl_scan_params_t sp;
     fl_color_params_t cp;
@@ -116,6 +120,8 @@ int cmd_scan(int argc, char **argv)
             repeat = atoi(argv[++k]);
         else if (!strcmp(argv[k], "--quiet"))
             quiet = 1;
+        else if (!strcmp(argv[k], "--colors") && k + 1 < argc)
+            colors_path = argv[++k];
         else if (argv[k][0] == '-' || in)
             return usage();
         else
@@ -125,6 +131,10 @@ int cmd_scan(int argc, char **argv)
         return usage();
     if (fl_scan_init(&scan, &sp) != FL_OK) {
         fprintf(stderr, "scan: bad --step or --run\n");
+        return 2;
+    }
+    if (colors_path && det_colors_load(colors_path, &cp, err, sizeof err) != 0) {
+        fprintf(stderr, "fieldloc scan: %s\n", err);
         return 2;
     }
     fl_color_init(&colors, &cp);
