@@ -29,7 +29,10 @@ int cmd_colors(int argc, char **argv)
     for (i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--out") && i + 1 < argc)
             out = argv[++i];
-        else
+        else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            colors_usage();
+            return 0;
+        } else
             return colors_usage();
     }
     fl_color_params_default(&p);
