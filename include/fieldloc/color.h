@@ -148,6 +148,71 @@ typedef struct {
 /* The measured defaults described at the top of this file. */
 void fl_color_params_default(fl_color_params_t *p);
 
+/* fl_color_init's rules (listed there): FL_OK, FL_ERR_NULL or FL_ERR_RANGE;
+ * *why (when why is not NULL) a static reason naming the key, e.g.
+ * "green: hue above 179" ("" when valid). */
+fl_status_t fl_color_params_check(const fl_color_params_t *p, const char **why);
+
+/* ---- colour text ---------------------------------------------------------
+ * The classes as text, so a team can tune them at a venue without
+ * rebuilding (`fieldloc colors` writes the defaults with a comment per key;
+ * `--colors FILE` of detect, scan and localize reads one).  The same
+ * conventions as the calibration text (calib.h, via text.h):
+ *     fieldloc-colors 1                header, the first item (version 1)
+ *     green H_LO H_HI S_LO S_HI V_LO V_HI
+ *     green_sat_ref N
+ *     white H_LO H_HI S_LO S_HI V_LO V_HI
+ *     white_contrast_pct N
+ *     white_line_pct N
+ *     yellow H_LO H_HI S_LO S_HI V_LO V_HI
+ *     adapt_max_hue N
+ * (the fl_color_params_t fields of the same names; N and the box bounds
+ * are decimal integers 0..255 with an optional '+').  Every key but the
+ * header is optional and may appear at most once; '#' starts a comment
+ * (whole line or after an item); blank lines, spaces, tabs and a CR before
+ * the LF are ignored.  Lines are at most FL_COLOR_LINE_MAX bytes (without
+ * the LF), the text at most FL_COLOR_TEXT_MAX bytes.
+ *
+ * Errors (fl_color_params_parse's status; *err_line = 1-based line, 0 when
+ * the text as a whole is at fault):
+ *     FL_ERR_NULL       text (with len > 0) or p NULL
+ *     FL_ERR_SIZE       text longer than FL_COLOR_TEXT_MAX (line 0), or a
+ *                       line longer than FL_COLOR_LINE_MAX
+ *     FL_ERR_FORMAT     no header first (line of the first item; 0 for a
+ *                       text without items), a value that is not an
+ *                       integer, a wrong number of values, a repeated key,
+ *                       a NUL byte
+ *     FL_ERR_NOT_FOUND  unknown key
+ *     FL_ERR_RANGE      header version other than 1, a value outside
+ *                       0..255, or a result that breaks a rule of
+ *                       fl_color_init (fl_color_params_check: a hue above
+ *                       179, S_LO > S_HI, ...), checked once the whole
+ *                       text is read and reported at the line of the key
+ *                       concerned (0 when that key is not in the text: the
+ *                       value came from *p)
+ * *why (when why is not NULL) gets a static one-line reason ("unknown
+ * key", "green: hue above 179", ...).
+ *
+ * Memory: the caller's fl_color_params_t.  Cost: one pass over the text. */
+#define FL_COLOR_LINE_MAX 128      /* bytes per line, without the LF */
+#define FL_COLOR_TEXT_MAX 4096     /* bytes of a whole colour text */
+
+/* Parse len bytes of text (no NUL terminator needed; a NUL inside is an
+ * error) over *p: keys the text leaves out keep the values *p has, so call
+ * fl_color_params_default(p) first for "the defaults with these changes".
+ * FL_OK (*p updated, valid for fl_color_init) or an error as above (*p
+ * unchanged). */
+fl_status_t fl_color_params_parse(const char *text, size_t len, fl_color_params_t *p,
+                                  int32_t *err_line, const char **why);
+
+/* Write p as text in the format above: the header, then every key in the
+ * order listed, one per line.  Parsing it over any params gives p back
+ * exactly.  Returns the length written (a NUL follows it), or 0 when cap is
+ * too small (FL_COLOR_TEXT_MAX always suffices; 256 does for this
+ * version), an argument is NULL, or p breaks a rule of
+ * fl_color_params_check. */
+size_t fl_color_params_format(const fl_color_params_t *p, char *buf, size_t cap);
+
 /* Field color measured by the scanner (scan.h, fl_scan_t.field). */
 typedef struct {
     int32_t n;          /* samples used; 0 = no estimate */

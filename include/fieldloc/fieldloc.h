@@ -9,6 +9,7 @@
 #include "fieldloc/config.h"
 #include "fieldloc/common.h"
 #include "fieldloc/fixed.h"
+#include "fieldloc/text.h"
 #include "fieldloc/image.h"
 #include "fieldloc/color.h"
 #include "fieldloc/scan.h"

@@ -36,6 +36,7 @@
  *  lookup is 2 loads (YCbCr) or 5 loads + 2 subtractions + 2 adds (RGB).
  */
 #include "fieldloc/color.h"
+#include "color_int.h"
 #include "fieldloc/fixed.h"
 
 #include <string.h>
@@ -239,10 +240,58 @@ void fl_color_params_default(fl_color_params_t *p)
     p->adapt_max_hue = 16;
 }
 
-static bool box_valid(const fl_hsv_box_t *b)
+/* Rule of a box: 0 valid, 1 a hue above 179, 2 S lo > hi, 3 V lo > hi. */
+static int32_t box_fault(const fl_hsv_box_t *b)
 {
-    return b->h_lo <= 179 && b->h_hi <= 179 && b->s_lo <= b->s_hi &&
-           b->v_lo <= b->v_hi;
+    if (b->h_lo > 179 || b->h_hi > 179)
+        return 1;
+    if (b->s_lo > b->s_hi)
+        return 2;
+    return b->v_lo > b->v_hi ? 3 : 0;
+}
+
+int32_t fl_color_int_fault(const fl_color_params_t *p, const char **why)
+{
+    static const char *const box_why[3][3] = {
+        {"green: hue above 179", "green: S_LO > S_HI", "green: V_LO > V_HI"},
+        {"white: hue above 179", "white: S_LO > S_HI", "white: V_LO > V_HI"},
+        {"yellow: hue above 179", "yellow: S_LO > S_HI", "yellow: V_LO > V_HI"}};
+    static const int32_t box_key[3] = {FL_COLOR_KEY_GREEN, FL_COLOR_KEY_WHITE,
+                                       FL_COLOR_KEY_YELLOW};
+    const fl_hsv_box_t *box[3] = {&p->green, &p->white, &p->yellow};
+    const char *w = "";
+    int32_t k = -1, i, f = 0;
+    for (i = 0; i < 3 && f == 0; i++)
+        f = box_fault(box[i]);
+    if (f > 0) {
+        k = box_key[i - 1];
+        w = box_why[i - 1][f - 1];
+    } else if (p->white_contrast_pct > 200) {
+        k = FL_COLOR_KEY_WHITE_CONTRAST;
+        w = "white_contrast_pct above 200";
+    } else if (p->adapt_max_hue > 30) {
+        k = FL_COLOR_KEY_ADAPT_MAX_HUE;
+        w = "adapt_max_hue above 30";
+    } else if (p->green_sat_ref == 0) {
+        k = FL_COLOR_KEY_GREEN_SAT_REF;
+        w = "green_sat_ref 0 (1..255)";
+    } else if (p->white_line_pct > 0 && p->white_line_pct < 100) {
+        k = FL_COLOR_KEY_WHITE_LINE;
+        w = "white_line_pct 1..99 (0: off, or 100..255)";
+    }
+    if (why != NULL)
+        *why = w;
+    return k;
+}
+
+fl_status_t fl_color_params_check(const fl_color_params_t *p, const char **why)
+{
+    if (p == NULL) {
+        if (why != NULL)
+            *why = "null pointer";
+        return FL_ERR_NULL;
+    }
+    return fl_color_int_fault(p, why) < 0 ? FL_OK : FL_ERR_RANGE;
 }
 
 /* Hue sets: bit 0 green, bit 1 white, bit 2 yellow. */
@@ -725,10 +774,7 @@ fl_status_t fl_color_init_cfg(fl_color_table_t *t, const fl_color_params_t *p,
     memset(t, 0, sizeof *t);  /* all other until built */
     if (p == NULL)
         return FL_ERR_NULL;
-    if (!box_valid(&p->green) || !box_valid(&p->white) ||
-        !box_valid(&p->yellow) || p->white_contrast_pct > 200 ||
-        p->adapt_max_hue > 30 || p->green_sat_ref == 0 ||
-        (p->white_line_pct > 0 && p->white_line_pct < 100))
+    if (fl_color_int_fault(p, NULL) >= 0)
         return FL_ERR_RANGE;
     t->params = *p;
     apply(t, 0, p->green.s_lo, p->white.s_hi);

@@ -32,6 +32,7 @@ SCRIPT = "tools/build/check_layers.py"
 # Public headers (include/fieldloc/*.h) by layer.
 HEADER_LAYER = {
     "common.h": "base", "config.h": "base", "fixed.h": "base", "image.h": "base",
+    "text.h": "base",            # the text formats' words, numbers, writer
     "camera.h": "model", "calib.h": "model", "field.h": "model",
     "obs.h": "obs",              # the seam between vision and localization
     "color.h": "vision", "scan.h": "vision", "lines.h": "vision",

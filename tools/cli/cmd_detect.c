@@ -21,6 +21,10 @@
  * `fieldloc calibrate --out`; its camera must be --camera's) after the
  * defaults and before --neck; a file that does not parse is refused with
  * "FILE:LINE: reason" (exit status 2).
+ * --colors FILE reads the colour classes from a colour file (fieldloc/color.h,
+ * `fieldloc colors` writes the defaults): keys it leaves out keep their
+ * defaults; a file that does not parse: "fieldloc detect: FILE:LINE:
+ * reason", exit status 2.
  * --stats prints the stage counters to stderr; --repeat N runs the path N
  * times (for callgrind: instructions per frame).
  * --picture OUT.ppm|.png draws the stages over the frame (det_draw) with a
@@ -47,11 +51,12 @@ static int detect_usage(void)
 {
     fprintf(stderr,
             "usage: fieldloc detect [--field NAME] [--camera NAME] [--head PITCH_RAD YAW_RAD]\n"
-            "                       [--neck MM] [--calib CALIB] [--picture OUT.ppm]\n"
+            "                       [--neck MM] [--calib CALIB] [--colors FILE] [--picture OUT.ppm]\n"
             "                       [--show border,classes] [--stats] [--repeat N] IMAGE.ppm\n"
             "  --head: NAO HeadPitch -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad\n"
             "  --neck 50..2000 mm, --repeat 1..1000000\n"
             "  --calib: a calibration file from `fieldloc calibrate --out`\n"
+            "  --colors: a colour file, see `fieldloc colors`\n"
             "  prints: kind<TAB>u<TAB>v<TAB>confidence<TAB>range_mm<TAB>bearing_deg\n"
             "  kind L T X G (post foot) U (post top) C (circle centre)\n");
     return 2;
@@ -122,8 +127,9 @@ static int detect_picture(const det_ctx_t *ctx, const render_frame_t *fr, const 
 int cmd_detect(int argc, char **argv)
 {
     const char *field_name = "uva2013", *cam_name = "uva2013", *path = NULL,
-               *picture = NULL, *calib_path = NULL;
+               *picture = NULL, *calib_path = NULL, *colors_path = NULL;
     fl_calib_t calib;
+    fl_color_params_t colors;
     double pitch = 0, yaw = 0;
     const char *head_text[2] = {NULL, NULL};
     int i, n, stats = 0, rc = 0, repeat = 1, head_given = 0, show_border = 0, show_classes = 0;
@@ -152,6 +158,8 @@ int cmd_detect(int argc, char **argv)
             head_given = 1;
         } else if (!strcmp(argv[i], "--calib") && i + 1 < argc)
             calib_path = argv[++i];
+        else if (!strcmp(argv[i], "--colors") && i + 1 < argc)
+            colors_path = argv[++i];
         else if (!strcmp(argv[i], "--picture") && i + 1 < argc)
             picture = argv[++i];
         else if (!strcmp(argv[i], "--stats"))
@@ -172,7 +180,7 @@ int cmd_detect(int argc, char **argv)
         } else if (argv[i][0] == '-' && argv[i][1] != '\0')
             return arg_unknown("detect", argv[i],
                                "--field=1 --camera=1 --head=2 --picture=1 --repeat=1 --neck=1 "
-                               "--show=1 --calib=1");
+                               "--show=1 --calib=1 --colors=1");
         else if (!path)
             path = argv[i];
         else
@@ -200,6 +208,10 @@ int cmd_detect(int argc, char **argv)
                     m->name);
             return 2;
         }
+    }
+    if (colors_path && det_colors_load(colors_path, &colors, err, sizeof err) != 0) {
+        fprintf(stderr, "fieldloc detect: %s\n", err);
+        return 2;
     }
     if (render_read_frame(path, &fr, err, sizeof err) != 0) {
         fprintf(stderr, "detect: %s: %s\n", path, err);
@@ -245,6 +257,12 @@ int cmd_detect(int argc, char **argv)
         fprintf(stderr, "detect: out of memory\n");
         render_frame_free(&fr);
         return 1;
+    }
+    if (colors_path && det_ctx_set_colors(&ctx, &colors) != 0) {  /* parsed: valid */
+        fprintf(stderr, "fieldloc detect: %s: colour classes refused\n", colors_path);
+        det_ctx_free(&ctx);
+        render_frame_free(&fr);
+        return 2;
     }
     /* --repeat N: run the path N times (callgrind: instructions per frame) */
     for (i = 1; i < repeat; i++)

@@ -35,6 +35,10 @@
  * pose after the model's defaults (fl_calib_apply: neck height, pitch and
  * roll offsets).  A file that does not parse ("FILE:LINE: reason") or is
  * for another camera than the sequence's: exit status 2.
+ * --colors FILE (both modes): the colour classes of a colour file
+ * (fieldloc/color.h; `fieldloc colors` writes the defaults) for every
+ * frame's vision; one that does not parse: "fieldloc localize: FILE:LINE:
+ * reason", exit status 2.
  *
  * --pictures DIR writes DIR/frame_NNNNN.ppm (+ .png with OpenCV): the frame
  * with the detected features and the field model seen from the estimate,
@@ -78,7 +82,8 @@ static int lz_usage(void)
             "usage: fieldloc localize SEQUENCE.txt [--pictures DIR] [--picture-every N]\n"
             "       fieldloc localize --uva-spots [--pictures DIR] [--write-seq DIR]\n"
             "       (both: [--param NAME=VALUE]... localizer parameters,\n"
-            "        [--calib CALIB] per-robot calibration from `fieldloc calibrate --out`)\n"
+            "        [--calib CALIB] per-robot calibration from `fieldloc calibrate --out`,\n"
+            "        [--colors FILE] colour classes, see `fieldloc colors`)\n"
             "  SEQUENCE.txt: 'field NAME', 'camera NAME', optional 'prior X_MM Y_MM THETA_DEG',\n"
             "  then per frame 'frame IMAGE.ppm odo DX_MM DY_MM DTHETA_DEG head PITCH_RAD YAW_RAD'\n"
             "  prints per frame: pose X_MM Y_MM THETA_DEG RELIABILITY STATE sd X Y DEG mirror M\n"
@@ -95,7 +100,8 @@ typedef struct {
 } lz_spot_t;
 
 static int lz_uva_spots(const char *pictures, const char *write_seq,
-                        const fl_localizer_t *loc, const void *params, const fl_calib_t *calib)
+                        const fl_localizer_t *loc, const void *params, const fl_calib_t *calib,
+                        const fl_color_params_t *colors)
 {
     const char *dir = rd_dir();
     char path[1200], err[256];
@@ -209,6 +215,7 @@ static int lz_uva_spots(const char *pictures, const char *write_seq,
         o.loc = loc;
         o.params = params;
         o.calib = calib;
+        o.colors = colors;
         rc = lr_seq_run(&seq, &o, res);
         if (rc < 0) {
             free(seq.frame);
@@ -256,8 +263,9 @@ int cmd_localize(int argc, char **argv)
     lr_seq_t seq;
     lr_seq_opts_t o;
     char err[512];
-    const char *localizer = NULL, *param[64], *calib_path = NULL;
+    const char *localizer = NULL, *param[64], *calib_path = NULL, *colors_path = NULL;
     fl_calib_t calib;
+    fl_color_params_t colors;
     int n_param = 0;
     const fl_localizer_t *loc;
     void *params;
@@ -273,6 +281,8 @@ int cmd_localize(int argc, char **argv)
             uva = 1;
         else if (!strcmp(argv[k], "--calib") && k + 1 < argc)
             calib_path = argv[++k];
+        else if (!strcmp(argv[k], "--colors") && k + 1 < argc)
+            colors_path = argv[++k];
         else if (!strcmp(argv[k], "--localizer") && k + 1 < argc)
             localizer = argv[++k];
         else if (!strcmp(argv[k], "--param") && k + 1 < argc) {
@@ -285,7 +295,7 @@ int cmd_localize(int argc, char **argv)
         } else if (argv[k][0] == '-' && argv[k][1] != '\0')
             return arg_unknown("localize", argv[k],
                                "--pictures=1 --picture-every=1 --write-seq=1 --localizer=1 "
-                               "--param=1 --calib=1");
+                               "--param=1 --calib=1 --colors=1");
         else if (seq_path == NULL)
             seq_path = argv[k];
         else
@@ -293,6 +303,10 @@ int cmd_localize(int argc, char **argv)
     }
     if (calib_path != NULL && cf_calib_load(calib_path, &calib, err, (int)sizeof err) != 0) {
         fprintf(stderr, "localize: %s\n", err);
+        return 2;
+    }
+    if (colors_path != NULL && det_colors_load(colors_path, &colors, err, (int)sizeof err) != 0) {
+        fprintf(stderr, "fieldloc localize: %s\n", err);
         return 2;
     }
     if ((loc = lr_localizer(localizer, err, (int)sizeof err)) == NULL) {
@@ -314,7 +328,8 @@ int cmd_localize(int argc, char **argv)
     }
     if (uva) {
         rc = seq_path != NULL ? lz_usage() : lz_uva_spots(pictures, write_seq, loc, params,
-                                                           calib_path ? &calib : NULL);
+                                                           calib_path ? &calib : NULL,
+                                                           colors_path ? &colors : NULL);
         free(params);
         return rc;
     }
@@ -339,6 +354,7 @@ int cmd_localize(int argc, char **argv)
         mkdir(pictures, 0777);
     memset(&o, 0, sizeof o);
     o.calib = calib_path != NULL ? &calib : NULL;
+    o.colors = colors_path != NULL ? &colors : NULL;
     o.out = stdout;
     o.name = seq_path;
     o.pictures = pictures;

@@ -6,12 +6,15 @@
  *   fieldloc scan IMAGE.ppm|FRAME.raw [--picture OUT.ppm|OUT.png]
  *        [--format rgb|yuyv|planar] [--step COL ROW] [--full]
  *        [--run N] [--camera NAME --head PITCH_RAD YAW_RAD [--neck MM]]
- *        [--uva] [--adapt] [--repeat N] [--quiet]
+ *        [--uva] [--adapt] [--repeat N] [--quiet] [--colors FILE]
  * --full is --step 1 1.  --uva takes the camera from the UvA 2013 labels
  * (camera "uva2013", the record of the image's file name).  --adapt re-scans
  * once after fl_color_adapt when the field color moved.  --repeat scans
  * the same frame N times (for callgrind: instructions per frame =
- * difference of two N / difference of N).
+ * difference of two N / difference of N).  --colors FILE: the colour
+ * classes of a colour file (fieldloc/color.h; `fieldloc colors` writes the
+ * defaults); one that does not parse: "fieldloc scan: FILE:LINE: reason",
+ * exit status 2.
  * The picture has a legend strip below the frame (picture.h).  Numbers are
  * checked (tools/cli/args.h): --step 1..16 each, --run 1..255 px, --head
  * within the NAO head joints (the camera's limit otherwise), --neck
@@ -19,6 +22,7 @@
  */
 #include "eval/scan_tool.h"
 #include "cli/args.h"
+#include "eval/detect.h"
 #include "eval/picture.h"
 
 #include "io/ppm.h"
@@ -37,7 +41,7 @@ static int usage(void)
             "usage: fieldloc scan IMAGE.ppm|FRAME.raw [--picture OUT.ppm|.png]\n"
             "         [--format rgb|yuyv|planar] [--step COL ROW] [--full] [--run N]\n"
             "         [--camera NAME --head PITCH_RAD YAW_RAD [--neck MM]] [--uva]\n"
-            "         [--adapt] [--repeat N] [--quiet]\n"
+            "         [--adapt] [--repeat N] [--quiet] [--colors FILE]\n"
             "  --step 1..16 1..16, --run 1..255 px, --neck 50..2000 mm, --repeat 1..1000000,\n"
             "  --head: NAO HeadPitch -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad\n");
     return 2;
@@ -76,7 +80,7 @@ static int uva_camera(const char *path, fl_camera_t *cam)
 
 int cmd_scan(int argc, char **argv)
 {
-    const char *in = NULL, *picture = NULL, *camname = NULL;
+    const char *in = NULL, *picture = NULL, *camname = NULL, *colors_path = NULL;
     fl_pixel_format_t fmt = 0;
     fl_scan_params_t sp;
     fl_color_params_t cp;
@@ -133,13 +137,15 @@ int cmd_scan(int argc, char **argv)
                 return 2;
         } else if (!strcmp(argv[k], "--quiet"))
             quiet = 1;
+        else if (!strcmp(argv[k], "--colors") && k + 1 < argc)
+            colors_path = argv[++k];
         else if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
             usage();
             return 0;
         } else if (argv[k][0] == '-' || in)
             return arg_unknown("scan", argv[k],
                                "--picture=1 --format=1 --step=2 --run=1 --camera=1 --head=2 "
-                               "--neck=1 --repeat=1");
+                               "--neck=1 --repeat=1 --colors=1");
         else
             in = argv[k];
     }
@@ -147,6 +153,10 @@ int cmd_scan(int argc, char **argv)
         return usage();
     if (fl_scan_init(&scan, &sp) != FL_OK) {
         fprintf(stderr, "scan: bad --step or --run\n");
+        return 2;
+    }
+    if (colors_path && det_colors_load(colors_path, &cp, err, sizeof err) != 0) {
+        fprintf(stderr, "fieldloc scan: %s\n", err);
         return 2;
     }
     fl_color_init(&colors, &cp);

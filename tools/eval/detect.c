@@ -4,6 +4,7 @@
 #include "eval/detect.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -46,6 +47,93 @@ void det_ctx_free(det_ctx_t *c)
     free(c->vis);
     c->colors = NULL;
     c->vis = NULL;
+}
+
+int det_colors_load(const char *path, fl_color_params_t *p, char *err, int err_len)
+{
+    FILE *fp = fopen(path, "rb");
+    char text[FL_COLOR_TEXT_MAX + 1];
+    size_t n;
+    int32_t line = 0;
+    const char *why = "";
+    fl_color_params_default(p);
+    if (!fp) {
+        snprintf(err, (size_t)err_len, "%s: cannot open", path);
+        return -1;
+    }
+    /* one byte more than the format allows, so that the parser itself
+     * refuses an overlong file */
+    n = fread(text, 1, sizeof text, fp);
+    fclose(fp);
+    if (fl_color_params_parse(text, n, p, &line, &why) == FL_OK)
+        return 0;
+    if (line > 0)
+        snprintf(err, (size_t)err_len, "%s:%d: %s", path, (int)line, why);
+    else
+        snprintf(err, (size_t)err_len, "%s: %s", path, why);
+    return -1;
+}
+
+/* The explanation of each key of the colour text, in fl_color_params_format's
+ * order (color.h has the measurements behind the defaults). */
+static const char *const det_colors_help[][2] = {
+    {"fieldloc-colors",
+     "# fieldloc colour classes: `fieldloc detect|scan|localize --colors FILE`.\n"
+     "# HSV in OpenCV's 8-bit convention: hue 0..179 (2 degrees per unit, green\n"
+     "# 60, yellow 30), saturation and value 0..255.  A box is H_LO H_HI S_LO\n"
+     "# S_HI V_LO V_HI, bounds included; H_LO > H_HI wraps through red (0).\n"
+     "# A pixel takes the first box that holds it, in the order yellow, green,\n"
+     "# white; none: other.  Keys left out keep the built-in defaults.\n"},
+    {"green",
+     "\n# field carpet.  The hue range is re-centred every frame on the measured\n"
+     "# carpet (by up to adapt_max_hue); S_LO also admits the pale far carpet.\n"},
+    {"green_sat_ref",
+     "# carpet saturation the green box was made for: a paler carpet lowers\n"
+     "# green S_LO in proportion (never below half).  1..255\n"},
+    {"white",
+     "\n# line candidates: grey and bright.  S_HI should meet green S_LO (the\n"
+     "# boxes touch at S 48 / 49); V_LO admits lines at half the light.\n"},
+    {"white_contrast_pct",
+     "# a white run must be (100 + this) % as bright (luma) as the green next\n"
+     "# to it.  0..200\n"},
+    {"white_line_pct",
+     "# line brightness / field brightness, %: on bright frames white S_HI is\n"
+     "# capped where the clipped line edges turn grey.  0 (off) or 100..255\n"},
+    {"yellow",
+     "\n# goal posts (coloured goals).  Shifted with the green hue.\n"},
+    {"adapt_max_hue",
+     "\n# largest hue re-centring of green and yellow, hue units (0: never).\n"
+     "# 0..30\n"},
+};
+
+size_t det_colors_text(const fl_color_params_t *p, char *buf, size_t cap)
+{
+    char plain[FL_COLOR_TEXT_MAX];
+    size_t n = fl_color_params_format(p, plain, sizeof plain), pos = 0, out = 0;
+    if (n == 0 || buf == NULL || cap == 0)
+        return 0;
+    while (pos < n) {
+        size_t len = strcspn(plain + pos, "\n"), k, w = strcspn(plain + pos, " \n");
+        const char *help = "";
+        int m;
+        for (k = 0; k < sizeof det_colors_help / sizeof det_colors_help[0]; k++)
+            if (strlen(det_colors_help[k][0]) == w &&
+                !strncmp(det_colors_help[k][0], plain + pos, w))
+                help = det_colors_help[k][1];
+        m = snprintf(buf + out, cap - out, "%s%.*s\n", help, (int)len, plain + pos);
+        if (m < 0 || (size_t)m >= cap - out) {
+            buf[0] = '\0';
+            return 0;
+        }
+        out += (size_t)m;
+        pos += len + 1;
+    }
+    return out;
+}
+
+int det_ctx_set_colors(det_ctx_t *c, const fl_color_params_t *p)
+{
+    return fl_color_init(c->colors, p) == FL_OK ? 0 : -1;
 }
 
 fl_status_t det_camera(fl_camera_t *cam, const fl_camera_model_t *m,

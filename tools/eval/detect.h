@@ -45,6 +45,19 @@ int det_ctx_init(det_ctx_t *c);
 int det_ctx_init_params(det_ctx_t *c, const fl_vision_params_t *p);
 void det_ctx_free(det_ctx_t *c);
 
+/* A colour file (fieldloc/color.h's text, `fieldloc colors` writes the
+ * defaults): the defaults with the file's keys over them.  0, or -1 with
+ * one line in err: "FILE:LINE: reason" ("FILE: reason" when no line is
+ * to blame, "FILE: cannot open"); *p is then the defaults. */
+int det_colors_load(const char *path, fl_color_params_t *p, char *err, int err_len);
+/* p as a colour file with a comment per key (what `fieldloc colors`
+ * prints): fl_color_params_format's lines, each key's explanation above
+ * it.  Length written (NUL-terminated), 0 when p is invalid or cap too
+ * small (FL_COLOR_TEXT_MAX always suffices: the parser reads the result). */
+size_t det_colors_text(const fl_color_params_t *p, char *buf, size_t cap);
+/* Rebuild c's color tables from p; 0, or -1 when fl_color_init refuses p. */
+int det_ctx_set_colors(det_ctx_t *c, const fl_color_params_t *p);
+
 /* Camera from a model and head angles (radians), with the model's default
  * neck height and pitch offset.  Returns fl_camera_init's status. */
 fl_status_t det_camera(fl_camera_t *cam, const fl_camera_model_t *m,

@@ -534,6 +534,11 @@ int lr_seq_run(const lr_seq_t *seq, const lr_seq_opts_t *o, lr_frame_result_t *r
         fprintf(stderr, "localize: %s\n", err);
         return -1;
     }
+    if (o->colors != NULL && det_ctx_set_colors(&lr.det, o->colors) != 0) {
+        fprintf(stderr, "localize: colour classes refused\n");
+        lr_free(&lr);
+        return -1;
+    }
     if (seq->has_prior) {
         int32_t x = (int32_t)lround(seq->prior_x_mm), y = (int32_t)lround(seq->prior_y_mm);
         fl_angle_t h = fl_angle_from_mdeg((int32_t)lround(fmod(seq->prior_theta_deg, 360.0) * 1000));

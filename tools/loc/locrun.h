@@ -192,6 +192,8 @@ typedef struct {
     const fl_calib_t *calib;     /* per-robot calibration applied to every
                                     frame's camera pose (fl_calib_apply), or
                                     NULL: the model's defaults */
+    const fl_color_params_t *colors; /* colour classes (a colour file, parsed:
+                                    valid), or NULL: the defaults */
 } lr_seq_opts_t;
 
 /* res (may be NULL) gets one entry per frame.  Returns the number of
