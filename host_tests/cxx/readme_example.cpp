@@ -10,9 +10,10 @@
 int readme_example_run(robot_loc_t *r, const fl_image_t *img);
 int readme_example_run(robot_loc_t *r, const fl_image_t *img)
 {
+    static const char calib[] = "fieldloc-calibration 1\nneck_height_mm 450\n";
     fl_loc_estimate_t est;
-    if (loc_init(r, "spl2013") != FL_OK)
+    if (loc_init(r, "spl2013", "nao6-top-640", calib, sizeof calib - 1) != FL_OK)
         return 1;
-    loc_frame(r, 0, 0, 0, img, 0, 0, &est);
-    return 0;
+    loc_frame(r, 0, 0, 0, img, 0, 0, 0, 0, &est);
+    return est.localized ? 0 : 2;
 }
