@@ -393,24 +393,30 @@ typedef struct {
     unsigned char *act;
 } cf_work_t;
 
+/* Column j of the Jacobian at p into w->J[j], by central differences
+ * (w->rp is scratch); a point that misses the image on either side gets 0. */
+static void cf_jacobian_column(const cf_prob_t *pb, const cf_params_t *p, const int *id,
+                               int j, cf_work_t *w)
+{
+    cf_params_t q = *p;
+    double step = id[j] == 0 ? CF_MM_STEP : CF_DEG_STEP;
+    int i;
+    *cf_par(&q, id[j]) += step;
+    cf_residuals(pb, &q, w->J[j]);
+    q = *p;
+    *cf_par(&q, id[j]) -= step;
+    cf_residuals(pb, &q, w->rp);
+    for (i = 0; i < pb->n_total; i++)
+        w->J[j][i] = (w->J[j][i] < 0 || w->rp[i] < 0) ? 0 : (w->J[j][i] - w->rp[i]) / (2 * step);
+}
+
 /* Normal equations of the active points at p (residuals in w->r). */
 static int cf_normal(const cf_prob_t *pb, const cf_params_t *p, const int *id, int np,
                      cf_work_t *w, double A[3][3], double g[3], double *wssr, int *used)
 {
     int j, k, i;
-    for (j = 0; j < np; j++) {
-        cf_params_t q = *p;
-        double step = id[j] == 0 ? CF_MM_STEP : CF_DEG_STEP;
-        *cf_par(&q, id[j]) += step;
-        cf_residuals(pb, &q, w->J[j]);
-        q = *p;
-        *cf_par(&q, id[j]) -= step;
-        cf_residuals(pb, &q, w->rp);
-        for (i = 0; i < pb->n_total; i++)
-            w->J[j][i] = (w->J[j][i] < 0 || w->rp[i] < 0)
-                             ? 0
-                             : (w->J[j][i] - w->rp[i]) / (2 * step);
-    }
+    for (j = 0; j < np; j++)
+        cf_jacobian_column(pb, p, id, j, w);
     memset(A, 0, sizeof(double) * 9);
     memset(g, 0, sizeof(double) * 3);
     *wssr = 0;
@@ -535,17 +541,8 @@ static int cf_lm_joint(cf_prob_t *pb, const cf_options_t *o, const double *psig,
         cf_residuals(pb, p, w->r);
         cf_activate(pb, w);
         /* camera columns */
-        for (j = 0; j < np; j++) {
-            cf_params_t q = *p;
-            double st = id[j] == 0 ? CF_MM_STEP : CF_DEG_STEP;
-            *cf_par(&q, id[j]) += st;
-            cf_residuals(pb, &q, w->J[j]);
-            q = *p;
-            *cf_par(&q, id[j]) -= st;
-            cf_residuals(pb, &q, w->rp);
-            for (i = 0; i < pb->n_total; i++)
-                w->J[j][i] = (w->J[j][i] < 0 || w->rp[i] < 0) ? 0 : (w->J[j][i] - w->rp[i]) / (2 * st);
-        }
+        for (j = 0; j < np; j++)
+            cf_jacobian_column(pb, p, id, j, w);
         /* correction columns, frame by frame */
         for (k = 0, off = 0; k < nf; off += pb->pts[k].n, k++)
             for (j = 0; j < 3; j++) {
