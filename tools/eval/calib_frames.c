@@ -9,12 +9,12 @@
  */
 #include "eval/calib_frames.h"
 #include "eval/detect.h"
+#include "io/textfile.h"
 #include "world/render.h"
 
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,16 +24,6 @@
 #define CF_MM_STEP 4.0
 
 /* ---- frames file -------------------------------------------------------------- */
-
-static void cf_err(char *err, int err_len, const char *fmt, ...)
-{
-    va_list ap;
-    if (!err || err_len <= 0)
-        return;
-    va_start(ap, fmt);
-    vsnprintf(err, (size_t)err_len, fmt, ap);
-    va_end(ap);
-}
 
 /* Strict number: the whole word, finite, |v| <= lim. */
 static const char *cf_number(const char *w, double lim, double *v)
@@ -54,12 +44,10 @@ static const char *cf_parse_line(char *s, const char *dir, cf_frame_t *f, int *i
                                         "HEAD_PITCH_DEG", "TORSO_PITCH_DEG", "TORSO_ROLL_DEG"};
     static const double lim[] = {20000, 20000, 360, 180, 180, 180, 180};
     static char why[160];
-    char *w[10], *hash = strchr(s, '#'), *save = NULL, *t;
+    char *w[10], *save = NULL, *t;
     double v[7] = {0};
     int n = 0, k;
     size_t len;
-    if (hash)
-        *hash = '\0';
     for (t = strtok_r(s, " \t\r", &save); t && n < 10; t = strtok_r(NULL, " \t\r", &save))
         w[n++] = t;
     *is_frame = n > 0;
@@ -109,25 +97,22 @@ int cf_frames_parse(const char *text, size_t len, const char *name, const char *
     memset(out, 0, sizeof *out);
     while (pos < len) {
         const char *s = text + pos, *lf = memchr(s, '\n', len - pos);
-        size_t n = lf ? (size_t)(lf - s) : len - pos;
+        size_t n = lf ? (size_t)(lf - s) : len - pos, used;
         const char *why;
-        int is_frame;
+        int is_frame = 0;
         cf_frame_t f;
         line++;
         pos += n + 1;
-        if (n > CF_LINE_MAX)
-            why = "line too long";
-        else if (memchr(s, '\0', n))
-            why = "NUL byte";
-        else {
-            memcpy(buf, s, n);
-            buf[n] = '\0';
+        /* the firmware formats' line rules: length, NUL, comment, CR */
+        if (fl_text_line(s, n, CF_LINE_MAX, &used, &why) == FL_OK) {
+            memcpy(buf, s, used);
+            buf[used] = '\0';
             why = cf_parse_line(buf, dir, &f, &is_frame);
             if (!why && is_frame && out->n >= CF_MAX_FRAMES)
                 why = "too many frames";
         }
         if (why) {
-            cf_err(err, err_len, "%s:%d: %s", name, line, why);
+            tf_err(err, err_len, "%s:%d: %s", name, line, why);
             cf_frames_free(out);
             return -1;
         }
@@ -138,7 +123,7 @@ int cf_frames_parse(const char *text, size_t len, const char *name, const char *
             cap = cap ? 2 * cap : 16;
             nf = realloc(out->f, sizeof *nf * (size_t)cap);
             if (!nf) {
-                cf_err(err, err_len, "%s: out of memory", name);
+                tf_err(err, err_len, "%s: out of memory", name);
                 cf_frames_free(out);
                 return -1;
             }
@@ -148,7 +133,7 @@ int cf_frames_parse(const char *text, size_t len, const char *name, const char *
         out->f[out->n++] = f;
     }
     if (out->n == 0) {
-        cf_err(err, err_len, "%s:%d: no frame in the file", name, line);
+        tf_err(err, err_len, "%s:%d: no frame in the file", name, line);
         return -1;
     }
     return 0;
@@ -164,19 +149,19 @@ int cf_frames_load(const char *path, cf_frames_t *out, char *err, int err_len)
     int rc;
     memset(out, 0, sizeof *out);
     if (!fp) {
-        cf_err(err, err_len, "%s: cannot open", path);
+        tf_err(err, err_len, "%s: cannot open", path);
         return -1;
     }
     if (fseek(fp, 0, SEEK_END) != 0 || (sz = ftell(fp)) < 0 || fseek(fp, 0, SEEK_SET) != 0 ||
         sz > 64L * 1024 * 1024) {
         fclose(fp);
-        cf_err(err, err_len, "%s: cannot read (or larger than 64 MB)", path);
+        tf_err(err, err_len, "%s: cannot read (or larger than 64 MB)", path);
         return -1;
     }
     text = malloc((size_t)sz + 1);
     if (!text) {
         fclose(fp);
-        cf_err(err, err_len, "%s: out of memory", path);
+        tf_err(err, err_len, "%s: out of memory", path);
         return -1;
     }
     got = fread(text, 1, (size_t)sz, fp);
@@ -964,7 +949,7 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
     res->before = calloc((size_t)fr->n + 1, sizeof *res->before);
     res->after = calloc((size_t)fr->n + 1, sizeof *res->after);
     if (!pb.pts || !res->before || !res->after || det_ctx_init(&ctx) != 0) {
-        cf_err(err, err_len, "out of memory");
+        tf_err(err, err_len, "out of memory");
         free(pb.pts);
         cf_result_free(res);
         return -1;
@@ -973,19 +958,19 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
         pb.corr = calloc(3 * (size_t)fr->n + 1, sizeof *pb.corr);
         res->corr = calloc(3 * (size_t)fr->n + 1, sizeof *res->corr);
         if (!pb.corr || !res->corr) {
-            cf_err(err, err_len, "out of memory");
+            tf_err(err, err_len, "out of memory");
             goto out;
         }
     }
     for (pass = 0; pass < 2; pass++) {
         if (cf_detect(&pb, p, &ctx, pass == 0 ? warn : NULL, user, &res->n_skipped) != 0) {
-            cf_err(err, err_len, "out of memory");
+            tf_err(err, err_len, "out of memory");
             goto out;
         }
         free(w.r);
         w.r = malloc(sizeof(double) * 8 * (size_t)(pb.n_total + 1) + (size_t)pb.n_total + 1);
         if (!w.r) {
-            cf_err(err, err_len, "out of memory");
+            tf_err(err, err_len, "out of memory");
             goto out;
         }
         w.rp = w.r + pb.n_total + 1;
@@ -995,7 +980,7 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
         }
         w.act = (unsigned char *)(w.K[2] + pb.n_total + 1);
         if (pb.n_total < 20) {
-            cf_err(err, err_len, "only %d line points detected in %d usable frames (need 20)",
+            tf_err(err, err_len, "only %d line points detected in %d usable frames (need 20)",
                    pb.n_total, fr->n - res->n_skipped);
             goto out;
         }
@@ -1013,7 +998,7 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
         } else
             n = cf_lm(&pb, o, p, &w, res->sigma);
         if (n < 0) {
-            cf_err(err, err_len, "too few line points near the field lines (fit failed)");
+            tf_err(err, err_len, "too few line points near the field lines (fit failed)");
             goto out;
         }
         res->iterations += n;
@@ -1078,28 +1063,16 @@ int cf_frames_from_uva(const rd_uva_set_t *set, const char *dir, cf_frames_t *ou
 
 int cf_calib_load(const char *path, fl_calib_t *c, char *err, int err_len)
 {
-    FILE *fp = fopen(path, "rb");
     char text[FL_CALIB_TEXT_MAX + 1];
     size_t n;
     int32_t line = 0;
     const char *why = "";
-    fl_status_t st;
     memset(c, 0, sizeof *c);
-    if (!fp) {
-        cf_err(err, err_len, "%s: cannot open", path);
+    if (tf_read(path, text, sizeof text, &n, err, err_len) != 0)
         return -1;
-    }
-    n = fread(text, 1, sizeof text, fp);
-    fclose(fp);
-    /* one byte more than the format allows is read, so fl_calib_parse
-     * refuses an overlong file itself */
-    st = fl_calib_parse(text, n, c, &line, &why);
-    if (st == FL_OK)
+    if (fl_calib_parse(text, n, c, &line, &why) == FL_OK)
         return 0;
-    if (line > 0)
-        cf_err(err, err_len, "%s:%d: %s", path, (int)line, why);
-    else
-        cf_err(err, err_len, "%s: %s", path, why);
+    tf_parse_err(err, err_len, path, line, why);
     return -1;
 }
 
@@ -1110,19 +1083,19 @@ int cf_calib_save(const char *path, const fl_calib_t *c, const char *comment, ch
     size_t n = fl_calib_format(c, text, sizeof text);
     FILE *fp;
     if (n == 0) {
-        cf_err(err, err_len, "%s: calibration out of range, not written", path);
+        tf_err(err, err_len, "%s: calibration out of range, not written", path);
         return -1;
     }
     fp = fopen(path, "w");
     if (!fp) {
-        cf_err(err, err_len, "%s: cannot write", path);
+        tf_err(err, err_len, "%s: cannot write", path);
         return -1;
     }
     if (comment)
         fprintf(fp, "# %s\n", comment);
     fwrite(text, 1, n, fp);
     if (fclose(fp) != 0) {
-        cf_err(err, err_len, "%s: write error", path);
+        tf_err(err, err_len, "%s: write error", path);
         return -1;
     }
     return 0;
