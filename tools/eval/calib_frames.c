@@ -13,7 +13,6 @@
 #include "world/render.h"
 
 #include <ctype.h>
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,19 +23,6 @@
 #define CF_MM_STEP 4.0
 
 /* ---- frames file -------------------------------------------------------------- */
-
-/* Strict number: the whole word, finite, |v| <= lim. */
-static const char *cf_number(const char *w, double lim, double *v)
-{
-    char *end;
-    errno = 0;
-    *v = strtod(w, &end);
-    if (end == w || *end != '\0')
-        return "not a number";
-    if (errno == ERANGE || !isfinite(*v) || fabs(*v) > lim)
-        return "out of range";
-    return NULL;
-}
 
 static const char *cf_parse_line(char *s, const char *dir, cf_frame_t *f, int *is_frame)
 {
@@ -57,7 +43,7 @@ static const char *cf_parse_line(char *s, const char *dir, cf_frame_t *f, int *i
         return "expected: IMAGE X_MM Y_MM HEADING_DEG HEAD_YAW_DEG HEAD_PITCH_DEG "
                "[TORSO_PITCH_DEG TORSO_ROLL_DEG]";
     for (k = 1; k < n; k++) {
-        const char *e = cf_number(w[k], lim[k - 1], &v[k - 1]);
+        const char *e = tf_number(w[k], lim[k - 1], &v[k - 1]);
         if (e) {
             snprintf(why, sizeof why, "%s: %s '%.40s' (|value| <= %g)", names[k - 1], e, w[k],
                      lim[k - 1]);
