@@ -415,18 +415,26 @@ static void cf_activate(const cf_prob_t *pb, cf_work_t *w)
         w->act[i] = w->r[i] >= 0 && w->r[i] <= pb->gate;
 }
 
-/* LM from p; returns the iterations, -1 on failure.  sigma[3] out. */
-static int cf_lm(const cf_prob_t *pb, const cf_options_t *o, cf_params_t *p, cf_work_t *w,
-                 double sigma[3])
+/* The parameters the options fit, as cf_par indices in id[]; their count. */
+static int cf_selected(const cf_options_t *o, int id[3])
 {
-    int id[3], np = 0, it, j, used = 0;
-    double lambda = 1e-3, A[3][3], g[3], wssr;
+    int np = 0;
     if (o->fit_neck)
         id[np++] = 0;
     if (o->fit_pitch)
         id[np++] = 1;
     if (o->fit_roll)
         id[np++] = 2;
+    return np;
+}
+
+/* LM from p; returns the iterations, -1 on failure.  sigma[3] out. */
+static int cf_lm(const cf_prob_t *pb, const cf_options_t *o, cf_params_t *p, cf_work_t *w,
+                 double sigma[3])
+{
+    int id[3], np, it, j, used = 0;
+    double lambda = 1e-3, A[3][3], g[3], wssr;
+    np = cf_selected(o, id);
     sigma[0] = sigma[1] = sigma[2] = 0;
     if (np == 0)
         return 0;
@@ -492,19 +500,14 @@ static int cf_lm_joint(cf_prob_t *pb, const cf_options_t *o, const double *psig,
                        cf_work_t *w, double sigma[3])
 {
     static const double cstep[3] = {0.05, 5.0, 5.0};
-    int id[3], np = 0, it, j, m, i, k, nf = pb->fr->n, used = 0, ret = -1;
+    int id[3], np, it, j, m, i, k, nf = pb->fr->n, used = 0, ret = -1;
     double lambda = 1e-3, wssr = 0, Acc[3][3], gc[3];
     /* per frame: Akk 9, gk 3, Ack 9 (np x 3; 3 rows kept), y 3 */
     double *blk = malloc(sizeof(double) * 24 * (size_t)(nf + 1));
     double *nc = malloc(sizeof(double) * 3 * (size_t)(nf + 1));
     if (!blk || !nc)
         goto out;
-    if (o->fit_neck)
-        id[np++] = 0;
-    if (o->fit_pitch)
-        id[np++] = 1;
-    if (o->fit_roll)
-        id[np++] = 2;
+    np = cf_selected(o, id);
     sigma[0] = sigma[1] = sigma[2] = 0;
     for (it = 0; it < 100; it++) {
         double cost = 0;
