@@ -310,6 +310,22 @@ static void t_numbers(void)
     CHECK(strstr(out, "pos_rmse_mm") != NULL);
     CHECK_EQ(cli_run("detect --help", NULL, 0, err, sizeof err), 0);
     CHECK(strncmp(err, "usage: fieldloc detect", 22) == 0);
+    /* reliability: its counts and seed lists are checked like every number
+     * (refused before any walk runs) */
+    expect_error("reliability --steps \"\"",
+                 "fieldloc reliability: --steps: \"\" is not a number");
+    expect_error("reliability --steps -1",
+                 "fieldloc reliability: --steps: -1 is out of range 0..100000000");
+    expect_error("reliability --seeds 1,70000",
+                 "fieldloc reliability: --seeds: 70000 is out of range 0..65535");
+    expect_error("reliability --frame-seeds 1,,2",
+                 "fieldloc reliability: --frame-seeds: \"\" is not a number");
+    expect_error("reliability --seeds - --frame-seeds \"\"",
+                 "fieldloc reliability: no walk (--seeds and --frame-seeds both empty)");
+    expect_error("reliability --bogus",
+                 "fieldloc reliability: unknown option --bogus (fieldloc reliability --help)");
+    CHECK_EQ(cli_run("reliability --help", NULL, 0, err, sizeof err), 0);
+    CHECK(strncmp(err, "usage: fieldloc reliability", 27) == 0);
 }
 
 /* Read a picture written by the CLI; 0 when read. */
