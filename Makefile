@@ -172,11 +172,13 @@ cross-test: $(RUNNER)
 	   fi; \
 	 done; exit $$status
 
+# The test suite under ASan + UBSan; the CLI is built the same way, so the
+# cli.* tests run the sanitized tool too.
 SAN_CC ?= clang
 SAN_FLAGS = -fsanitize=address,undefined,integer -fno-sanitize=unsigned-integer-overflow,unsigned-shift-base -fno-sanitize-recover=all -fno-omit-frame-pointer
 sanitize:
 	@$(MAKE) --no-print-directory BUILD=$(BUILD)/san CC=$(SAN_CC) OPT="-O1" \
-	  ARCHFLAGS="$(SAN_FLAGS)" FW_NOFP= $(BUILD)/san/run_tests
+	  ARCHFLAGS="$(SAN_FLAGS)" FW_NOFP= $(BUILD)/san/run_tests $(BUILD)/san/fieldloc
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 $(BUILD)/san/run_tests
 
 bench: $(CLI)

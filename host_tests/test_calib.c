@@ -420,6 +420,16 @@ static void test_frames_errors(void)
         CHECK_EQ(fr.f[1].line, 2);
     }
     cf_frames_free(&fr);
+    /* CRLF line ends (a list written on Windows): the same frames */
+    {
+        const char *crlf = "a.ppm -1.5 2 +3 4 5\r\n# c\r\nb.ppm 0 0 0 0 20 -1 2.5\r\n";
+        CHECK_EQ(cf_frames_parse(crlf, strlen(crlf), "F.txt", NULL, &fr, err, sizeof err), 0);
+        CHECK_EQ(fr.n, 2);
+        if (fr.n == 2)
+            CHECK(fr.f[0].head_pitch_deg == 5 && fr.f[1].torso_roll_deg == 2.5 &&
+                  fr.f[1].line == 3 && strcmp(fr.f[1].image, "b.ppm") == 0);
+        cf_frames_free(&fr);
+    }
     /* a missing file */
     CHECK_EQ(cf_frames_load("/nonexistent/frames.txt", &fr, err, sizeof err), -1);
     CHECK(strstr(err, "/nonexistent/frames.txt") != NULL);

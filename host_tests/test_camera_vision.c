@@ -94,6 +94,21 @@ static int cv_render(const render_scene_t *sc, render_frame_t *fr, truth_t *t)
     return 0;
 }
 
+/* A detector context in *dc and a truth buffer for the rendered-scene
+ * tests (free both at the end); NULL, and a failed check, when either
+ * cannot be had. */
+static truth_t *cv_start(det_ctx_t *dc)
+{
+    truth_t *t = (truth_t *)malloc(sizeof *t);
+    CHECK(t != NULL);
+    if (!t || det_ctx_init(dc) != 0) {
+        free(t);
+        CHECK(0);
+        return NULL;
+    }
+    return t;
+}
+
 static void test_render_agreement_roll(void)
 {
     static const char *cams[] = {"nao4-top-320", "nao4-bottom-320", "nao6-top-640", "nao6-bottom-1280"};
@@ -156,13 +171,9 @@ static void test_roll_rendered_ranges(void)
     cv_stats_t lvl, rolled, ignored;
     int i, scenes = 0;
     render_frame_t fr;
-    truth_t *t = (truth_t *)malloc(sizeof *t);
-    CHECK(t != NULL);
-    if (!t || det_ctx_init(&dc) != 0) {
-        free(t);
-        CHECK(0);
+    truth_t *t = cv_start(&dc);
+    if (!t)
         return;
-    }
     memset(&lvl, 0, sizeof lvl);
     memset(&rolled, 0, sizeof rolled);
     memset(&ignored, 0, sizeof ignored);
@@ -220,13 +231,9 @@ static void test_nao6_1280(void)
     cv_stats_t lo, hi;
     int i, scenes = 0;
     render_frame_t fr;
-    truth_t *t = (truth_t *)malloc(sizeof *t);
-    CHECK(t != NULL);
-    if (!t || det_ctx_init(&dc) != 0) {
-        free(t);
-        CHECK(0);
+    truth_t *t = cv_start(&dc);
+    if (!t)
         return;
-    }
     memset(&lo, 0, sizeof lo);
     memset(&hi, 0, sizeof hi);
     for (i = 0; i < render_fixture_count(); i++) {

@@ -74,6 +74,25 @@ static long count_color(const host_image_t *im, int v0, int v1, int r, int g, in
     return n;
 }
 
+/* 1 when the legend strip that starts at row y0 of im begins (4 px in, 4 px
+ * down) with text exactly as the font draws it at scale sc in the legend's
+ * colours. */
+static int caption_starts_with(const host_image_t *im, int y0, const char *text, int sc)
+{
+    static const uint8_t fg[3] = {PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG};
+    host_image_t ref = host_image_new(im->width, sc * FONT_LINE, PIC_LEGEND_BG, PIC_LEGEND_BG,
+                                      PIC_LEGEND_BG);
+    int v, w = font_text_width(text, sc);
+    int ok = im->rgb != NULL && ref.rgb != NULL && y0 + 4 + sc * FONT_H <= im->height;
+    if (ok)
+        font_draw(&ref, 4, 0, text, fg, sc);
+    for (v = 0; ok && v < sc * FONT_H; v++)
+        ok = memcmp(im->rgb + 3 * ((size_t)(y0 + 4 + v) * (size_t)im->width + 4),
+                    ref.rgb + 3 * ((size_t)v * (size_t)im->width + 4), 3 * (size_t)w) == 0;
+    host_image_free(&ref);
+    return ok;
+}
+
 static void t_legend(void)
 {
     host_image_t img = host_image_new(200, 50, 10, 200, 30), out, narrow, nout;
@@ -95,17 +114,7 @@ static void t_legend(void)
         CHECK(count_color(&out, 50, out.height, 255, 0, 0) > 0);       /* L crossing box */
         CHECK(count_color(&out, 50, out.height, 200, 255, 0) > 0);     /* post top */
         /* the first caption word, exactly as the font draws it */
-        {
-            host_image_t ref = host_image_new(200, FONT_LINE, PIC_LEGEND_BG, PIC_LEGEND_BG,
-                                              PIC_LEGEND_BG);
-            static const uint8_t fg[3] = {PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG};
-            int v, w = font_text_width("a caption", 1);
-            font_draw(&ref, 4, 0, "a caption", fg, 1);
-            for (v = 0; v < FONT_H; v++)
-                CHECK(memcmp(out.rgb + 3 * ((size_t)(50 + 4 + v) * 200 + 4),
-                             ref.rgb + 3 * ((size_t)v * 200 + 4), 3 * (size_t)w) == 0);
-            host_image_free(&ref);
-        }
+        CHECK(caption_starts_with(&out, 50, "a caption", 1));
     }
     host_image_free(&out);
     /* more sets, or a narrower picture, make a taller strip */
@@ -118,17 +127,9 @@ static void t_legend(void)
     host_image_free(&narrow);
     /* a wide picture (frame | belief) gets the strip at twice the size */
     {
-        host_image_t wide = host_image_new(1200, 20, 0, 0, 0), ref;
-        static const uint8_t fg[3] = {PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG};
-        int v, w = font_text_width("t 3.0 s", 2);
+        host_image_t wide = host_image_new(1200, 20, 0, 0, 0);
         CHECK_EQ(pic_legend_inplace(&wide, PIC_LEGEND_BELIEF, "t 3.0 s"), 0);
-        ref = host_image_new(1200, 2 * FONT_LINE, PIC_LEGEND_BG, PIC_LEGEND_BG, PIC_LEGEND_BG);
-        font_draw(&ref, 4, 0, "t 3.0 s", fg, 2);
-        if (wide.rgb != NULL && ref.rgb != NULL)
-            for (v = 0; v < 2 * FONT_H; v++)
-                CHECK(memcmp(wide.rgb + 3 * ((size_t)(20 + 4 + v) * 1200 + 4),
-                             ref.rgb + 3 * ((size_t)v * 1200 + 4), 3 * (size_t)w) == 0);
-        host_image_free(&ref);
+        CHECK(caption_starts_with(&wide, 20, "t 3.0 s", 2));
         host_image_free(&wide);
     }
     memset(&nout, 0, sizeof nout);
@@ -309,6 +310,22 @@ static void t_numbers(void)
     CHECK(strstr(out, "pos_rmse_mm") != NULL);
     CHECK_EQ(cli_run("detect --help", NULL, 0, err, sizeof err), 0);
     CHECK(strncmp(err, "usage: fieldloc detect", 22) == 0);
+    /* reliability: its counts and seed lists are checked like every number
+     * (refused before any walk runs) */
+    expect_error("reliability --steps \"\"",
+                 "fieldloc reliability: --steps: \"\" is not a number");
+    expect_error("reliability --steps -1",
+                 "fieldloc reliability: --steps: -1 is out of range 0..100000000");
+    expect_error("reliability --seeds 1,70000",
+                 "fieldloc reliability: --seeds: 70000 is out of range 0..65535");
+    expect_error("reliability --frame-seeds 1,,2",
+                 "fieldloc reliability: --frame-seeds: \"\" is not a number");
+    expect_error("reliability --seeds - --frame-seeds \"\"",
+                 "fieldloc reliability: no walk (--seeds and --frame-seeds both empty)");
+    expect_error("reliability --bogus",
+                 "fieldloc reliability: unknown option --bogus (fieldloc reliability --help)");
+    CHECK_EQ(cli_run("reliability --help", NULL, 0, err, sizeof err), 0);
+    CHECK(strncmp(err, "usage: fieldloc reliability", 27) == 0);
 }
 
 /* Read a picture written by the CLI; 0 when read. */
@@ -351,18 +368,8 @@ static void t_pictures(void)
                                        "(field spl2013, camera nao4-top-320)"));
     CHECK(count_color(&plain, 240, plain.height, PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG) >
           500);
-    {
-        /* the caption starts with the file name, drawn by the font */
-        host_image_t ref = host_image_new(320, FONT_LINE, PIC_LEGEND_BG, PIC_LEGEND_BG,
-                                          PIC_LEGEND_BG);
-        static const uint8_t fg[3] = {PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG};
-        int v, w = font_text_width("spl2013_t_far.raw:", 1);
-        font_draw(&ref, 4, 0, "spl2013_t_far.raw:", fg, 1);
-        for (v = 0; v < FONT_H; v++)
-            CHECK(memcmp(plain.rgb + 3 * ((size_t)(240 + 4 + v) * 320 + 4),
-                         ref.rgb + 3 * ((size_t)v * 320 + 4), 3 * (size_t)w) == 0);
-        host_image_free(&ref);
-    }
+    /* the caption starts with the file name, drawn by the font */
+    CHECK(caption_starts_with(&plain, 240, "spl2013_t_far.raw:", 1));
     /* the class map changes the image part (every cell tinted) and adds its
      * legend; the border layer draws the red border into the image */
     CHECK(classes.height > plain.height);
@@ -403,18 +410,8 @@ static void t_pictures(void)
         CHECK(belief.height > 592);
         CHECK(count_color(&belief, 592, belief.height, PIC_LEGEND_FG, PIC_LEGEND_FG,
                           PIC_LEGEND_FG) > 500);
-        {
-            /* first caption line: "t 0.5 s  frame 5  estimate ..." */
-            host_image_t ref = host_image_new(832, FONT_LINE, PIC_LEGEND_BG, PIC_LEGEND_BG,
-                                              PIC_LEGEND_BG);
-            static const uint8_t fg[3] = {PIC_LEGEND_FG, PIC_LEGEND_FG, PIC_LEGEND_FG};
-            int v, w = font_text_width("t 0.5 s  frame 5  estimate", 1);
-            font_draw(&ref, 4, 0, "t 0.5 s  frame 5  estimate", fg, 1);
-            for (v = 0; v < FONT_H; v++)
-                CHECK(memcmp(belief.rgb + 3 * ((size_t)(592 + 4 + v) * 832 + 4),
-                             ref.rgb + 3 * ((size_t)v * 832 + 4), 3 * (size_t)w) == 0);
-            host_image_free(&ref);
-        }
+        /* first caption line: "t 0.5 s  frame 5  estimate ..." */
+        CHECK(caption_starts_with(&belief, 592, "t 0.5 s  frame 5  estimate", 1));
         host_image_free(&belief);
     } else
         t_fail_msg(__FILE__, __LINE__, "demo belief picture readable");

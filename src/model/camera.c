@@ -232,6 +232,24 @@ static void fl_cam_rot_y(int32_t m[3][3], fl_angle_t a)
     m[2][2] = c;
 }
 
+/* r = Rz(yaw) * Ry(pitch), multiplied out: the head's yaw-pitch part, which
+ * fl_camera_init and fl_camera_init_extrinsics share (the same angles give
+ * the same matrix bit for bit). */
+static void fl_cam_rot_zy(int32_t r[3][3], fl_angle_t yaw, fl_angle_t pitch)
+{
+    int32_t sp = fl_sin_q30(pitch), cp = fl_cos_q30(pitch);
+    int32_t sy = fl_sin_q30(yaw), cy = fl_cos_q30(yaw);
+    r[0][0] = fl_mul_q30(cy, cp);
+    r[0][1] = -sy;
+    r[0][2] = fl_mul_q30(cy, sp);
+    r[1][0] = fl_mul_q30(sy, cp);
+    r[1][1] = cy;
+    r[1][2] = fl_mul_q30(sy, sp);
+    r[2][0] = -sp;
+    r[2][1] = 0;
+    r[2][2] = cp;
+}
+
 /* out = a * b (Q30).  Scaling: |a_ij|, |b_ij| <= 2^30 (+1 after earlier
  * roundings, clamped here), so each sum of 3 products is < 2^62; rounded to
  * nearest and clamped to +-2^30.  A factor equal to the identity gives the
@@ -282,7 +300,7 @@ fl_status_t fl_camera_init_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
                                const fl_camera_pose_t *pose, uint32_t caller_cfg)
 {
     fl_angle_t alpha, theta;
-    int32_t sa, ca, sy, cy, st, ct;
+    int32_t sy, cy, st, ct;
     int64_t xh_q30, zh_q30;
     int32_t xh_q16, h[3];
     int32_t r[3][3];
@@ -310,23 +328,13 @@ fl_status_t fl_camera_init_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
         return FL_ERR_RANGE;
     theta = fl_angle_wrap((int32_t)pose->head_pitch + pose->pitch_offset);
 
-    sa = fl_sin_q30(alpha);
-    ca = fl_cos_q30(alpha);
     sy = fl_sin_q30(pose->head_yaw);
     cy = fl_cos_q30(pose->head_yaw);
     st = fl_sin_q30(theta);
     ct = fl_cos_q30(theta);
 
     /* head: R = Rz(yaw) * Ry(alpha) */
-    r[0][0] = fl_mul_q30(cy, ca);
-    r[0][1] = -sy;
-    r[0][2] = fl_mul_q30(cy, sa);
-    r[1][0] = fl_mul_q30(sy, ca);
-    r[1][1] = cy;
-    r[1][2] = fl_mul_q30(sy, sa);
-    r[2][0] = -sa;
-    r[2][1] = 0;
-    r[2][2] = ca;
+    fl_cam_rot_zy(r, pose->head_yaw, alpha);
 
     /* camera centre relative to the head pitch axis: head pitch theta, then yaw */
     xh_q30 = (int64_t)model->mount_x_mm * ct + (int64_t)model->mount_z_mm * st;
@@ -376,7 +384,6 @@ fl_status_t fl_camera_init_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
 fl_status_t fl_camera_init_extrinsics_cfg(fl_camera_t *cam, const fl_camera_model_t *model,
                                           const fl_camera_extrinsics_t *ext, uint32_t caller_cfg)
 {
-    int32_t sp, cp, sy, cy;
     int32_t r[3][3];
     fl_status_t st_model;
 
@@ -396,19 +403,7 @@ fl_status_t fl_camera_init_extrinsics_cfg(fl_camera_t *cam, const fl_camera_mode
         return FL_ERR_RANGE;
     if (!fl_cam_angle_ok(ext->pitch, FL_ANGLE_90) || !fl_cam_angle_ok(ext->roll, FL_CAMERA_MAX_ROLL))
         return FL_ERR_RANGE;
-    sp = fl_sin_q30(ext->pitch);
-    cp = fl_cos_q30(ext->pitch);
-    sy = fl_sin_q30(ext->yaw);
-    cy = fl_cos_q30(ext->yaw);
-    r[0][0] = fl_mul_q30(cy, cp);
-    r[0][1] = -sy;
-    r[0][2] = fl_mul_q30(cy, sp);
-    r[1][0] = fl_mul_q30(sy, cp);
-    r[1][1] = cy;
-    r[1][2] = fl_mul_q30(sy, sp);
-    r[2][0] = -sp;
-    r[2][1] = 0;
-    r[2][2] = cp;
+    fl_cam_rot_zy(r, ext->yaw, ext->pitch);
     if (ext->roll != 0) {
         int32_t m[3][3];
         fl_cam_rot_x(m, ext->roll);

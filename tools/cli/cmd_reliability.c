@@ -30,6 +30,7 @@
  * the calibration from such a file).
  */
 #include "loc/reliab.h"
+#include "cli/args.h"
 #include "cli/registry.h"
 
 #include <stdio.h>
@@ -38,22 +39,33 @@
 
 #define RB_MAX_LIST 64
 
-static int parse_list(const char *s, long *v, int max)
+/* A comma-separated list of seeds 0..65535 ("" or "-": none) for option
+ * opt: its length, or -1 (one message printed, as for every number of the
+ * CLI) for an item that is not such a seed or more than max items. */
+static int parse_list(const char *opt, const char *s, long *v, int max)
 {
+    char item[32];
     int n = 0;
-    char *end;
-    if (s == NULL || !strcmp(s, "-") || *s == '\0')
+    if (!strcmp(s, "-") || *s == '\0')
         return 0;
-    while (*s != '\0') {
-        if (n == max)
+    for (;;) {
+        const char *comma = strchr(s, ',');
+        size_t len = comma ? (size_t)(comma - s) : strlen(s);
+        if (n == max) {
+            fprintf(stderr, "fieldloc reliability: %s: more than %d seeds\n", opt, max);
             return -1;
-        v[n] = strtol(s, &end, 10);
-        if (end == s || v[n] < 0 || v[n] > 65535 || (*end != ',' && *end != '\0'))
+        }
+        if (len >= sizeof item)
+            len = sizeof item - 1; /* still not a seed: arg_long says so */
+        memcpy(item, s, len);
+        item[len] = '\0';
+        if (arg_long("reliability", opt, item, 0, 65535, NULL, &v[n]) != 0)
             return -1;
         n++;
-        s = *end == ',' ? end + 1 : end;
+        if (!comma)
+            return n;
+        s = comma + 1;
     }
-    return n;
 }
 
 static void usage(void)
@@ -69,7 +81,7 @@ int cmd_reliability(int argc, char **argv)
     const char *localizer = NULL, *fields = "spl2013,uva2013,aibo2004", *cache_dir = NULL;
     const char *dump = NULL, *seeds_s = "1,2,3", *fseeds_s = "1,2,3";
     const char *fname[16];
-    char fbuf[256], err[256], path[1200], *tok, *save = NULL, *end;
+    char fbuf[256], err[256], path[1200], *tok, *save = NULL;
     long seeds[RB_MAX_LIST], fseeds[RB_MAX_LIST], steps = -1;
     int nseeds, nfseeds, nf = 0, k, i, mode, rc = 0, uncal = 0;
     long r;
@@ -92,30 +104,40 @@ int cmd_reliability(int argc, char **argv)
         else if (!strcmp(argv[k], "--dump") && k + 1 < argc)
             dump = argv[++k];
         else if (!strcmp(argv[k], "--steps") && k + 1 < argc) {
-            steps = strtol(argv[++k], &end, 10);
-            if (*end != '\0' || steps < 0) {
-                fprintf(stderr, "reliability: --steps needs a non-negative integer\n");
+            if (arg_long("reliability", "--steps", argv[++k], 0, 100000000L, NULL, &steps) != 0)
                 return 2;
-            }
-        } else {
+        } else if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
             usage();
-            return 2;
-        }
+            return 0;
+        } else
+            return arg_unknown("reliability", argv[k],
+                               "--localizer=1 --fields=1 --seeds=1 --frame-seeds=1 "
+                               "--obs-cache-dir=1 --dump=1 --steps=1");
     }
-    nseeds = parse_list(seeds_s, seeds, RB_MAX_LIST);
-    nfseeds = parse_list(fseeds_s, fseeds, RB_MAX_LIST);
-    if (nseeds < 0 || nfseeds < 0 || nseeds + nfseeds == 0) {
-        fprintf(stderr, "reliability: seeds are comma-separated integers 0..65535\n");
+    nseeds = parse_list("--seeds", seeds_s, seeds, RB_MAX_LIST);
+    nfseeds = parse_list("--frame-seeds", fseeds_s, fseeds, RB_MAX_LIST);
+    if (nseeds < 0 || nfseeds < 0)
+        return 2;
+    if (nseeds + nfseeds == 0) {
+        fprintf(stderr, "fieldloc reliability: no walk (--seeds and --frame-seeds both empty)\n");
         return 2;
     }
     if ((loc = lr_localizer(localizer, err, (int)sizeof err)) == NULL) {
         fprintf(stderr, "reliability: %s\n", err);
         return 2;
     }
+    if (strlen(fields) >= sizeof fbuf) {
+        fprintf(stderr, "fieldloc reliability: --fields: list too long\n");
+        return 2;
+    }
     snprintf(fbuf, sizeof fbuf, "%s", fields);
     for (tok = strtok_r(fbuf, ",", &save); tok != NULL && nf < 16;
          tok = strtok_r(NULL, ",", &save))
         fname[nf++] = tok;
+    if (tok != NULL) {
+        fprintf(stderr, "fieldloc reliability: --fields: more than 16 fields\n");
+        return 2;
+    }
     if (nf == 0) {
         usage();
         return 2;

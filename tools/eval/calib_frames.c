@@ -9,12 +9,11 @@
  */
 #include "eval/calib_frames.h"
 #include "eval/detect.h"
+#include "io/textfile.h"
 #include "world/render.h"
 
 #include <ctype.h>
-#include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,41 +24,16 @@
 
 /* ---- frames file -------------------------------------------------------------- */
 
-static void cf_err(char *err, int err_len, const char *fmt, ...)
-{
-    va_list ap;
-    if (!err || err_len <= 0)
-        return;
-    va_start(ap, fmt);
-    vsnprintf(err, (size_t)err_len, fmt, ap);
-    va_end(ap);
-}
-
-/* Strict number: the whole word, finite, |v| <= lim. */
-static const char *cf_number(const char *w, double lim, double *v)
-{
-    char *end;
-    errno = 0;
-    *v = strtod(w, &end);
-    if (end == w || *end != '\0')
-        return "not a number";
-    if (errno == ERANGE || !isfinite(*v) || fabs(*v) > lim)
-        return "out of range";
-    return NULL;
-}
-
 static const char *cf_parse_line(char *s, const char *dir, cf_frame_t *f, int *is_frame)
 {
     static const char *const names[] = {"X_MM", "Y_MM", "HEADING_DEG", "HEAD_YAW_DEG",
                                         "HEAD_PITCH_DEG", "TORSO_PITCH_DEG", "TORSO_ROLL_DEG"};
     static const double lim[] = {20000, 20000, 360, 180, 180, 180, 180};
     static char why[160];
-    char *w[10], *hash = strchr(s, '#'), *save = NULL, *t;
+    char *w[10], *save = NULL, *t;
     double v[7] = {0};
     int n = 0, k;
     size_t len;
-    if (hash)
-        *hash = '\0';
     for (t = strtok_r(s, " \t\r", &save); t && n < 10; t = strtok_r(NULL, " \t\r", &save))
         w[n++] = t;
     *is_frame = n > 0;
@@ -69,7 +43,7 @@ static const char *cf_parse_line(char *s, const char *dir, cf_frame_t *f, int *i
         return "expected: IMAGE X_MM Y_MM HEADING_DEG HEAD_YAW_DEG HEAD_PITCH_DEG "
                "[TORSO_PITCH_DEG TORSO_ROLL_DEG]";
     for (k = 1; k < n; k++) {
-        const char *e = cf_number(w[k], lim[k - 1], &v[k - 1]);
+        const char *e = tf_number(w[k], lim[k - 1], &v[k - 1]);
         if (e) {
             snprintf(why, sizeof why, "%s: %s '%.40s' (|value| <= %g)", names[k - 1], e, w[k],
                      lim[k - 1]);
@@ -109,25 +83,22 @@ int cf_frames_parse(const char *text, size_t len, const char *name, const char *
     memset(out, 0, sizeof *out);
     while (pos < len) {
         const char *s = text + pos, *lf = memchr(s, '\n', len - pos);
-        size_t n = lf ? (size_t)(lf - s) : len - pos;
+        size_t n = lf ? (size_t)(lf - s) : len - pos, used;
         const char *why;
-        int is_frame;
+        int is_frame = 0;
         cf_frame_t f;
         line++;
         pos += n + 1;
-        if (n > CF_LINE_MAX)
-            why = "line too long";
-        else if (memchr(s, '\0', n))
-            why = "NUL byte";
-        else {
-            memcpy(buf, s, n);
-            buf[n] = '\0';
+        /* the firmware formats' line rules: length, NUL, comment, CR */
+        if (fl_text_line(s, n, CF_LINE_MAX, &used, &why) == FL_OK) {
+            memcpy(buf, s, used);
+            buf[used] = '\0';
             why = cf_parse_line(buf, dir, &f, &is_frame);
             if (!why && is_frame && out->n >= CF_MAX_FRAMES)
                 why = "too many frames";
         }
         if (why) {
-            cf_err(err, err_len, "%s:%d: %s", name, line, why);
+            tf_err(err, err_len, "%s:%d: %s", name, line, why);
             cf_frames_free(out);
             return -1;
         }
@@ -138,7 +109,7 @@ int cf_frames_parse(const char *text, size_t len, const char *name, const char *
             cap = cap ? 2 * cap : 16;
             nf = realloc(out->f, sizeof *nf * (size_t)cap);
             if (!nf) {
-                cf_err(err, err_len, "%s: out of memory", name);
+                tf_err(err, err_len, "%s: out of memory", name);
                 cf_frames_free(out);
                 return -1;
             }
@@ -148,7 +119,7 @@ int cf_frames_parse(const char *text, size_t len, const char *name, const char *
         out->f[out->n++] = f;
     }
     if (out->n == 0) {
-        cf_err(err, err_len, "%s:%d: no frame in the file", name, line);
+        tf_err(err, err_len, "%s:%d: no frame in the file", name, line);
         return -1;
     }
     return 0;
@@ -164,19 +135,19 @@ int cf_frames_load(const char *path, cf_frames_t *out, char *err, int err_len)
     int rc;
     memset(out, 0, sizeof *out);
     if (!fp) {
-        cf_err(err, err_len, "%s: cannot open", path);
+        tf_err(err, err_len, "%s: cannot open", path);
         return -1;
     }
     if (fseek(fp, 0, SEEK_END) != 0 || (sz = ftell(fp)) < 0 || fseek(fp, 0, SEEK_SET) != 0 ||
         sz > 64L * 1024 * 1024) {
         fclose(fp);
-        cf_err(err, err_len, "%s: cannot read (or larger than 64 MB)", path);
+        tf_err(err, err_len, "%s: cannot read (or larger than 64 MB)", path);
         return -1;
     }
     text = malloc((size_t)sz + 1);
     if (!text) {
         fclose(fp);
-        cf_err(err, err_len, "%s: out of memory", path);
+        tf_err(err, err_len, "%s: out of memory", path);
         return -1;
     }
     got = fread(text, 1, (size_t)sz, fp);
@@ -393,24 +364,30 @@ typedef struct {
     unsigned char *act;
 } cf_work_t;
 
+/* Column j of the Jacobian at p into w->J[j], by central differences
+ * (w->rp is scratch); a point that misses the image on either side gets 0. */
+static void cf_jacobian_column(const cf_prob_t *pb, const cf_params_t *p, const int *id,
+                               int j, cf_work_t *w)
+{
+    cf_params_t q = *p;
+    double step = id[j] == 0 ? CF_MM_STEP : CF_DEG_STEP;
+    int i;
+    *cf_par(&q, id[j]) += step;
+    cf_residuals(pb, &q, w->J[j]);
+    q = *p;
+    *cf_par(&q, id[j]) -= step;
+    cf_residuals(pb, &q, w->rp);
+    for (i = 0; i < pb->n_total; i++)
+        w->J[j][i] = (w->J[j][i] < 0 || w->rp[i] < 0) ? 0 : (w->J[j][i] - w->rp[i]) / (2 * step);
+}
+
 /* Normal equations of the active points at p (residuals in w->r). */
 static int cf_normal(const cf_prob_t *pb, const cf_params_t *p, const int *id, int np,
                      cf_work_t *w, double A[3][3], double g[3], double *wssr, int *used)
 {
     int j, k, i;
-    for (j = 0; j < np; j++) {
-        cf_params_t q = *p;
-        double step = id[j] == 0 ? CF_MM_STEP : CF_DEG_STEP;
-        *cf_par(&q, id[j]) += step;
-        cf_residuals(pb, &q, w->J[j]);
-        q = *p;
-        *cf_par(&q, id[j]) -= step;
-        cf_residuals(pb, &q, w->rp);
-        for (i = 0; i < pb->n_total; i++)
-            w->J[j][i] = (w->J[j][i] < 0 || w->rp[i] < 0)
-                             ? 0
-                             : (w->J[j][i] - w->rp[i]) / (2 * step);
-    }
+    for (j = 0; j < np; j++)
+        cf_jacobian_column(pb, p, id, j, w);
     memset(A, 0, sizeof(double) * 9);
     memset(g, 0, sizeof(double) * 3);
     *wssr = 0;
@@ -438,18 +415,26 @@ static void cf_activate(const cf_prob_t *pb, cf_work_t *w)
         w->act[i] = w->r[i] >= 0 && w->r[i] <= pb->gate;
 }
 
-/* LM from p; returns the iterations, -1 on failure.  sigma[3] out. */
-static int cf_lm(const cf_prob_t *pb, const cf_options_t *o, cf_params_t *p, cf_work_t *w,
-                 double sigma[3])
+/* The parameters the options fit, as cf_par indices in id[]; their count. */
+static int cf_selected(const cf_options_t *o, int id[3])
 {
-    int id[3], np = 0, it, j, used = 0;
-    double lambda = 1e-3, A[3][3], g[3], wssr;
+    int np = 0;
     if (o->fit_neck)
         id[np++] = 0;
     if (o->fit_pitch)
         id[np++] = 1;
     if (o->fit_roll)
         id[np++] = 2;
+    return np;
+}
+
+/* LM from p; returns the iterations, -1 on failure.  sigma[3] out. */
+static int cf_lm(const cf_prob_t *pb, const cf_options_t *o, cf_params_t *p, cf_work_t *w,
+                 double sigma[3])
+{
+    int id[3], np, it, j, used = 0;
+    double lambda = 1e-3, A[3][3], g[3], wssr;
+    np = cf_selected(o, id);
     sigma[0] = sigma[1] = sigma[2] = 0;
     if (np == 0)
         return 0;
@@ -515,19 +500,14 @@ static int cf_lm_joint(cf_prob_t *pb, const cf_options_t *o, const double *psig,
                        cf_work_t *w, double sigma[3])
 {
     static const double cstep[3] = {0.05, 5.0, 5.0};
-    int id[3], np = 0, it, j, m, i, k, nf = pb->fr->n, used = 0, ret = -1;
+    int id[3], np, it, j, m, i, k, nf = pb->fr->n, used = 0, ret = -1;
     double lambda = 1e-3, wssr = 0, Acc[3][3], gc[3];
     /* per frame: Akk 9, gk 3, Ack 9 (np x 3; 3 rows kept), y 3 */
     double *blk = malloc(sizeof(double) * 24 * (size_t)(nf + 1));
     double *nc = malloc(sizeof(double) * 3 * (size_t)(nf + 1));
     if (!blk || !nc)
         goto out;
-    if (o->fit_neck)
-        id[np++] = 0;
-    if (o->fit_pitch)
-        id[np++] = 1;
-    if (o->fit_roll)
-        id[np++] = 2;
+    np = cf_selected(o, id);
     sigma[0] = sigma[1] = sigma[2] = 0;
     for (it = 0; it < 100; it++) {
         double cost = 0;
@@ -535,17 +515,8 @@ static int cf_lm_joint(cf_prob_t *pb, const cf_options_t *o, const double *psig,
         cf_residuals(pb, p, w->r);
         cf_activate(pb, w);
         /* camera columns */
-        for (j = 0; j < np; j++) {
-            cf_params_t q = *p;
-            double st = id[j] == 0 ? CF_MM_STEP : CF_DEG_STEP;
-            *cf_par(&q, id[j]) += st;
-            cf_residuals(pb, &q, w->J[j]);
-            q = *p;
-            *cf_par(&q, id[j]) -= st;
-            cf_residuals(pb, &q, w->rp);
-            for (i = 0; i < pb->n_total; i++)
-                w->J[j][i] = (w->J[j][i] < 0 || w->rp[i] < 0) ? 0 : (w->J[j][i] - w->rp[i]) / (2 * st);
-        }
+        for (j = 0; j < np; j++)
+            cf_jacobian_column(pb, p, id, j, w);
         /* correction columns, frame by frame */
         for (k = 0, off = 0; k < nf; off += pb->pts[k].n, k++)
             for (j = 0; j < 3; j++) {
@@ -967,7 +938,7 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
     res->before = calloc((size_t)fr->n + 1, sizeof *res->before);
     res->after = calloc((size_t)fr->n + 1, sizeof *res->after);
     if (!pb.pts || !res->before || !res->after || det_ctx_init(&ctx) != 0) {
-        cf_err(err, err_len, "out of memory");
+        tf_err(err, err_len, "out of memory");
         free(pb.pts);
         cf_result_free(res);
         return -1;
@@ -976,19 +947,19 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
         pb.corr = calloc(3 * (size_t)fr->n + 1, sizeof *pb.corr);
         res->corr = calloc(3 * (size_t)fr->n + 1, sizeof *res->corr);
         if (!pb.corr || !res->corr) {
-            cf_err(err, err_len, "out of memory");
+            tf_err(err, err_len, "out of memory");
             goto out;
         }
     }
     for (pass = 0; pass < 2; pass++) {
         if (cf_detect(&pb, p, &ctx, pass == 0 ? warn : NULL, user, &res->n_skipped) != 0) {
-            cf_err(err, err_len, "out of memory");
+            tf_err(err, err_len, "out of memory");
             goto out;
         }
         free(w.r);
         w.r = malloc(sizeof(double) * 8 * (size_t)(pb.n_total + 1) + (size_t)pb.n_total + 1);
         if (!w.r) {
-            cf_err(err, err_len, "out of memory");
+            tf_err(err, err_len, "out of memory");
             goto out;
         }
         w.rp = w.r + pb.n_total + 1;
@@ -998,7 +969,7 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
         }
         w.act = (unsigned char *)(w.K[2] + pb.n_total + 1);
         if (pb.n_total < 20) {
-            cf_err(err, err_len, "only %d line points detected in %d usable frames (need 20)",
+            tf_err(err, err_len, "only %d line points detected in %d usable frames (need 20)",
                    pb.n_total, fr->n - res->n_skipped);
             goto out;
         }
@@ -1016,7 +987,7 @@ int cf_fit(const cf_frames_t *fr, const fl_field_t *field, const fl_camera_model
         } else
             n = cf_lm(&pb, o, p, &w, res->sigma);
         if (n < 0) {
-            cf_err(err, err_len, "too few line points near the field lines (fit failed)");
+            tf_err(err, err_len, "too few line points near the field lines (fit failed)");
             goto out;
         }
         res->iterations += n;
@@ -1081,28 +1052,16 @@ int cf_frames_from_uva(const rd_uva_set_t *set, const char *dir, cf_frames_t *ou
 
 int cf_calib_load(const char *path, fl_calib_t *c, char *err, int err_len)
 {
-    FILE *fp = fopen(path, "rb");
     char text[FL_CALIB_TEXT_MAX + 1];
     size_t n;
     int32_t line = 0;
     const char *why = "";
-    fl_status_t st;
     memset(c, 0, sizeof *c);
-    if (!fp) {
-        cf_err(err, err_len, "%s: cannot open", path);
+    if (tf_read(path, text, sizeof text, &n, err, err_len) != 0)
         return -1;
-    }
-    n = fread(text, 1, sizeof text, fp);
-    fclose(fp);
-    /* one byte more than the format allows is read, so fl_calib_parse
-     * refuses an overlong file itself */
-    st = fl_calib_parse(text, n, c, &line, &why);
-    if (st == FL_OK)
+    if (fl_calib_parse(text, n, c, &line, &why) == FL_OK)
         return 0;
-    if (line > 0)
-        cf_err(err, err_len, "%s:%d: %s", path, (int)line, why);
-    else
-        cf_err(err, err_len, "%s: %s", path, why);
+    tf_parse_err(err, err_len, path, line, why);
     return -1;
 }
 
@@ -1113,19 +1072,19 @@ int cf_calib_save(const char *path, const fl_calib_t *c, const char *comment, ch
     size_t n = fl_calib_format(c, text, sizeof text);
     FILE *fp;
     if (n == 0) {
-        cf_err(err, err_len, "%s: calibration out of range, not written", path);
+        tf_err(err, err_len, "%s: calibration out of range, not written", path);
         return -1;
     }
     fp = fopen(path, "w");
     if (!fp) {
-        cf_err(err, err_len, "%s: cannot write", path);
+        tf_err(err, err_len, "%s: cannot write", path);
         return -1;
     }
     if (comment)
         fprintf(fp, "# %s\n", comment);
     fwrite(text, 1, n, fp);
     if (fclose(fp) != 0) {
-        cf_err(err, err_len, "%s: write error", path);
+        tf_err(err, err_len, "%s: write error", path);
         return -1;
     }
     return 0;

@@ -2,6 +2,7 @@
  * tools/eval/detect.c - host helpers around fl_vision_frame (see detect.h).
  */
 #include "eval/detect.h"
+#include "io/textfile.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -51,26 +52,16 @@ void det_ctx_free(det_ctx_t *c)
 
 int det_colors_load(const char *path, fl_color_params_t *p, char *err, int err_len)
 {
-    FILE *fp = fopen(path, "rb");
     char text[FL_COLOR_TEXT_MAX + 1];
     size_t n;
     int32_t line = 0;
     const char *why = "";
     fl_color_params_default(p);
-    if (!fp) {
-        snprintf(err, (size_t)err_len, "%s: cannot open", path);
+    if (tf_read(path, text, sizeof text, &n, err, err_len) != 0)
         return -1;
-    }
-    /* one byte more than the format allows, so that the parser itself
-     * refuses an overlong file */
-    n = fread(text, 1, sizeof text, fp);
-    fclose(fp);
     if (fl_color_params_parse(text, n, p, &line, &why) == FL_OK)
         return 0;
-    if (line > 0)
-        snprintf(err, (size_t)err_len, "%s:%d: %s", path, (int)line, why);
-    else
-        snprintf(err, (size_t)err_len, "%s: %s", path, why);
+    tf_parse_err(err, err_len, path, line, why);
     return -1;
 }
 

@@ -10,10 +10,10 @@
  * callers through rd_*_free).  Cost: linear in the file size.
  */
 #include "io/realdata.h"
+#include "io/textfile.h"
 
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -21,16 +21,6 @@
 
 #define RD_MAX_COLS 32
 #define RD_LINE_MAX 4096
-
-static void rd_err(char *err, int err_len, const char *fmt, ...)
-{
-    va_list ap;
-    if (!err || err_len <= 0)
-        return;
-    va_start(ap, fmt);
-    vsnprintf(err, (size_t)err_len, fmt, ap);
-    va_end(ap);
-}
 
 /* ---- the folder ---------------------------------------------------------- */
 
@@ -103,7 +93,7 @@ int rd_read_ppm(const char *dir, const char *file, host_image_t *img, char *err,
         return -1;
     img->rgb = NULL;
     if (rd_path(path, sizeof path, dir, file) != 0) {
-        rd_err(err, err_len, "path too long");
+        tf_err(err, err_len, "path too long");
         return -1;
     }
     return ppm_read(path, img, err, err_len);
@@ -243,23 +233,23 @@ static char *rd_read_text(const char *path, char *err, int err_len)
     long n;
     char *t;
     if (!path) {
-        rd_err(err, err_len, "NULL path");
+        tf_err(err, err_len, "NULL path");
         return NULL;
     }
     f = fopen(path, "rb");
     if (!f) {
-        rd_err(err, err_len, "%s: %s", path, strerror(errno));
+        tf_err(err, err_len, "%s: %s", path, strerror(errno));
         return NULL;
     }
     if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0 ||
         n > (64L << 20)) {
-        rd_err(err, err_len, "%s: cannot size the file", path);
+        tf_err(err, err_len, "%s: cannot size the file", path);
         fclose(f);
         return NULL;
     }
     t = malloc((size_t)n + 1);
     if (!t || fread(t, 1, (size_t)n, f) != (size_t)n) {
-        rd_err(err, err_len, "%s: read error", path);
+        tf_err(err, err_len, "%s: read error", path);
         free(t);
         fclose(f);
         return NULL;
@@ -319,24 +309,24 @@ int rd_uva_parse(const char *text, rd_uva_set_t *out, char *err, int err_len)
     out->rec = NULL;
     out->n = 0;
     if (!text) {
-        rd_err(err, err_len, "NULL text");
+        tf_err(err, err_len, "NULL text");
         return -1;
     }
     r = rd_next_row(&p, &hdr, &line);
     if (r <= 0) {
-        rd_err(err, err_len, "line %d: no header", line);
+        tf_err(err, err_len, "line %d: no header", line);
         return -1;
     }
     for (i = 0; i < C_N; i++) {
         ci[i] = rd_col_index(&hdr, names[i]);
         if (ci[i] < 0) {
-            rd_err(err, err_len, "header lacks column %s", names[i]);
+            tf_err(err, err_len, "header lacks column %s", names[i]);
             return -1;
         }
     }
     row = malloc(sizeof *row);
     if (!row) {
-        rd_err(err, err_len, "out of memory");
+        tf_err(err, err_len, "out of memory");
         return -1;
     }
     while ((r = rd_next_row(&p, row, &line)) == 1) {
@@ -344,14 +334,14 @@ int rd_uva_parse(const char *text, rd_uva_set_t *out, char *err, int err_len)
         double v[C_N];
         int k, nf;
         if (row->n != hdr.n) {
-            rd_err(err, err_len, "line %d: %d fields, header has %d", line, row->n, hdr.n);
+            tf_err(err, err_len, "line %d: %d fields, header has %d", line, row->n, hdr.n);
             goto fail;
         }
         if (out->n == cap) {
             int nc = cap ? 2 * cap : 32;
             rd_uva_record_t *nr = realloc(out->rec, (size_t)nc * sizeof *nr);
             if (!nr) {
-                rd_err(err, err_len, "out of memory");
+                tf_err(err, err_len, "out of memory");
                 goto fail;
             }
             out->rec = nr;
@@ -362,14 +352,14 @@ int rd_uva_parse(const char *text, rd_uva_set_t *out, char *err, int err_len)
         if (rd_copy(rec->file, sizeof rec->file, row->col[ci[C_FILE]]) ||
             rd_copy(rec->set, sizeof rec->set, row->col[ci[C_SET]]) ||
             rd_copy(rec->index, sizeof rec->index, row->col[ci[C_INDEX]]) || !rec->file[0]) {
-            rd_err(err, err_len, "line %d: empty or too long name", line);
+            tf_err(err, err_len, "line %d: empty or too long name", line);
             goto fail;
         }
         for (k = C_IN; k <= C_NF; k++) {
             if (k == C_SET || k == C_INDEX)
                 continue;
             if (rd_num(row->col[ci[k]], &v[k]) != 0) {
-                rd_err(err, err_len, "line %d: bad number in column %s: '%s'", line, names[k],
+                tf_err(err, err_len, "line %d: bad number in column %s: '%s'", line, names[k],
                        row->col[ci[k]]);
                 goto fail;
             }
@@ -382,11 +372,11 @@ int rd_uva_parse(const char *text, rd_uva_set_t *out, char *err, int err_len)
         rec->head_yaw_rad = v[C_HY];
         nf = rd_uva_features(row->col[ci[C_FEAT]], rec->feat, RD_MAX_FEATURES);
         if (nf < 0) {
-            rd_err(err, err_len, "line %d: bad feature list '%s'", line, row->col[ci[C_FEAT]]);
+            tf_err(err, err_len, "line %d: bad feature list '%s'", line, row->col[ci[C_FEAT]]);
             goto fail;
         }
         if (v[C_NF] != (double)nf) {
-            rd_err(err, err_len, "line %d: n_features %g but %d features listed", line, v[C_NF],
+            tf_err(err, err_len, "line %d: n_features %g but %d features listed", line, v[C_NF],
                    nf);
             goto fail;
         }
@@ -394,7 +384,7 @@ int rd_uva_parse(const char *text, rd_uva_set_t *out, char *err, int err_len)
         out->n++;
     }
     if (r < 0) {
-        rd_err(err, err_len, "line %d: malformed CSV line", line);
+        tf_err(err, err_len, "line %d: malformed CSV line", line);
         goto fail;
     }
     free(row);
@@ -499,24 +489,24 @@ int rd_physar_parse(const char *text, rd_physar_set_t *out, char *err, int err_l
     out->rec = NULL;
     out->n = 0;
     if (!text) {
-        rd_err(err, err_len, "NULL text");
+        tf_err(err, err_len, "NULL text");
         return -1;
     }
     r = rd_next_row(&p, &hdr, &line);
     if (r <= 0) {
-        rd_err(err, err_len, "line %d: no header", line);
+        tf_err(err, err_len, "line %d: no header", line);
         return -1;
     }
     for (i = 0; i < P_N; i++) {
         ci[i] = rd_col_index(&hdr, names[i]);
         if (ci[i] < 0) {
-            rd_err(err, err_len, "header lacks column %s", names[i]);
+            tf_err(err, err_len, "header lacks column %s", names[i]);
             return -1;
         }
     }
     row = malloc(sizeof *row);
     if (!row) {
-        rd_err(err, err_len, "out of memory");
+        tf_err(err, err_len, "out of memory");
         return -1;
     }
     while ((r = rd_next_row(&p, row, &line)) == 1) {
@@ -524,14 +514,14 @@ int rd_physar_parse(const char *text, rd_physar_set_t *out, char *err, int err_l
         double v[P_N];
         int k;
         if (row->n != hdr.n) {
-            rd_err(err, err_len, "line %d: %d fields, header has %d", line, row->n, hdr.n);
+            tf_err(err, err_len, "line %d: %d fields, header has %d", line, row->n, hdr.n);
             goto fail;
         }
         if (out->n == cap) {
             int nc = cap ? 2 * cap : 16;
             rd_physar_record_t *nr = realloc(out->rec, (size_t)nc * sizeof *nr);
             if (!nr) {
-                rd_err(err, err_len, "out of memory");
+                tf_err(err, err_len, "out of memory");
                 goto fail;
             }
             out->rec = nr;
@@ -542,12 +532,12 @@ int rd_physar_parse(const char *text, rd_physar_set_t *out, char *err, int err_l
         if (rd_copy(rec->image_top, sizeof rec->image_top, row->col[ci[P_TOP]]) ||
             rd_copy(rec->image_bottom, sizeof rec->image_bottom, row->col[ci[P_BOT]]) ||
             rd_copy(rec->point, sizeof rec->point, row->col[ci[P_POINT]])) {
-            rd_err(err, err_len, "line %d: name too long", line);
+            tf_err(err, err_len, "line %d: name too long", line);
             goto fail;
         }
         for (k = P_NUM0; k < P_N; k++)
             if (rd_num(row->col[ci[k]], &v[k]) != 0) {
-                rd_err(err, err_len, "line %d: bad number in column %s: '%s'", line, names[k],
+                tf_err(err, err_len, "line %d: bad number in column %s: '%s'", line, names[k],
                        row->col[ci[k]]);
                 goto fail;
             }
@@ -568,7 +558,7 @@ int rd_physar_parse(const char *text, rd_physar_set_t *out, char *err, int err_l
         out->n++;
     }
     if (r < 0) {
-        rd_err(err, err_len, "line %d: malformed CSV line", line);
+        tf_err(err, err_len, "line %d: malformed CSV line", line);
         goto fail;
     }
     free(row);

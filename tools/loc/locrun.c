@@ -14,6 +14,7 @@
  */
 #include "loc/locrun.h"
 #include "eval/picture.h"
+#include "io/textfile.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -283,14 +284,7 @@ static int lr_fail(char *err, int err_len, int line, const char *fmt, ...)
 /* A finite number filling the whole token, |v| <= lim. */
 static int lr_num(const char *tok, double lim, double *v)
 {
-    char *end;
-    double d;
-    errno = 0;
-    d = strtod(tok, &end);
-    if (end == tok || *end != '\0' || errno == ERANGE || !isfinite(d) || fabs(d) > lim)
-        return -1;
-    *v = d;
-    return 0;
+    return tf_number(tok, lim, v) ? -1 : 0;
 }
 
 #define LR_MAX_TOK 12
