@@ -380,13 +380,20 @@ static void sym_merge(fl_fuzzy_cell_t *dst, const fl_fuzzy_cell_t *src)
     dst->off_y_mm = oy;
 }
 
+/* Cell i starts a row that is dead (empty row range) together with its
+ * mirror row: the mirror passes below skip such row pairs whole. */
+static bool rows_dead_at(const fl_fuzzy_t *g, size_t i)
+{
+    size_t iy = i / g->nx, my = (size_t)g->ny - 1 - iy;
+    return i % g->nx == 0 && g->row_lo[iy] > g->row_hi[iy] && g->row_lo[my] > g->row_hi[my];
+}
+
 void fl_fuzzy_internal_symmetrize(fl_fuzzy_t *g)
 {
     size_t n = (size_t)g->nx * g->ny, i;
     for (i = 0; i < n / 2; i++) {
         fl_fuzzy_cell_t *a = &g->cell[i], *b = &g->cell[n - 1 - i];
-        size_t iy = i / g->nx, my = (size_t)g->ny - 1 - iy;
-        if (i % g->nx == 0 && g->row_lo[iy] > g->row_hi[iy] && g->row_lo[my] > g->row_hi[my]) {
+        if (rows_dead_at(g, i)) {
             i += (size_t)g->nx - 1;    /* both rows dead: skip the row */
             continue;
         }
@@ -412,8 +419,7 @@ void fl_fuzzy_internal_mirror_copy(fl_fuzzy_t *g)
     size_t n = (size_t)g->nx * g->ny, i;
     for (i = 0; i < n / 2; i++) {
         fl_fuzzy_cell_t *a = &g->cell[i], *b = &g->cell[n - 1 - i];
-        size_t iy = i / g->nx, my = (size_t)g->ny - 1 - iy;
-        if (i % g->nx == 0 && g->row_lo[iy] > g->row_hi[iy] && g->row_lo[my] > g->row_hi[my]) {
+        if (rows_dead_at(g, i)) {
             i += (size_t)g->nx - 1;    /* both rows dead: skip the row */
             continue;
         }
