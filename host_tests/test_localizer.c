@@ -32,7 +32,8 @@ static void test_catalogue(void)
               l->params_default && l->params_preset && l->params_adapt && l->params_check &&
               l->params_of && l->reset_ignorance && l->reset_pose && l->reset_penalty &&
               l->set_prior_half && l->set_prior_pose && l->clear_prior &&
-              l->possibility_q16 && l->stats);
+              l->possibility_q16 && l->stats && l->belief_grid && l->belief_cell &&
+              l->belief_samples && l->belief_sample);
     }
     if (loc == NULL)
         return;
@@ -250,6 +251,12 @@ static void test_same_as_direct(void)
         CHECK(!loc->belief_cell(st, gr.nx, 0, &c));
         CHECK(!loc->belief_cell(st, 0, gr.ny, &c));
         CHECK(!loc->belief_grid(NULL, &gr));
+    }
+    {
+        /* a grid has no samples */
+        fl_loc_sample_t sm;
+        CHECK_EQ(loc->belief_samples(st), 0);
+        CHECK(!loc->belief_sample(st, 0, &sm));
     }
     /* resets and priors through the interface */
     loc->reset_pose(st, 1000, -500, 8192, 300, 2048);

@@ -19,6 +19,11 @@
  * by the caller as an fl_loc_preset_t, the frame's view comes as an
  * fl_obs_view_t (obs.h; vision.h fl_vision_view computes it).
  *
+ * Randomness: a stochastic localizer keeps its random generator in the
+ * state, seeded at init from its parameter "seed" (set it by name before
+ * init; the same seed, inputs and build give the same results on every
+ * target).  A deterministic localizer has no such parameter.
+ *
  * Parameters by name: every localizer lists its tunable parameters as
  * fl_loc_param_t descriptors (offset into its params block, width and
  * signedness, range); fl_localizer_param_find / _set / _get work on any
@@ -162,6 +167,16 @@ typedef struct {
                                     possible (binary angle, 0..32768) */
 } fl_loc_cell_t;
 
+/* A localizer whose belief is a set of weighted samples (particles) shows
+ * them one by one (belief pictures, evaluation). */
+typedef struct {
+    int32_t x_mm, y_mm;          /* field frame */
+    fl_angle_t heading;
+    uint16_t weight_q16;         /* relative to the heaviest sample
+                                    (65535 = as heavy; 0 = negligible) */
+    bool in_mode;                /* belongs to the mode the estimate reports */
+} fl_loc_sample_t;
+
 typedef struct fl_localizer {
     const char *name;            /* "fuzzy" */
     const char *summary;         /* one line */
@@ -219,6 +234,10 @@ typedef struct fl_localizer {
      * pictures need it) and one cell (false outside the grid). */
     bool (*belief_grid)(const void *state, fl_loc_grid_t *out);
     bool (*belief_cell)(const void *state, int ix, int iy, fl_loc_cell_t *out);
+    /* Samples (particles): how many there are (0: the belief is not a set
+     * of samples, or uninitialized) and the i-th (false out of range). */
+    uint16_t (*belief_samples)(const void *state);
+    bool (*belief_sample)(const void *state, uint16_t i, fl_loc_sample_t *out);
 } fl_localizer_t;
 
 /* ---- catalogue ---------------------------------------------------------- */

@@ -201,6 +201,22 @@ static bool fz_belief_cell(const void *state, int ix, int iy, fl_loc_cell_t *out
     return true;
 }
 
+/* The grid is not a set of samples. */
+static uint16_t fz_belief_samples(const void *state)
+{
+    (void)state;
+    return 0;
+}
+
+static bool fz_belief_sample(const void *state, uint16_t i, fl_loc_sample_t *out)
+{
+    (void)state;
+    (void)i;
+    if (out != NULL)
+        memset(out, 0, sizeof *out);
+    return false;
+}
+
 /* Parameter table: every field of fl_fuzzy_params_t, in declaration order,
  * with the range of its type (fl_fuzzy_params_check decides the rest). */
 #define OFF(f) ((uint16_t)offsetof(fl_fuzzy_params_t, f))
@@ -250,4 +266,6 @@ const fl_localizer_t fl_localizer_fuzzy = {
     fz_stats,
     fz_belief_grid,
     fz_belief_cell,
+    fz_belief_samples,
+    fz_belief_sample,
 };
