@@ -99,6 +99,7 @@
 #include "cli/args.h"
 #include "loc/locrun.h"
 #include "cli/registry.h"
+#include "loc/stream.h"
 #include "world/sim.h"
 
 #include <math.h>
@@ -106,13 +107,29 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The obs cache file exists and its header names another walk. */
+static int cache_of_other_walk(const char *path, const char *walk)
+{
+    char line[160], name[64];
+    FILE *f = fopen(path, "rb");
+    int other = 0;
+    if (f == NULL)
+        return 0;
+    if (fgets(line, sizeof line, f) != NULL &&
+        sscanf(line, "fieldloc-obs-cache 1 %63s", name) == 1)
+        other = strcmp(name, walk) != 0;
+    fclose(f);
+    return other;
+}
+
 static void usage(void)
 {
     fprintf(stderr,
             "usage: fieldloc simulate --field spl2013|uva2013|aibo2004 [--localizer fuzzy]\n"
             "                         --seed N [--features | --frames] [--steps N] [--quiet]\n"
             "                         [--scenario FILE.walk] [--every N] [--param NAME=V]...\n"
-            "                         [--obs-cache FILE] [--print-obs]\n"
+            "                         [--obs-cache FILE] [--print-obs] [--kidnaps N]\n"
+            "                         [--export-stream FILE]\n"
             "  --frames: render each frame at the true pose and run the vision path;\n"
             "            vision on every Nth step (--every, default 3 = 10 Hz at 30 Hz)\n"
             "  --seed 0..2147483647, --steps 0..100000000, --every 1..1000, --post-sides 0|1\n");
@@ -127,7 +144,9 @@ int cmd_simulate(int argc, char **argv)
     lr_walk_opts_t o;
     lr_walk_result_t res;
     char err[256];
-    const char *obs_cache = NULL, *param[64];
+    const char *obs_cache = NULL, *param[64], *stream_path = NULL;
+    long kidnaps = -1;
+    FILE *stream = NULL;
     int n_param = 0;
     const fl_localizer_t *loc;
     void *params = NULL, *defaults = NULL;
@@ -152,7 +171,12 @@ int cmd_simulate(int argc, char **argv)
                 param[n_param++] = argv[++k];
         } else if (!strcmp(argv[k], "--obs-cache") && k + 1 < argc)
             obs_cache = argv[++k];
-        else if (!strcmp(argv[k], "--scenario") && k + 1 < argc)
+        else if (!strcmp(argv[k], "--export-stream") && k + 1 < argc)
+            stream_path = argv[++k];
+        else if (!strcmp(argv[k], "--kidnaps") && k + 1 < argc) {
+            if (arg_long("simulate", "--kidnaps", argv[++k], 0, SIM_MAX_EVENTS, NULL, &kidnaps))
+                return 2;
+        } else if (!strcmp(argv[k], "--scenario") && k + 1 < argc)
             scen_path = argv[++k];
         else if (!strcmp(argv[k], "--frames"))
             frames = 1;
@@ -171,7 +195,8 @@ int cmd_simulate(int argc, char **argv)
         } else
             return arg_unknown("simulate", argv[k],
                                "--field=1 --localizer=1 --seed=1 --steps=1 --every=1 --param=1 "
-                               "--obs-cache=1 --scenario=1 --post-sides=1");
+                               "--obs-cache=1 --scenario=1 --post-sides=1 --export-stream=1 "
+                               "--kidnaps=1");
     }
     if (scen_path == NULL && field_name == NULL) {
         usage();
@@ -215,6 +240,30 @@ int cmd_simulate(int argc, char **argv)
     }
     if (seed >= 0)
         sc.seed = (uint64_t)seed;
+    if (kidnaps >= 0) {
+        char was[SIM_NAME_LEN];
+        memcpy(was, sc.name, sizeof was);
+        if (sim_scenario_set_kidnaps(&sc, (int)kidnaps) != 0) {
+            fprintf(stderr, "simulate: --kidnaps %ld does not fit the walk (at most %d events, "
+                            "kidnaps at least 2 s apart and off the penalties)\n",
+                    kidnaps, SIM_MAX_EVENTS);
+            rc = 2;
+            goto done;
+        }
+        if (strcmp(was, sc.name) != 0 && obs_cache != NULL && frames &&
+            cache_of_other_walk(obs_cache, sc.name)) {
+            /* it would be overwritten with this walk's observations */
+            fprintf(stderr, "simulate: %s holds the observations of another walk; --kidnaps "
+                            "changes the walk: give a cache file of its own\n", obs_cache);
+            rc = 2;
+            goto done;
+        }
+    }
+    if (stream_path != NULL && (stream = fopen(stream_path, "w")) == NULL) {
+        fprintf(stderr, "simulate: cannot write %s\n", stream_path);
+        rc = 1;
+        goto done;
+    }
     memset(&o, 0, sizeof o);
     o.frames = frames;
     o.every = (int)every;
@@ -225,6 +274,7 @@ int cmd_simulate(int argc, char **argv)
     o.loc = loc;
     o.params = params;
     o.obs_cache = obs_cache;
+    o.stream = stream;
     printf("# simulate field %s localizer %s seed %llu %s, %.0f s at %.0f Hz\n",
            sc.field->name, loc->name, (unsigned long long)sc.seed, frames ? "frames" : "features",
            sc.duration_s, sc.frame_hz);
@@ -247,12 +297,7 @@ int cmd_simulate(int argc, char **argv)
     }
     printf("# steps %ld (%.1f s), %ld records, rmse over %ld records\n", res.steps,
            (double)res.steps / sc.frame_hz, res.records, res.used);
-    printf("# localizer: %u kidnaps detected, %u empty resets, %u mode switches, "
-           "%u obs used, %u deferred (contradicting the tracked mode), %u ignored, "
-           "%u odometry rejected\n",
-           res.stats.kidnaps, res.stats.empty_resets, res.stats.mode_switches,
-           res.stats.obs_used, res.stats.obs_gated, res.stats.obs_ignored,
-           res.stats.odo_rejected);
+    lr_walk_print_stats(stdout, &res);
     if (frames) {
         lr_walk_print_vdiag(stdout, &res);
         printf("# time: rendering %.1f s, vision + grid %.1f s (%.2f ms per frame)\n",
@@ -262,6 +307,10 @@ int cmd_simulate(int argc, char **argv)
     lr_walk_print_summary(stdout, &res);
     rc = 0;
 done:
+    if (stream != NULL && fclose(stream) != 0 && rc == 0) {
+        fprintf(stderr, "simulate: error writing %s\n", stream_path);
+        rc = 1;
+    }
     free(params);
     free(defaults);
     return rc;
