@@ -21,6 +21,7 @@ T_SUITE(beacon);
 T_SUITE(localize);
 T_SUITE(adversarial);
 T_SUITE(walks);
+T_SUITE(stream);
 T_SUITE(example);
 T_SUITE(config);
 T_SUITE(fuzz_regress);

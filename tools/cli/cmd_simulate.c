@@ -6,11 +6,28 @@
  *   fieldloc simulate --field spl2013|uva2013|aibo2004 --localizer fuzzy
  *                     --seed N [--features | --frames] [--steps N] [--quiet]
  *                     [--scenario FILE.walk] [--every N] [--param NAME=V]...
- *                     [--obs-cache FILE] [--print-obs]
+ *                     [--obs-cache FILE] [--print-obs] [--kidnaps N]
+ *                     [--export-stream FILE]
  *
  * The walk is the built-in scenario of the field (fixtures/walks/NAME.walk:
  * >= 120 s of walking with head scanning, one kidnap, one penalty), with its
  * PRNG seed replaced by --seed.  --steps N stops after N simulator steps.
+ * --kidnaps N (0..16) gives the walk N kidnaps instead of its own count
+ * (tools/world/sim.h sim_scenario_set_kidnaps: added ones at the times
+ * farthest from the start, the end, the other kidnaps and the penalty, to
+ * random targets on the carpet drawn from a PRNG stream of their own, so
+ * the walk is the same up to the first added kidnap; kidnap k is the same
+ * for every N >= k).  The walk's name gets "+kN", so an observation cache
+ * of the unchanged walk is not taken for it (and is refused rather than
+ * overwritten).
+ *
+ * --export-stream FILE writes the localizer's inputs as a text stream
+ * (docs/STREAM.md): per record the truth, the told and untold events, and
+ * every predict, penalty reset and update call with the integers the
+ * localizer received (frames mode: the split predict calls and the
+ * observations and view vision gave); `fieldloc replay --stream FILE
+ * [--localizer NAME]` runs any catalogue localizer on it and prints the
+ * same step and summary lines.
  *
  * --features (default) feeds the simulator's feature-level observations
  * (fl_obs_list_t) to the localizer.  Per step: predict(odometry); on
@@ -66,9 +83,9 @@
  * (K the simulator step) then "# ..." information lines and exactly these
  * summary lines:
  *   pos_rmse_mm X       root mean square position error over the records
- *                       after convergence (t >= converge_s), excluding the
- *                       kidnap's window [kidnap, kidnap + kidnap_recover_s)
- *                       (to the end of the run when it never recovers)
+ *                       after convergence (t >= converge_s), excluding each
+ *                       kidnap's window [kidnap, recovery) (to the window's
+ *                       close when it never recovers)
  *                       and the same window after the penalty placement
  *                       (the robot is told "one of the two touchline
  *                       spots"; until a landmark decides, its estimate is
@@ -80,9 +97,23 @@
  *   converge_s X        first time t from the start (total ignorance) such
  *                       that the error stays below 300 mm AND 15 degrees for
  *                       every record in [t, t + 1 s]; inf if never
- *   kidnap_recover_s X  time from the first kidnap to the first t after it
- *                       with the same 1 s criterion; inf if never, nan if
- *                       the run has no kidnap
+ *   kidnap_recover_s X  per kidnap: the time from the kidnap to the first
+ *                       t after it with the same 1 s criterion, the whole
+ *                       second lying before the kidnap's window closes:
+ *                       at the next penalty placement (a told reset: what
+ *                       comes after it is not the filter recovering by
+ *                       itself), the next kidnap or the end of the run;
+ *                       inf ("never") otherwise.  The value is the median
+ *                       over the run's kidnaps (with an even count the
+ *                       mean of the two middle ones; one kidnap: its own
+ *                       time); nan if the run has no kidnap.  Each kidnap
+ *                       gets a line before the summary,
+ *                         # kidnap K at T_S recovered after S s
+ *                         # kidnap K at T_S never recovered before the
+ *                           penalty placement at T | the next kidnap at T
+ *                           | the run ended at T
+ *                       and "# kidnap_recover_worst_s X" gives the largest
+ *                       (inf when one never recovered)
  *   flips N             symmetric flips: episodes (counted once per entry)
  *                       during which the starting half is known and the
  *                       estimate is near the 180-degree mirror of the truth

@@ -433,8 +433,15 @@ static int ls_line(ls_parser_t *p, char *line)
         return ls_obs_line(p, tok, nt);
     if (!strcmp(tok[0], "obs"))
         return ls_bad(p, "%sobs line outside an update (or more than its N)", "");
-    if (!p->in_body && strcmp(tok[0], "record") && strcmp(tok[0], "end"))
+    if (!p->in_body && strcmp(tok[0], "record") && strcmp(tok[0], "end")) {
+        static const char *const body[] = {"predict", "update", "reset_penalty", "kidnap",
+                                           "penalized", "unpenalized"};
+        size_t k;
+        for (k = 0; k < sizeof body / sizeof body[0]; k++)
+            if (!strcmp(tok[0], body[k]))
+                return ls_bad(p, "'%s' before the first record", tok[0]);
         return ls_header_line(p, tok, nt);
+    }
     if (!p->in_body) {
         if ((p->have & LS_REQUIRED) != LS_REQUIRED)
             return ls_bad(p, "%sheader incomplete (field, camera, mode, every, frame_hz and "
