@@ -7,7 +7,9 @@
  * Checks: a walk exported as a stream and replayed with the same localizer
  * gives byte-identical step lines and summary lines (feature level with
  * two kidnaps and a penalty placement; rendered frames through vision on
- * a short walk), and the stream holds exactly the calls the localizer got;
+ * a short walk, odometry split into several predict calls per record;
+ * the same stream again from the observation cache),
+ * and the stream holds exactly the calls the localizer got;
  * malformed streams are refused with the line named; a kidnap from which
  * the filter does not recover before a told penalty placement is "never",
  * not the time to the placement; the median and worst over kidnaps; added
@@ -24,6 +26,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #pragma weak render_frame
 
@@ -93,7 +96,7 @@ static void roundtrip(const char *field, int frames, long steps, int kidnaps, in
     static sim_scenario_t sc;
     lr_walk_opts_t o;
     lr_walk_result_t res, res2;
-    char *sim_out = NULL, *rep_out = NULL, *stream = NULL, err[256];
+    char *sim_out = NULL, *rep_out = NULL, *stream = NULL, err[256], cache[128];
     size_t n1 = 0, n2 = 0, n3 = 0;
     FILE *fs, *fo, *fr, *in;
     ls_stream_t s;
@@ -119,8 +122,12 @@ static void roundtrip(const char *field, int frames, long steps, int kidnaps, in
     params = lr_params_new(&counting);
     if (params == NULL)
         return;
-    if (frames)
+    if (frames) {
         lr_params_frames(&counting, params);
+        /* small enough that a record's odometry is split into several
+         * predict calls: the stream must hold each */
+        CHECK_EQ(lr_param_set(&counting, params, "odo_max_mm=6"), 0);
+    }
     fs = open_memstream(&stream, &n1);
     fo = open_memstream(&sim_out, &n2);
     memset(&o, 0, sizeof o);
@@ -132,16 +139,40 @@ static void roundtrip(const char *field, int frames, long steps, int kidnaps, in
     o.params = params;
     o.steps = fo;
     o.stream = fs;
+    if (frames) {
+        snprintf(cache, sizeof cache, "/tmp/fieldloc_test_stream_%ld.obs", (long)getpid());
+        remove(cache);
+        o.obs_cache = cache;
+    }
     CHECK_EQ(lr_walk_run(&sc, &o, &res, err, sizeof err), 0);
     lr_walk_print_summary(fo, &res);
     fclose(fs);
     fclose(fo);
+    if (frames) {
+        /* the observation cache's path writes the same stream */
+        char *again = NULL;
+        size_t n4 = 0;
+        lr_walk_result_t res3;
+        o.steps = NULL;
+        o.stream = open_memstream(&again, &n4);
+        CHECK_EQ(lr_walk_run(&sc, &o, &res3, err, sizeof err), 0);
+        fclose(o.stream);
+        CHECK(again != NULL && strcmp(again, stream) == 0);
+        CHECK_EQ(res3.render_s, 0.0);   /* nothing rendered the second time */
+        n_predict /= 2;                 /* the counts of one run */
+        n_update /= 2;
+        n_reset /= 2;
+        free(again);
+        remove(cache);
+    }
 
     /* the stream holds exactly the calls made */
     CHECK_EQ(count_prefix(stream, "predict "), n_predict);
     CHECK_EQ(count_prefix(stream, "update "), n_update);
     CHECK_EQ(count_prefix(stream, "reset_penalty "), n_reset);
     CHECK_EQ(count_prefix(stream, "record "), res.records);
+    if (frames)
+        CHECK(n_predict > res.records);
     CHECK(n_update > 0);
     CHECK_EQ(n_reset > 0, want_placement);
     CHECK_EQ(count_prefix(stream, "kidnap "), want_kidnaps);

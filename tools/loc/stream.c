@@ -36,7 +36,7 @@ void ls_write_header(FILE *f, const sim_scenario_t *sc, int frames, int every, i
     fprintf(f, "period_s %.9g\n", every / sc->frame_hz);
     fprintf(f, "post_sides %d\n", post_sides ? 1 : 0);
     fprintf(f, "prior_half %d\n", prior_half);
-    fprintf(f, "penalty_x_mm %ld\n", (long)floor(sc->penalty_x_mm + 0.5));
+    fprintf(f, "penalty_x_mm %ld\n", (long)(int32_t)sc->penalty_x_mm); /* as lr_place */
 }
 
 void ls_write_record(FILE *f, long index, uint32_t step, int32_t t_ms, int32_t x_mm,
