@@ -163,7 +163,10 @@ static void usage(void)
             "                         [--export-stream FILE]\n"
             "  --frames: render each frame at the true pose and run the vision path;\n"
             "            vision on every Nth step (--every, default 3 = 10 Hz at 30 Hz)\n"
-            "  --seed 0..2147483647, --steps 0..100000000, --every 1..1000, --post-sides 0|1\n");
+            "  --seed 0..2147483647, --steps 0..100000000, --every 1..1000, --post-sides 0|1,\n"
+            "  --kidnaps 0..16 (default: the walk's own)\n"
+            "  --export-stream FILE: the localizer's inputs and the truth (docs/STREAM.md;\n"
+            "            fieldloc replay --stream FILE runs any localizer on them)\n");
 }
 
 int cmd_simulate(int argc, char **argv)
