@@ -19,6 +19,7 @@ T_SUITE(features);
 T_SUITE(camera_vision);
 T_SUITE(beacon);
 T_SUITE(localize);
+T_SUITE(picture);
 T_SUITE(adversarial);
 T_SUITE(walks);
 T_SUITE(example);

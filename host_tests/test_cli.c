@@ -417,6 +417,33 @@ static void t_pictures(void)
         t_fail_msg(__FILE__, __LINE__, "demo belief picture readable");
 }
 
+/* bench --loc-frames (what callgrind_loc.sh counts): every catalogue
+ * localizer listed; the frames run and the line the script parses names
+ * the state size; bad names and parameters refused. */
+static void t_bench_loc(void)
+{
+    char out[4096], err[2048], want[256];
+    uint16_t i;
+    if (t_quick)
+        return;
+    if (cli_find() != 0) {
+        t_info("skipped: %s not built", t_cli);
+        return;
+    }
+    CHECK_EQ(cli_run("bench --loc-list", out, sizeof out, NULL, 0), 0);
+    for (i = 0; i < fl_localizer_count(); i++) {
+        snprintf(want, sizeof want, "%s\n", fl_localizer_get(i)->name);
+        CHECK(strstr(out, want) != NULL);
+    }
+    CHECK_EQ(cli_run("bench --loc-frames fuzzy --repeat 2 --obs 3", out, sizeof out, NULL, 0), 0);
+    snprintf(want, sizeof want, "loc fuzzy state_size %lu samples 0 obs 3 frames 2\n",
+             (unsigned long)fl_localizer_fuzzy.state_size);
+    CHECK(strcmp(out, want) == 0);
+    CHECK_EQ(cli_run("bench --loc-frames nosuch --repeat 1", NULL, 0, err, sizeof err), 2);
+    CHECK_EQ(cli_run("bench --loc-frames fuzzy --param nosuch=1", NULL, 0, err, sizeof err), 2);
+    CHECK(strstr(err, "nosuch=1") != NULL);
+}
+
 /* ---- calibration files end to end ------------------------------------------ */
 
 static int write_text(const char *name, const char *text)
@@ -546,5 +573,6 @@ void suite_cli(void)
     t_run("cli.caption", t_caption);
     t_run("cli.numbers", t_numbers);
     t_run("cli.pictures", t_pictures);
+    t_run("cli.bench_loc", t_bench_loc);
     t_run("cli.calib_files", t_calib_files);
 }

@@ -8,6 +8,7 @@
  *
  *   fieldloc demo [--walk FILE.walk | --field NAME] [--seed N] [--every N]
  *                 [--seconds S] [--out DIR] [--picture-every-s S] [--no-png]
+ *                 [--localizer NAME] [--param NAME=VALUE]...
  *
  * Defaults: the built-in spl2013 walk (the text of
  * fixtures/walks/spl2013.walk), its own seed, --every 3, the whole walk,
@@ -20,7 +21,8 @@
  *                         model seen from the estimate (yellow dots), next
  *                         to the belief grid (cells shaded by height,
  *                         heading ticks, truth cyan, estimate magenta,
- *                         the frame's observations as white squares)
+ *                         the frame's observations as white squares), or
+ *                         a particle filter's particles (picture.h)
  *   demo_kidnap.ppm       1 s after the kidnap; demo_final.ppm at the end
  *   belief_final.ppm, frame_final.ppm   the two halves of the last picture
  *   steps.txt             the per-record lines of `simulate`
@@ -81,7 +83,7 @@ static void demo_picture(demo_t *d, const lr_walk_step_t *ws, const char *name, 
     pic_pose_t truth, ep;
     char caption[512];
     const unsigned frame_sets = PIC_LEGEND_DETECT | PIC_LEGEND_MODEL,
-                   belief_sets = PIC_LEGEND_BELIEF | PIC_LEGEND_TRUTH;
+                   belief_sets = pic_belief_legend(ws->lr->loc, ws->lr->state) | PIC_LEGEND_TRUTH;
     truth.x_mm = ws->st->true_x_mm;
     truth.y_mm = ws->st->true_y_mm;
     truth.heading_deg = ws->st->true_heading_rad * (180.0 / 3.14159265358979323846);
@@ -172,7 +174,7 @@ static int demo_usage(void)
     fprintf(stderr,
             "usage: fieldloc demo [--walk FILE.walk | --field NAME] [--seed N] [--every N]\n"
             "                     [--seconds S] [--out DIR] [--picture-every-s S] [--no-png]\n"
-            "                     [--localizer NAME (default fuzzy)]\n"
+            "                     [--localizer NAME (default fuzzy)] [--param NAME=VALUE]...\n"
             "  --seed 0..2147483647, --every 1..1000, --seconds 0..86400 (0: the whole walk),\n"
             "  --picture-every-s 0..86400 (0: none)\n");
     return 2;
@@ -188,7 +190,8 @@ int cmd_demo(int argc, char **argv)
     char err[256], path[1100];
     lr_walk_opts_t o;
     lr_walk_result_t res;
-    const char *localizer = NULL;
+    const char *localizer = NULL, *param[64];
+    int n_param = 0;
     const fl_localizer_t *loc;
     void *params;
     demo_t d;
@@ -218,13 +221,20 @@ int cmd_demo(int argc, char **argv)
             png = 0;
         else if (!strcmp(argv[k], "--localizer") && k + 1 < argc)
             localizer = argv[++k];
+        else if (!strcmp(argv[k], "--param") && k + 1 < argc) {
+            if (n_param == 64) {
+                fprintf(stderr, "demo: at most 64 --param\n");
+                return 2;
+            }
+            param[n_param++] = argv[++k];
+        }
         else if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
             demo_usage();
             return 0;
         } else
             return arg_unknown("demo", argv[k],
                                "--walk=1 --field=1 --seed=1 --every=1 --seconds=1 --out=1 "
-                               "--picture-every-s=1 --localizer=1");
+                               "--picture-every-s=1 --localizer=1 --param=1");
     }
     if (every < 1 || every > 1000 || seconds < 0 || pic_s < 0)
         return demo_usage();
@@ -265,6 +275,15 @@ int cmd_demo(int argc, char **argv)
         return 1;
     }
     lr_params_frames(loc, params);
+    for (k = 0; k < n_param; k++)
+        if (lr_param_set(loc, params, param[k]) != 0) {
+            fprintf(stderr, "demo: bad --param '%s' (NAME=INTEGER, a parameter of localizer %s, "
+                            "in range)\n", param[k], loc->name);
+            free(params);
+            if (d.steps)
+                fclose(d.steps);
+            return 2;
+        }
     o.loc = loc;
     o.params = params;
     o.max_steps = seconds > 0 ? (long)floor(seconds * sc.frame_hz) + 1 : -1;
