@@ -439,9 +439,42 @@ static void t_bench_loc(void)
     snprintf(want, sizeof want, "loc fuzzy state_size %lu samples 0 obs 3 frames 2\n",
              (unsigned long)fl_localizer_fuzzy.state_size);
     CHECK(strcmp(out, want) == 0);
-    CHECK_EQ(cli_run("bench --loc-frames nosuch --repeat 1", NULL, 0, err, sizeof err), 2);
     CHECK_EQ(cli_run("bench --loc-frames fuzzy --param nosuch=1", NULL, 0, err, sizeof err), 2);
     CHECK(strstr(err, "nosuch=1") != NULL);
+}
+
+/* demo --compare: the second localizer's pass on the same observations
+ * gives the same summary (here the same localizer) and the side-by-side
+ * belief picture of the last record (two 832 px pictures, 8 px apart, the
+ * caption naming both); the observation cache is removed. */
+static void t_demo_compare(void)
+{
+    char args[2048], out[8192], *second;
+    host_image_t both;
+    if (t_quick)
+        return;
+    if (cli_find() != 0) {
+        t_info("skipped: %s not built", t_cli);
+        return;
+    }
+    snprintf(args, sizeof args,
+             "demo --seconds 0.2 --picture-every-s 0 --no-png --out %s/cmp --compare fuzzy", t_dir);
+    CHECK_EQ(cli_run(args, out, sizeof out, NULL, 0), 0);
+    second = strstr(out, "# compare: fuzzy on the same observations\n");
+    CHECK(second != NULL);
+    if (second != NULL) {
+        const char *a = strstr(out, "\npos_rmse_mm "), *b = strstr(second, "\npos_rmse_mm ");
+        CHECK(a != NULL && b != NULL && a < second && strncmp(a, b, 24) == 0);
+    }
+    if (read_pic("cmp/compare_demo_final.ppm", &both) == 0) {
+        CHECK_EQ(both.width, 832 + 8 + 832);
+        CHECK(both.height > 592);
+        CHECK(caption_starts_with(&both, 592, "left fuzzy: t 0.2 s", 2));
+        host_image_free(&both);
+    } else
+        t_fail_msg(__FILE__, __LINE__, "compare picture readable");
+    snprintf(args, sizeof args, "%s/cmp/compare_obs.cache", t_dir);
+    CHECK(access(args, F_OK) != 0);
 }
 
 /* ---- calibration files end to end ------------------------------------------ */
@@ -574,5 +607,6 @@ void suite_cli(void)
     t_run("cli.numbers", t_numbers);
     t_run("cli.pictures", t_pictures);
     t_run("cli.bench_loc", t_bench_loc);
+    t_run("cli.demo_compare", t_demo_compare);
     t_run("cli.calib_files", t_calib_files);
 }

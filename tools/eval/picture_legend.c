@@ -116,8 +116,9 @@ static const struct {
     PIC_SET(PIC_LEGEND_SCAN, set_scan),   PIC_SET(PIC_LEGEND_CLASSES, set_classes),
     PIC_SET(PIC_LEGEND_BORDER, set_border), PIC_SET(PIC_LEGEND_DETECT, set_detect),
     PIC_SET(PIC_LEGEND_EVAL, set_eval),   PIC_SET(PIC_LEGEND_MODEL, set_model),
-    PIC_SET(PIC_LEGEND_BELIEF, set_belief), PIC_SET(PIC_LEGEND_TRUTH, set_truth),
-    PIC_SET(PIC_LEGEND_MASK, set_mask),   PIC_SET(PIC_LEGEND_PARTICLES, set_particles),
+    PIC_SET(PIC_LEGEND_BELIEF, set_belief), PIC_SET(PIC_LEGEND_PARTICLES, set_particles),
+    PIC_SET(PIC_LEGEND_TRUTH, set_truth),
+    PIC_SET(PIC_LEGEND_MASK, set_mask),
 #undef PIC_SET
 };
 
