@@ -141,6 +141,22 @@ static void t_samples(void)
     /* truth (cyan) and estimate (magenta) marked */
     CHECK(is(at(&img, -3500, 2000 + 200), 0, 230, 255) || is(at(&img, -3500, 2000 + 212), 0, 230, 255));
     host_image_free(&img);
+    /* magnified: 4 x around the estimate, the samples there at 32 px per
+     * 100 mm, a grey frame; a grid localizer has no such view */
+    CHECK_EQ(pic_belief_zoom(&fake_loc, &st, f, 1000, -600, 0, 200, &truth, &est, NULL, &img), 0);
+    if (img.rgb != NULL) {
+        CHECK_EQ(img.width, 200);
+        CHECK_EQ(img.height, 200);
+        /* (1000, -500): 100 mm above the centre = 32 px; (1000, -900): 96 px below */
+        CHECK(is(img.rgb + 3 * ((size_t)(100 - 32) * 200 + 100), heavy[0], heavy[1], heavy[2]) ||
+              is(img.rgb + 3 * ((size_t)(99 - 32) * 200 + 99), heavy[0], heavy[1], heavy[2]));
+        CHECK(is(img.rgb + 3 * ((size_t)(100 + 96) * 200 + 100), light[0], light[1], light[2]) ||
+              is(img.rgb + 3 * ((size_t)(99 + 96) * 200 + 99), light[0], light[1], light[2]));
+        CHECK(is(img.rgb + 3 * 199, 150, 150, 150));
+        host_image_free(&img);
+    }
+    CHECK_EQ(pic_belief_zoom(&fl_localizer_fuzzy, &st, f, 0, 0, 0, 200, NULL, NULL, NULL, &img),
+             -1);
     /* no ellipse without a tracked mode */
     est.state = FL_LOC_LOST;
     CHECK_EQ(pic_belief(&fake_loc, &st, f, 8, NULL, &est, NULL, &img), 0);
@@ -166,6 +182,24 @@ static void t_legend_particles(void)
     int hp = pic_legend_height(400, PIC_LEGEND_PARTICLES, NULL), found = 0, lime = 0;
     size_t i, n;
     CHECK(hp > pic_legend_height(400, PIC_LEGEND_TRUTH, NULL));
+    /* beside a grid's legend, the shared items (lines, estimate,
+     * observations, posts) are shown once: the estimate's ring as often as
+     * in the grid's legend alone */
+    {
+        host_image_t a = host_image_new(400, 1, 0, 0, 0), b = host_image_new(400, 1, 0, 0, 0);
+        int na = 0, nb = 0;
+        CHECK_EQ(pic_legend_inplace(&a, PIC_LEGEND_BELIEF, NULL), 0);
+        CHECK_EQ(pic_legend_inplace(&b, PIC_LEGEND_BELIEF | PIC_LEGEND_PARTICLES, NULL), 0);
+        for (i = 0; a.rgb != NULL && i < (size_t)a.width * (size_t)a.height; i++)
+            na += is(a.rgb + 3 * i, 255, 40, 255);
+        for (i = 0; b.rgb != NULL && i < (size_t)b.width * (size_t)b.height; i++)
+            nb += is(b.rgb + 3 * i, 255, 40, 255);
+        CHECK(na > 0);
+        CHECK_EQ(nb, na);
+        CHECK(b.height > a.height);
+        host_image_free(&a);
+        host_image_free(&b);
+    }
     CHECK_EQ(pic_legend_inplace(&img, PIC_LEGEND_PARTICLES | PIC_LEGEND_TRUTH, NULL), 0);
     if (img.rgb == NULL)
         return;

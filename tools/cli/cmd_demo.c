@@ -23,7 +23,8 @@
  *                         to the belief grid (cells shaded by height,
  *                         heading ticks, truth cyan, estimate magenta,
  *                         the frame's observations as white squares), or
- *                         a particle filter's particles (picture.h)
+ *                         a particle filter's particles (picture.h) with
+ *                         a 4 x magnified view around the estimate
  *   demo_kidnap.ppm       1 s after the kidnap; demo_final.ppm at the end
  *   belief_final.ppm, frame_final.ppm   the two halves of the last picture
  *   compare_NAME.ppm      with --compare B: for every belief picture above
@@ -95,6 +96,30 @@ static void demo_save(demo_t *d, const host_image_t *img, const char *name)
     }
 }
 
+/* The belief picture of the record; for a sample localizer with its
+ * magnified view around the estimate (pic_belief_zoom: 4 x, as tall as the
+ * picture) on the right, since a tracked cluster is a few pixels wide at
+ * the field's scale.  0 on success. */
+static int demo_belief(const lr_walk_step_t *ws, const pic_pose_t *truth, host_image_t *out)
+{
+    host_image_t belief, zoom;
+    if (pic_belief(ws->lr->loc, ws->lr->state, ws->lr->field, 0, truth, ws->est, &ws->lr->obs,
+                   &belief) != 0)
+        return -1;
+    if (pic_belief_legend(ws->lr->loc, ws->lr->state) != PIC_LEGEND_PARTICLES ||
+        pic_belief_zoom(ws->lr->loc, ws->lr->state, ws->lr->field, ws->est->x_mm, ws->est->y_mm,
+                        0, belief.height, truth, ws->est, &ws->lr->obs, &zoom) != 0) {
+        *out = belief;
+        return 0;
+    }
+    if (pic_side_by_side(&belief, &zoom, 4, out) != 0)
+        *out = belief;
+    else
+        host_image_free(&belief);
+    host_image_free(&zoom);
+    return 0;
+}
+
 /* A copy of a belief picture for --compare (none when out of memory). */
 static void demo_keep(demo_t *d, long record, const char *name, const char *caption,
                       const host_image_t *belief, unsigned sets)
@@ -138,7 +163,7 @@ static void demo_picture(demo_t *d, const lr_walk_step_t *ws, const char *name, 
     ep.x_mm = ws->est->x_mm;
     ep.y_mm = ws->est->y_mm;
     ep.heading_deg = lr_deg(ws->est->heading);
-    if (pic_belief(ws->lr->loc, ws->lr->state, ws->lr->field, 0, &truth, ws->est, &ws->lr->obs, &belief) != 0)
+    if (demo_belief(ws, &truth, &belief) != 0)
         return;
     pic_belief_caption(caption, sizeof caption, ws->t_s, ws->record, ws->est, ws->pos_err_mm,
                        ws->head_err_deg);
@@ -250,8 +275,7 @@ static void demo_cmp_hook(void *user, const lr_walk_step_t *ws)
         truth.x_mm = ws->st->true_x_mm;
         truth.y_mm = ws->st->true_y_mm;
         truth.heading_deg = ws->st->true_heading_rad * (180.0 / 3.14159265358979323846);
-        if (pic_belief(ws->lr->loc, ws->lr->state, ws->lr->field, 0, &truth, ws->est,
-                       &ws->lr->obs, &belief) != 0)
+        if (demo_belief(ws, &truth, &belief) != 0)
             continue;
         pic_belief_caption(cap_b, sizeof cap_b, ws->t_s, ws->record, ws->est, ws->pos_err_mm,
                            ws->head_err_deg);

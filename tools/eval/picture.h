@@ -22,7 +22,7 @@
  * belief_grid) gets the same picture geometry (the grid the fuzzy
  * localizer would have on that field's carpet: same size and scale) with,
  * on the carpet, every sample as a dot with a heading tick (0.9 cell
- * long) shaded by its relative weight: in the estimate's cluster (in_mode)
+ * long; pic_belief_zoom: a little longer in pixels, shorter in mm) shaded by its relative weight: in the estimate's cluster (in_mode)
  * on the grid's ramp from dark magenta (light) to pale yellow (heaviest),
  * the others in blues (dark: light, pale: heavy); drawn lightest first;
  * then the cluster's spread, the estimate's 2-sd ellipse (lime, dotted),
@@ -72,6 +72,18 @@ int pic_belief(const fl_localizer_t *loc, const void *state, const fl_field_t *f
                const pic_pose_t *truth, const fl_loc_estimate_t *est,
                const fl_obs_list_t *obs, host_image_t *out);
 
+/* A sample localizer's belief magnified: a size_px square centred on
+ * (cx, cy) at px_per_cell pixels per 100 mm cell (0: 4 x the default, 32;
+ * clamped to 2..128), drawn as pic_belief draws it (particles, cluster,
+ * lines, truth, estimate, observations) with a grey frame and its scale
+ * written in the top left corner.  0 on success; -1 for a grid localizer
+ * (its picture shows the cells already), no samples, size_px outside
+ * 32..4096 or out of memory. */
+int pic_belief_zoom(const fl_localizer_t *loc, const void *state, const fl_field_t *field,
+                    int32_t cx_mm, int32_t cy_mm, int px_per_cell, int size_px,
+                    const pic_pose_t *truth, const fl_loc_estimate_t *est,
+                    const fl_obs_list_t *obs, host_image_t *out);
+
 /* The frame with the last vision run of det drawn over it (det_draw) and,
  * when pose is not NULL, the field lines and circle projected from that
  * pose (dotted, yellow): what the localizer believes the camera sees.
@@ -90,7 +102,8 @@ int pic_side_by_side(const host_image_t *a, const host_image_t *b, int gap,
  * image (never over data): optional caption lines (time, error,
  * reliability...), then one swatch + text per mark, wrapped to the width.
  * The text uses the built-in 5 x 7 font (tools/io/font.h), light grey on
- * PIC_LEGEND_BG.  The sets name the marks of each drawing function: */
+ * PIC_LEGEND_BG.  An item two sets share (same mark, color and text) is
+ * shown once.  The sets name the marks of each drawing function: */
 #define PIC_LEGEND_DETECT  0x01u  /* det_draw: points, segments, crossings, posts, circle */
 #define PIC_LEGEND_MODEL   0x02u  /* pic_frame: the field model seen from the estimate */
 #define PIC_LEGEND_BELIEF  0x04u  /* pic_belief: shading, ticks, truth, estimate, obs */

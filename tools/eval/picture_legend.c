@@ -226,6 +226,25 @@ static void swatch(host_image_t *im, int x, int y, int sc, const pic_item_t *it)
     }
 }
 
+/* Whether an identical item (mark, color, text) of the sets comes before
+ * item i of set k: shown once (a grid's and a particle picture's legends
+ * side by side share the lines, estimate, observations). */
+static int pic_item_repeated(unsigned sets, int k, int i)
+{
+    const pic_item_t *it = &pic_sets[k].items[i];
+    int k2, i2;
+    for (k2 = 0; k2 <= k; k2++) {
+        if (!(sets & pic_sets[k2].bit))
+            continue;
+        for (i2 = 0; i2 < (k2 == k ? i : pic_sets[k2].n); i2++) {
+            const pic_item_t *o = &pic_sets[k2].items[i2];
+            if (o->mark == it->mark && !memcmp(o->rgb, it->rgb, 3) && !strcmp(o->text, it->text))
+                return 1;
+        }
+    }
+    return 0;
+}
+
 /* Lay out (and, with im, draw) the strip at row y0 of an image of width W;
  * returns its height. */
 static int pic_legend_layout(host_image_t *im, int W, int y0, unsigned sets,
@@ -273,6 +292,8 @@ static int pic_legend_layout(host_image_t *im, int W, int y0, unsigned sets,
         for (i = 0; i < pic_sets[k].n; i++) {
             const pic_item_t *it = &pic_sets[k].items[i];
             int w = (PIC_SW + 4) * cs + font_text_width(it->text, cs);
+            if (pic_item_repeated(sets, k, i))
+                continue;
             if (x > PIC_PAD && x + w > W - PIC_PAD) {
                 x = PIC_PAD;
                 y += PIC_ROW * cs;
