@@ -16,6 +16,8 @@
 # estimate) or the per-observation work done once.
 # Usage: sh tools/bench/callgrind_loc.sh [BUILD_DIR]   (default build)
 # Prints: callgrind loc_NAME_frame N instr/frame R x fuzzy state B bytes
+#         (its parts: the inclusive counts of fl_loc_predict, fl_loc_update
+#         and fl_loc_estimate per frame, from callgrind_annotate)
 #         callgrind loc_NAME_particle_obs N instr/particle/obs (P1..P2, K1..K2)
 B=${1:-build}
 CLI=$B/fieldloc
@@ -38,10 +40,16 @@ for name in $("$CLI" bench --loc-list); do
     state=$(echo "$LINE" | awk '{print $4}')
     samples=$(echo "$LINE" | awk '{print $6}')
     [ "$name" = fuzzy ] && ref=$i
+    parts=$(callgrind_annotate --inclusive=yes "$TMP/out" 2>/dev/null | tr -d , | awk -v N=$N '
+        /localizer\.c:fl_loc_(predict|update|estimate) \[/ {
+            f = $0; sub(/.*fl_loc_/, "", f); sub(/ .*/, "", f); v[f] = $1 / N }
+        END { if (("predict" in v) && ("update" in v) && ("estimate" in v))
+                  printf "  (predict %.0f update %.0f estimate %.0f)", v["predict"], v["update"], v["estimate"] }')
     awk -v n="loc_${name}_frame" -v i="$i" -v r="${ref:-0}" -v N=$N -v s="$state" -v p="$samples" \
+        -v parts="$parts" \
         'BEGIN { f = i / N; printf "callgrind %-28s %10.0f instr/frame", n, f;
                  if (r > 0) printf "  %5.3f x fuzzy", i / r;
-                 printf "  state %d B", s; if (p > 0) printf "  %d samples", p; printf "\n" }'
+                 printf "  state %d B", s; if (p > 0) printf "  %d samples", p; printf "%s\n", parts }'
     if [ "$samples" -gt 0 ] 2>/dev/null; then
         p1=64; p2=256; k1=1; k2=5
         a=$(refs "$name" --param n_particles=$p1 --obs $k1); b=$(refs "$name" --param n_particles=$p1 --obs $k2)
