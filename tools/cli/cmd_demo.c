@@ -519,7 +519,7 @@ int cmd_demo(int argc, char **argv)
     if (d.steps)
         fclose(d.steps);
     o.steps = NULL;
-    printf("  %ld frames in %.1f s (rendering %.1f s, vision + grid %.2f ms per frame)\n",
+    printf("  %ld frames in %.1f s (rendering %.1f s, vision + localizer %.2f ms per frame)\n",
            res.records, demo_now() - d.wall0, res.render_s,
            res.records ? 1000.0 * res.vision_grid_s / (double)res.records : 0.0);
     printf("# localizer: %u kidnaps detected, %u mode switches, %u obs used, %u deferred, "
