@@ -105,10 +105,8 @@ int32_t fl_mcl_gauss_q12(uint32_t *rng)
  *    peak likelihood: confusions and false positives are a few %);
  *  - augmentation: alpha_slow 0.001 and alpha_fast 0.1 (Probabilistic
  *    Robotics section 8.3.5 and nav2 AMCL's recovery_alpha_slow /
- *    recovery_alpha_fast defaults), injection capped at 1/2 and at least
- *    1 % while observations arrive (Lenser and Veloso's sensor resetting
- *    injects whenever the observations are unlikely; 1 % keeps a wrong
- *    mode that fits the lines challenged by the posts' colours);
+ *    recovery_alpha_fast defaults), injection capped at 1/2, no minimum
+ *    (a minimum seeds mirror modes that later win: measured more flips);
  *  - estimate: cluster radius 500 mm (the FL_LOC_GOOD_MM tolerance), a
  *    tracked cluster kept while it has 1/4 of the heaviest one's weight.
  */
@@ -137,8 +135,8 @@ void fl_mcl_params_default(fl_mcl_params_t *p)
     p->alpha_slow_q16 = 66;
     p->alpha_fast_q16 = 6554;
     p->inject_max_q16 = 32768;
-    p->inject_min_q16 = 655;
-    p->kidnap_q16 = 39322;
+    p->inject_min_q16 = 0;
+    p->kidnap_q16 = 19661;
     p->cluster_mm = 500;
     p->switch_q8 = 64;
 }
@@ -266,11 +264,16 @@ void fl_mcl_internal_clamp(const fl_mcl_t *s, int32_t *x, int32_t *y)
     *y = mcl_clamp(*y, -s->box_y_mm, s->box_y_mm);
 }
 
-/* Whether a pose is on the carpet and inside the prior's region. */
+/* Whether a pose is on the carpet and inside the prior's region.  A half
+ * prior decides between the mirror modes of a symmetric field (always) and
+ * between modes of an asymmetric one until a mode is tracked (then the
+ * map decides, and a kidnap into the other half recovers by injection). */
 bool fl_mcl_internal_allowed(const fl_mcl_t *s, int32_t x, int32_t y, fl_angle_t h)
 {
     if (x < -s->half_x_mm || x > s->half_x_mm || y < -s->half_y_mm || y > s->half_y_mm)
         return false;
+    if (s->prior == FL_MCL_PRIOR_HALF && !s->field->symmetric && s->track_valid)
+        return true;
     if (s->prior == FL_MCL_PRIOR_HALF)
         return s->prior_half < 0 ? x <= 0 : x >= 0;
     if (s->prior == FL_MCL_PRIOR_POSE) {
@@ -288,7 +291,7 @@ void fl_mcl_internal_uniform(fl_mcl_t *s, fl_mcl_particle_t *p)
     int32_t x0 = -s->half_x_mm, x1 = s->half_x_mm, y0 = -s->half_y_mm, y1 = s->half_y_mm;
     int32_t x, y, tries;
     fl_angle_t h = (fl_angle_t)(int32_t)(fl_mcl_rand(&s->rng) >> 16) ;
-    if (s->prior == FL_MCL_PRIOR_HALF) {
+    if (s->prior == FL_MCL_PRIOR_HALF && (s->field->symmetric || !s->track_valid)) {
         if (s->prior_half < 0)
             x1 = 0;
         else

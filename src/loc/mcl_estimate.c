@@ -21,7 +21,7 @@
  * game did not tell, 65535 (a particle set that lost one mirror mode by
  * resampling has no evidence against it).  Leaving the tracked mode for
  * another cluster (a kidnap that injection recovered before the averages
- * called it one) drops the prior: the half it told was the old mode's.
+ * called it one) makes the half unknown: it was the old mode's.
  */
 #include "mcl_int.h"
 
@@ -324,10 +324,11 @@ bool fl_mcl_estimate(fl_mcl_t *s, fl_mcl_estimate_t *out)
         total += p[i].weight;
     bi = dominant_bin(s, &out->switched);
     if (out->switched) {
-        /* the belief left the tracked mode for another place: what the
-         * game told (the half) was about the old one */
+        /* the belief left the tracked mode for another place: the half
+         * the game told was the old mode's (the prior still keeps
+         * injections in its region, so no mirror mode is seeded) */
         s->stats.mode_switches = mcl_sat_inc(s->stats.mode_switches);
-        fl_mcl_internal_drop_prior(s);
+        s->half_known = false;
     }
     cx = bin_cx(s, bi % NBX);
     cy = bin_cy(s, bi / NBX);

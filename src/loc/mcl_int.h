@@ -77,5 +77,8 @@ uint32_t fl_mcl_internal_exp_q16(uint32_t nll_q8);
 
 /* mcl_resample.c */
 void fl_mcl_internal_resample(fl_mcl_t *s);
+/* One injected particle: sensor-reset from a kept observation, else
+ * uniform over the allowed region (counted). */
+void fl_mcl_internal_inject(fl_mcl_t *s, fl_mcl_particle_t *out);
 
 #endif /* FIELDLOC_MCL_INT_H */

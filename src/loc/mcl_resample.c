@@ -155,7 +155,7 @@ static bool sensor_reset(fl_mcl_t *s, fl_mcl_particle_t *out)
     return false;
 }
 
-static void inject(fl_mcl_t *s, fl_mcl_particle_t *out)
+void fl_mcl_internal_inject(fl_mcl_t *s, fl_mcl_particle_t *out)
 {
     s->stats.injected = mcl_sat_inc(s->stats.injected);
     if (s->n_reset > 0 && sensor_reset(s, out))
@@ -180,7 +180,7 @@ void fl_mcl_internal_resample(fl_mcl_t *s)
         fl_mcl_particle_t *d = &dst[m];
         int32_t x, y;
         if (s->inject_q16 != 0u && (fl_mcl_rand(&s->rng) >> 16) < s->inject_q16) {
-            inject(s, d);
+            fl_mcl_internal_inject(s, d);
             continue;
         }
         *d = src[idx[m]];

@@ -323,6 +323,18 @@ static void apply_obs(fl_mcl_t *s, const obs_c_t *c, const uint16_t *tab)
     }
 }
 
+/* Under ignorance the first observations replace the uniform particles by
+ * sensor-reset ones (poses that explain one observed feature): 256
+ * particles spread uniformly over half a carpet and every heading are too
+ * sparse for the first weighting to find the right place. */
+static void seed_from_obs(fl_mcl_t *s)
+{
+    fl_mcl_particle_t *p = mcl_live(s);
+    uint16_t i;
+    for (i = 0; i < s->n; i++)
+        fl_mcl_internal_inject(s, &p[i]);
+}
+
 uint16_t fl_mcl_update(fl_mcl_t *s, const fl_obs_list_t *obs)
 {
     obs_c_t c;
@@ -336,24 +348,29 @@ uint16_t fl_mcl_update(fl_mcl_t *s, const fl_obs_list_t *obs)
     if (obs == NULL)
         return 0;
     nmax = obs->n < FL_OBS_MAX ? obs->n : FL_OBS_MAX;
-    for (i = 0; i < nmax; i++) {
-        if (used >= MCL_OBS_PER_FRAME || !prepare(s, &obs->obs[i], &c)) {
-            s->stats.obs_ignored = mcl_sat_inc(s->stats.obs_ignored);
-            continue;
+    /* pass 1: the usable observations (kept for sensor resetting) */
+    for (i = 0; i < nmax && used < MCL_OBS_PER_FRAME; i++)
+        if (prepare(s, &obs->obs[i], &c)) {
+            if (used == 0)
+                s->n_reset = 0;
+            keep_reset_obs(s, c.o);
+            used++;
         }
-        if (used == 0) {
-            if (s->weighted)
-                fl_mcl_internal_resample(s);
-            mixture_table(s->params.outlier_q16, tab);
-            memset(s->nll, 0, sizeof s->nll);
-            s->n_reset = 0;
-        }
-        apply_obs(s, &c, tab);
-        keep_reset_obs(s, c.o);
-        used++;
-    }
+    s->stats.obs_ignored += (uint32_t)(nmax - used);
     if (used == 0)
         return 0;
+    if (s->weighted)
+        fl_mcl_internal_resample(s);
+    if (s->ignorance)
+        seed_from_obs(s);
+    mixture_table(s->params.outlier_q16, tab);
+    memset(s->nll, 0, sizeof s->nll);
+    /* pass 2: the likelihoods */
+    for (i = 0, used = 0; i < nmax && used < MCL_OBS_PER_FRAME; i++)
+        if (prepare(s, &obs->obs[i], &c)) {
+            apply_obs(s, &c, tab);
+            used++;
+        }
     p = mcl_live(s);
     for (i = 0; i < s->n; i++)
         if (s->nll[i] < nmin)
