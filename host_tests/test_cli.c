@@ -443,14 +443,45 @@ static void t_bench_loc(void)
     CHECK(strstr(err, "nosuch=1") != NULL);
 }
 
-/* demo --compare: the second localizer's pass on the same observations
- * gives the same summary (here the same localizer) and the side-by-side
- * belief picture of the last record (two 832 px pictures, 8 px apart, the
- * caption naming both); the observation cache is removed. */
+/* Pixels of the box [u0, u1) x [v0, v1) colored as a particle of the
+ * estimate's cluster (pic_particle_color, any weight). */
+static long count_cluster_px(const host_image_t *im, int u0, int u1, int v0, int v1)
+{
+    static uint8_t *is_col;
+    long n = 0;
+    int u, v;
+    if (is_col == NULL) {
+        int w;
+        is_col = calloc(1u << 21, 1);   /* one bit per 24-bit color */
+        if (is_col == NULL)
+            return -1;
+        for (w = 0; w <= 65535; w++) {
+            uint8_t c[3];
+            uint32_t k;
+            pic_particle_color(w / 65535.0, 1, c);
+            k = (uint32_t)c[0] << 16 | (uint32_t)c[1] << 8 | c[2];
+            is_col[k >> 3] = (uint8_t)(is_col[k >> 3] | 1u << (k & 7));
+        }
+    }
+    for (v = v0; v < v1 && v < im->height; v++)
+        for (u = u0; u < u1 && u < im->width; u++) {
+            const uint8_t *p = im->rgb + 3 * ((size_t)v * (size_t)im->width + (size_t)u);
+            uint32_t k = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
+            n += (is_col[k >> 3] >> (k & 7)) & 1;
+        }
+    return n;
+}
+
+/* demo with the particle filter, and --compare: the belief picture shows
+ * the particles of the estimate's cluster, on the field and in the 4 x
+ * view beside it (as tall as the picture); the second pass over the
+ * cached observations (here the same filter, same seed) gives the same
+ * summary, the side-by-side picture of the last record has both beliefs
+ * and a caption naming both; the observation cache is removed. */
 static void t_demo_compare(void)
 {
     char args[2048], out[8192], *second;
-    host_image_t both;
+    host_image_t both, belief;
     if (t_quick)
         return;
     if (cli_find() != 0) {
@@ -458,18 +489,27 @@ static void t_demo_compare(void)
         return;
     }
     snprintf(args, sizeof args,
-             "demo --seconds 0.2 --picture-every-s 0 --no-png --out %s/cmp --compare fuzzy", t_dir);
+             "demo --seconds 0.2 --picture-every-s 0 --no-png --out %s/cmp --localizer mcl "
+             "--compare mcl", t_dir);
     CHECK_EQ(cli_run(args, out, sizeof out, NULL, 0), 0);
-    second = strstr(out, "# compare: fuzzy on the same observations\n");
+    second = strstr(out, "# compare: mcl on the same observations\n");
     CHECK(second != NULL);
     if (second != NULL) {
         const char *a = strstr(out, "\npos_rmse_mm "), *b = strstr(second, "\npos_rmse_mm ");
         CHECK(a != NULL && b != NULL && a < second && strncmp(a, b, 24) == 0);
     }
+    if (read_pic("cmp/belief_final.ppm", &belief) == 0) {
+        CHECK_EQ(belief.width, 832 + 4 + 592);
+        CHECK(count_cluster_px(&belief, 0, 832, 0, 592) >= 100);
+        CHECK(count_cluster_px(&belief, 836, 836 + 592, 0, 592) >= 1000);
+        host_image_free(&belief);
+    } else
+        t_fail_msg(__FILE__, __LINE__, "mcl belief picture readable");
     if (read_pic("cmp/compare_demo_final.ppm", &both) == 0) {
-        CHECK_EQ(both.width, 832 + 8 + 832);
+        CHECK_EQ(both.width, 2 * (832 + 4 + 592) + 8);
         CHECK(both.height > 592);
-        CHECK(caption_starts_with(&both, 592, "left fuzzy: t 0.2 s", 2));
+        CHECK(caption_starts_with(&both, 592, "left mcl: t 0.2 s", 2));
+        CHECK(count_cluster_px(&both, 1436, 1436 + 832, 0, 592) >= 100);
         host_image_free(&both);
     } else
         t_fail_msg(__FILE__, __LINE__, "compare picture readable");
