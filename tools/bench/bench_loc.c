@@ -12,10 +12,14 @@
  * localizer's gating changes the work).  The state after the 300 steps is
  * saved; every repetition restores it (not timed) and times one frame.
  * States: tracking (as saved) and ignorance (reset_ignorance first, then
- * the same frame).
+ * the same frame).  Vision: the localizer's vision preset
+ * (lr_params_frames, as simulate --frames and demo use it) for the walk
+ * and the frame, and the frame with a view (50 deg wide, 0.6-4 m deep
+ * ahead: what a NAO camera sees; negative information where the
+ * localizer has it; the walk itself runs without views).
  *
- * Rows (best of the repetitions, ns per frame): loc_NAME_frame_tracking and
- * loc_NAME_frame_ignorance, with the fuzzy grid's row of the same run as
+ * Rows (best of the repetitions, ns per frame): loc_NAME_frame_tracking,
+ * loc_NAME_frame_ignorance and loc_NAME_frame_vision (tracking), with the fuzzy grid's row of the same run as
  * the peer (speedup = fuzzy / NAME: above 1, NAME is faster); for a
  * localizer whose belief is a set of samples also loc_NAME_particle_obs,
  * the update's time per particle per observation (update with 5 minus
@@ -44,6 +48,7 @@ typedef struct {
     int32_t dx, dy;
     fl_angle_t dth;
     fl_obs_list_t obs;
+    fl_obs_view_t view;          /* valid only for the vision frame */
     uint16_t samples;
 } bl_t;
 
@@ -55,8 +60,10 @@ static void bl_free(bl_t *b)
 }
 
 /* The state after the walk and the frame that follows (K observations);
- * params NULL: the localizer's defaults.  0 on success. */
-static int bl_prepare(bl_t *b, const fl_localizer_t *loc, const void *params, int k_obs)
+ * params NULL: the localizer's defaults; vision: the frame has a view.
+ * 0 on success. */
+static int bl_prepare(bl_t *b, const fl_localizer_t *loc, const void *params, int k_obs,
+                      int vision)
 {
     sim_scenario_t sc;
     sim_t *sim = malloc(sizeof *sim);
@@ -91,6 +98,11 @@ static int bl_prepare(bl_t *b, const fl_localizer_t *loc, const void *params, in
             if (st->obs_landmark[i] >= 0)
                 b->obs.obs[b->obs.n++] = st->obs.obs[i];
     }
+    b->view.valid = vision != 0;
+    b->view.bearing_right = fl_angle_from_mdeg(-25000);
+    b->view.bearing_left = fl_angle_from_mdeg(25000);
+    b->view.near_mm = 600;
+    b->view.far_mm = 4000;
     b->samples = loc->belief_samples != NULL ? loc->belief_samples(b->saved) : 0;
     ok = b->obs.n == k_obs;
 done:
@@ -105,12 +117,13 @@ done:
  * static, never inlined: callgrind finds it by name. */
 __attribute__((noinline)) void bench_loc_frame(const fl_localizer_t *loc, void *state,
                                                int32_t dx, int32_t dy, fl_angle_t dth,
-                                               const fl_obs_list_t *obs, int pred_est)
+                                               const fl_obs_list_t *obs,
+                                               const fl_obs_view_t *view, int pred_est)
 {
     fl_loc_estimate_t est;
     if (pred_est)
         fl_loc_predict(loc, state, dx, dy, dth);
-    fl_loc_update(loc, state, obs, NULL);
+    fl_loc_update(loc, state, obs, view->valid ? view : NULL);
     if (pred_est)
         fl_loc_estimate(loc, state, &est);
 }
@@ -129,7 +142,7 @@ static double bl_time(const bl_t *b, int reps, int ignorance, int n_obs, int who
         if (ignorance && b->loc->reset_ignorance != NULL)
             b->loc->reset_ignorance(b->work);
         t0 = bench_now_ns();
-        bench_loc_frame(b->loc, b->work, b->dx, b->dy, b->dth, &obs, whole);
+        bench_loc_frame(b->loc, b->work, b->dx, b->dy, b->dth, &obs, &b->view, whole);
         t = bench_now_ns() - t0;
         if (t < best)
             best = t;
@@ -140,7 +153,7 @@ static double bl_time(const bl_t *b, int reps, int ignorance, int n_obs, int who
 void bench_loc(bench_ctx_t *ctx)
 {
     int reps = ctx->quick ? 20 : 300, i, n = (int)fl_localizer_count();
-    double ref_track = 0, ref_ign = 0;
+    double ref_track = 0, ref_ign = 0, ref_vis = 0;
     /* the fuzzy grid first: the reference of the other rows */
     for (i = -1; i < n; i++) {
         const fl_localizer_t *loc = i < 0 ? fl_localizer_find("fuzzy") : fl_localizer_get((uint16_t)i);
@@ -150,7 +163,7 @@ void bench_loc(bench_ctx_t *ctx)
         int is_ref = i < 0;
         if (loc == NULL || (!is_ref && strcmp(loc->name, "fuzzy") == 0))
             continue;
-        if (bl_prepare(&b, loc, NULL, 5) != 0) {
+        if (bl_prepare(&b, loc, NULL, 5, 0) != 0) {
             printf("# loc %s: could not prepare the spl2013 walk state, skipped\n", loc->name);
             continue;
         }
@@ -172,6 +185,24 @@ void bench_loc(bench_ctx_t *ctx)
             ref_track = tt;
             ref_ign = ti;
         }
+        {
+            void *vp = lr_params_new(loc);
+            bl_t bv;
+            if (vp != NULL) {
+                lr_params_frames(loc, vp);
+                if (bl_prepare(&bv, loc, vp, 5, 1) == 0) {
+                    double tv = bl_time(&bv, reps, 0, bv.obs.n, 1);
+                    snprintf(desc, sizeof desc, "%s: the frame with the vision preset and a view",
+                             is_ref ? "reference" : "peer: fuzzy");
+                    snprintf(name, sizeof name, "loc_%s_frame_vision", loc->name);
+                    bench_row(ctx, name, tv, is_ref ? 0 : ref_vis, desc);
+                    if (is_ref)
+                        ref_vis = tv;
+                    bl_free(&bv);
+                }
+                free(vp);
+            }
+        }
         if (b.samples > 0) {
             double t5 = bl_time(&b, reps, 0, 5, 0), t1 = bl_time(&b, reps, 0, 1, 0);
             snprintf(name, sizeof name, "loc_%s_particle_obs", loc->name);
@@ -192,7 +223,7 @@ int bench_loc_list(void)
 }
 
 int bench_loc_repeat(const char *name, const char *const *param, int n_param, long repeat,
-                     int k_obs)
+                     int k_obs, int vision)
 {
     char err[256];
     const fl_localizer_t *loc = lr_localizer(name, err, (int)sizeof err);
@@ -206,23 +237,26 @@ int bench_loc_repeat(const char *name, const char *const *param, int n_param, lo
     }
     if ((params = lr_params_new(loc)) == NULL)
         return 1;
+    if (vision)
+        lr_params_frames(loc, params);
     for (k = 0; k < n_param; k++)
         if (lr_param_set(loc, params, param[k]) != 0) {
             fprintf(stderr, "bench: bad --param '%s' for localizer %s\n", param[k], loc->name);
             free(params);
             return 2;
         }
-    if (bl_prepare(&b, loc, params, k_obs) != 0) {
+    if (bl_prepare(&b, loc, params, k_obs, vision) != 0) {
         fprintf(stderr, "bench: could not prepare the walk state for %s\n", loc->name);
         free(params);
         return 1;
     }
     for (r = 0; r < repeat; r++) {
         memcpy(b.work, b.saved, loc->state_size);
-        bench_loc_frame(loc, b.work, b.dx, b.dy, b.dth, &b.obs, 1);
+        bench_loc_frame(loc, b.work, b.dx, b.dy, b.dth, &b.obs, &b.view, 1);
     }
-    printf("loc %s state_size %lu samples %u obs %d frames %ld\n", loc->name,
-           (unsigned long)loc->state_size, (unsigned)b.samples, (int)b.obs.n, repeat);
+    printf("loc %s state_size %lu samples %u obs %d frames %ld%s\n", loc->name,
+           (unsigned long)loc->state_size, (unsigned)b.samples, (int)b.obs.n, repeat,
+           vision ? " vision" : "");
     bl_free(&b);
     free(params);
     return 0;

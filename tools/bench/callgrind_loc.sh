@@ -15,9 +15,12 @@
 # without the per-particle work done once per frame (motion, resampling,
 # estimate) or the per-observation work done once.
 # Usage: sh tools/bench/callgrind_loc.sh [BUILD_DIR]   (default build)
+# The same frame again with the localizer's vision preset and a view
+# (--vision: what simulate --frames and demo run).
 # Prints: callgrind loc_NAME_frame N instr/frame R x fuzzy state B bytes
 #         (its parts: the inclusive counts of fl_loc_predict, fl_loc_update
 #         and fl_loc_estimate per frame, from callgrind_annotate)
+#         callgrind loc_NAME_frame_vision N instr/frame R x fuzzy
 #         callgrind loc_NAME_particle_obs N instr/particle/obs (P1..P2, K1..K2)
 B=${1:-build}
 CLI=$B/fieldloc
@@ -33,6 +36,7 @@ refs() {  # refs NAME ARGS...: instructions collected inside bench_loc_frame (lo
     sed -n 's/.*refs: *//p' "$TMP/log" | tr -d ,
 }
 ref=
+refv=
 for name in $("$CLI" bench --loc-list); do
     i=$(refs "$name")
     LINE=$(grep '^loc ' "$TMP/log")
@@ -50,6 +54,13 @@ for name in $("$CLI" bench --loc-list); do
         'BEGIN { f = i / N; printf "callgrind %-28s %10.0f instr/frame", n, f;
                  if (r > 0) printf "  %5.3f x fuzzy", i / r;
                  printf "  state %d B", s; if (p > 0) printf "  %d samples", p; printf "%s\n", parts }'
+    # the same frame with the vision preset and a view (--vision)
+    v=$(refs "$name" --vision)
+    if [ -z "$v" ]; then echo "callgrind loc_${name}_frame_vision failed"; continue; fi
+    [ "$name" = fuzzy ] && refv=$v
+    awk -v n="loc_${name}_frame_vision" -v i="$v" -v r="${refv:-0}" -v N=$N \
+        'BEGIN { printf "callgrind %-28s %10.0f instr/frame", n, i / N;
+                 if (r > 0) printf "  %5.3f x fuzzy", i / r; printf "\n" }'
     if [ "$samples" -gt 0 ] 2>/dev/null; then
         p1=64; p2=256; k1=1; k2=5
         a=$(refs "$name" --param n_particles=$p1 --obs $k1); b=$(refs "$name" --param n_particles=$p1 --obs $k2)

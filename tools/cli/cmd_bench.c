@@ -13,7 +13,7 @@ int cmd_bench(int argc, char **argv)
     const char *only = NULL;
     const char *loc_frames = NULL, *param[64];
     long repeat = 1, k_obs = 5;
-    int k, ran = 0, n_param = 0;
+    int k, ran = 0, n_param = 0, vision = 0;
     for (k = 0; k < argc; k++) {
         if (!strcmp(argv[k], "--out") && k + 1 < argc)
             out = argv[++k];
@@ -36,25 +36,29 @@ int cmd_bench(int argc, char **argv)
         } else if (!strcmp(argv[k], "--obs") && k + 1 < argc) {
             if (arg_long("bench", "--obs", argv[++k], 1, 16, NULL, &k_obs) != 0)
                 return 2;
-        } else if (!strcmp(argv[k], "--param") && k + 1 < argc) {
+        } else if (!strcmp(argv[k], "--vision"))
+            vision = 1;
+        else if (!strcmp(argv[k], "--param") && k + 1 < argc) {
             if (n_param == 64)
                 return 2;
             param[n_param++] = argv[++k];
         } else if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
             fprintf(stderr, "usage: fieldloc bench [--out FILE.tsv] [--quick] [--only SECTION] [--noise-frames DIR]\n"
                     "       fieldloc bench --loc-list\n"
-                    "       fieldloc bench --loc-frames NAME [--repeat N] [--obs K] [--param NAME=VALUE]...\n"
+                    "       fieldloc bench --loc-frames NAME [--repeat N] [--obs K] [--vision]\n"
+                    "                      [--param NAME=VALUE]...\n"
                     "  sections: fixed scan vision adversarial fuzzy loc\n"
                     "  --loc-frames: N frames (predict, update with K observations, estimate) of\n"
                     "  localizer NAME after 10 s of the spl2013 walk, for callgrind\n"
-                    "  (tools/bench/callgrind_loc.sh)\n");
+                    "  (tools/bench/callgrind_loc.sh); --vision: the vision preset, a view\n");
             return 0;
         } else
             return arg_unknown("bench", argv[k], "--out=1 --only=1 --noise-frames=1 --loc-list=0 "
                                                  "--loc-frames=1 --repeat=1 --obs=1 --param=1");
     }
     if (loc_frames != NULL)
-        return bench_loc_repeat ? bench_loc_repeat(loc_frames, param, n_param, repeat, (int)k_obs)
+        return bench_loc_repeat ? bench_loc_repeat(loc_frames, param, n_param, repeat, (int)k_obs,
+                                                   vision)
                                 : 1;
     ctx.tsv = fopen(out, "w");
     if (!ctx.tsv) {
