@@ -417,6 +417,106 @@ static void t_pictures(void)
         t_fail_msg(__FILE__, __LINE__, "demo belief picture readable");
 }
 
+/* bench --loc-frames (what callgrind_loc.sh counts): every catalogue
+ * localizer listed; the frames run and the line the script parses names
+ * the state size; bad names and parameters refused. */
+static void t_bench_loc(void)
+{
+    char out[4096], err[2048], want[256];
+    uint16_t i;
+    if (t_quick)
+        return;
+    if (cli_find() != 0) {
+        t_info("skipped: %s not built", t_cli);
+        return;
+    }
+    CHECK_EQ(cli_run("bench --loc-list", out, sizeof out, NULL, 0), 0);
+    for (i = 0; i < fl_localizer_count(); i++) {
+        snprintf(want, sizeof want, "%s\n", fl_localizer_get(i)->name);
+        CHECK(strstr(out, want) != NULL);
+    }
+    CHECK_EQ(cli_run("bench --loc-frames fuzzy --repeat 2 --obs 3", out, sizeof out, NULL, 0), 0);
+    snprintf(want, sizeof want, "loc fuzzy state_size %lu samples 0 obs 3 frames 2\n",
+             (unsigned long)fl_localizer_fuzzy.state_size);
+    CHECK(strcmp(out, want) == 0);
+    CHECK_EQ(cli_run("bench --loc-frames fuzzy --param nosuch=1", NULL, 0, err, sizeof err), 2);
+    CHECK(strstr(err, "nosuch=1") != NULL);
+}
+
+/* Pixels of the box [u0, u1) x [v0, v1) colored as a particle of the
+ * estimate's cluster (pic_particle_color, any weight). */
+static long count_cluster_px(const host_image_t *im, int u0, int u1, int v0, int v1)
+{
+    static uint8_t *is_col;
+    long n = 0;
+    int u, v;
+    if (is_col == NULL) {
+        int w;
+        is_col = calloc(1u << 21, 1);   /* one bit per 24-bit color */
+        if (is_col == NULL)
+            return -1;
+        for (w = 0; w <= 65535; w++) {
+            uint8_t c[3];
+            uint32_t k;
+            pic_particle_color(w / 65535.0, 1, c);
+            k = (uint32_t)c[0] << 16 | (uint32_t)c[1] << 8 | c[2];
+            is_col[k >> 3] = (uint8_t)(is_col[k >> 3] | 1u << (k & 7));
+        }
+    }
+    for (v = v0; v < v1 && v < im->height; v++)
+        for (u = u0; u < u1 && u < im->width; u++) {
+            const uint8_t *p = im->rgb + 3 * ((size_t)v * (size_t)im->width + (size_t)u);
+            uint32_t k = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
+            n += (is_col[k >> 3] >> (k & 7)) & 1;
+        }
+    return n;
+}
+
+/* demo with the particle filter, and --compare: the belief picture shows
+ * the particles of the estimate's cluster, on the field and in the 4 x
+ * view beside it (as tall as the picture); the second pass over the
+ * cached observations (here the same filter, same seed) gives the same
+ * summary, the side-by-side picture of the last record has both beliefs
+ * and a caption naming both; the observation cache is removed. */
+static void t_demo_compare(void)
+{
+    char args[2048], out[8192], *second;
+    host_image_t both, belief;
+    if (t_quick)
+        return;
+    if (cli_find() != 0) {
+        t_info("skipped: %s not built", t_cli);
+        return;
+    }
+    snprintf(args, sizeof args,
+             "demo --seconds 0.2 --picture-every-s 0 --no-png --out %s/cmp --localizer mcl "
+             "--compare mcl", t_dir);
+    CHECK_EQ(cli_run(args, out, sizeof out, NULL, 0), 0);
+    second = strstr(out, "# compare: mcl on the same observations\n");
+    CHECK(second != NULL);
+    if (second != NULL) {
+        const char *a = strstr(out, "\npos_rmse_mm "), *b = strstr(second, "\npos_rmse_mm ");
+        CHECK(a != NULL && b != NULL && a < second && strncmp(a, b, 24) == 0);
+    }
+    if (read_pic("cmp/belief_final.ppm", &belief) == 0) {
+        CHECK_EQ(belief.width, 832 + 4 + 592);
+        CHECK(count_cluster_px(&belief, 0, 832, 0, 592) >= 100);
+        CHECK(count_cluster_px(&belief, 836, 836 + 592, 0, 592) >= 1000);
+        host_image_free(&belief);
+    } else
+        t_fail_msg(__FILE__, __LINE__, "mcl belief picture readable");
+    if (read_pic("cmp/compare_demo_final.ppm", &both) == 0) {
+        CHECK_EQ(both.width, 2 * (832 + 4 + 592) + 8);
+        CHECK(both.height > 592);
+        CHECK(caption_starts_with(&both, 592, "left mcl: t 0.2 s", 2));
+        CHECK(count_cluster_px(&both, 1436, 1436 + 832, 0, 592) >= 100);
+        host_image_free(&both);
+    } else
+        t_fail_msg(__FILE__, __LINE__, "compare picture readable");
+    snprintf(args, sizeof args, "%s/cmp/compare_obs.cache", t_dir);
+    CHECK(access(args, F_OK) != 0);
+}
+
 /* ---- calibration files end to end ------------------------------------------ */
 
 static int write_text(const char *name, const char *text)
@@ -591,6 +691,8 @@ void suite_cli(void)
     t_run("cli.caption", t_caption);
     t_run("cli.numbers", t_numbers);
     t_run("cli.pictures", t_pictures);
+    t_run("cli.bench_loc", t_bench_loc);
+    t_run("cli.demo_compare", t_demo_compare);
     t_run("cli.calib_files", t_calib_files);
     t_run("cli.stream", t_stream);
 }

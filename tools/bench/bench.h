@@ -23,7 +23,16 @@ double bench_now_ns(void);
 int bench_vision_write_noise(const char *dir) __attribute__((weak));
 int bench_scan_write_noise(const char *dir) __attribute__((weak));
 
-#define FL_BENCHES(X) X(fixed) X(scan) X(vision) X(adversarial) X(fuzzy)
+/* bench_loc.c: the catalogue's names, one per line; and N frames of one
+ * localizer after the walk (callgrind_loc.sh collects bench_loc_frame)
+ * with params "NAME=VALUE" (after the vision preset when vision) and k_obs
+ * observations (and a view when vision); prints a "loc NAME state_size B
+ * samples P obs K frames N [vision]" line.  0 on success. */
+int bench_loc_list(void) __attribute__((weak));
+int bench_loc_repeat(const char *name, const char *const *param, int n_param, long repeat,
+                     int k_obs, int vision) __attribute__((weak));
+
+#define FL_BENCHES(X) X(fixed) X(scan) X(vision) X(adversarial) X(fuzzy) X(loc)
 #define FL_DECL_BENCH(name) void bench_##name(bench_ctx_t *ctx) __attribute__((weak));
 FL_BENCHES(FL_DECL_BENCH)
 

@@ -42,8 +42,8 @@
  *
  * --pictures DIR writes DIR/frame_NNNNN.ppm (+ .png with OpenCV): the frame
  * with the detected features and the field model seen from the estimate,
- * next to the belief grid (tools/eval/picture.h); every frame, or every Nth with
- * --picture-every N.
+ * next to the belief (the grid's cells, or a particle filter's particles:
+ * tools/eval/picture.h); every frame, or every Nth with --picture-every N.
  *
  * --uva-spots: the UvA 2013 qvga frames of the real-data
  * folder (tools/io/realdata.h; skipped with a message when absent) grouped by

@@ -7,8 +7,10 @@
  * per cell tick.
  */
 #include "eval/picture.h"
+#include "io/font.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -71,24 +73,74 @@ static void pic_ramp(double h, uint8_t *c)
         c[k] = (uint8_t)lround(stop[i][k] + f * (stop[i + 1][k] - stop[i][k]));
 }
 
+/* The picture's grid: the localizer's own, or, for a localizer whose
+ * belief is a set of samples, the geometry the fuzzy grid would have on
+ * the field's carpet (FL_FUZZY_CELL_MM cells, centred like fuzzy.c's), so
+ * that both pictures of one field have the same size and scale.  *samples:
+ * 1 for the latter.  0 on success. */
+static int pic_geometry(const fl_localizer_t *loc, const void *state, const fl_field_t *field,
+                        fl_loc_grid_t *g, int *samples)
+{
+    int32_t hx, hy, nx, ny;
+    *samples = 0;
+    memset(g, 0, sizeof *g);
+    if (loc == NULL || state == NULL)
+        return -1;
+    if (loc->belief_grid != NULL && loc->belief_grid(state, g))
+        return g->nx > 0 && g->ny > 0 ? 0 : -1;
+    if (loc->belief_samples == NULL || loc->belief_sample == NULL || field == NULL ||
+        loc->belief_samples(state) == 0)
+        return -1;
+    hx = fl_field_carpet_half_x_mm(field);
+    hy = fl_field_carpet_half_y_mm(field);
+    if (hx <= 0 || hy <= 0 || hx > 100000 || hy > 100000)
+        return -1;
+    nx = (2 * hx + FL_FUZZY_CELL_MM - 1) / FL_FUZZY_CELL_MM;
+    ny = (2 * hy + FL_FUZZY_CELL_MM - 1) / FL_FUZZY_CELL_MM;
+    g->nx = (uint16_t)nx;
+    g->ny = (uint16_t)ny;
+    g->x0_mm = -((nx * FL_FUZZY_CELL_MM) / 2);
+    g->y0_mm = -((ny * FL_FUZZY_CELL_MM) / 2);
+    g->cell_mm = FL_FUZZY_CELL_MM;
+    *samples = 1;
+    return 0;
+}
+
+static int pic_scale(int px_per_cell)
+{
+    int s = px_per_cell <= 0 ? PIC_DEFAULT_PX_PER_CELL : px_per_cell;
+    return s < 2 ? 2 : s > 32 ? 32 : s;
+}
+
+int pic_belief_size_on(const fl_localizer_t *loc, const void *state, const fl_field_t *field,
+                       int px_per_cell, int *width, int *height)
+{
+    int s = pic_scale(px_per_cell), samples;
+    fl_loc_grid_t g;
+    if (pic_geometry(loc, state, field, &g, &samples) != 0)
+        return -1;
+    if (width)
+        *width = g.nx * s;
+    if (height)
+        *height = g.ny * s;
+    return 0;
+}
+
 int pic_belief_size(const fl_localizer_t *loc, const void *state, int px_per_cell,
                     int *width, int *height)
 {
-    int s = px_per_cell <= 0 ? PIC_DEFAULT_PX_PER_CELL : px_per_cell;
-    fl_loc_grid_t gr;
-    if (loc == NULL || state == NULL || loc->belief_grid == NULL ||
-        !loc->belief_grid(state, &gr) || gr.nx == 0 || gr.ny == 0)
-        return -1;
-    const fl_loc_grid_t *g = &gr;
-    if (s < 2)
-        s = 2;
-    if (s > 32)
-        s = 32;
-    if (width)
-        *width = g->nx * s;
-    if (height)
-        *height = g->ny * s;
-    return 0;
+    return pic_belief_size_on(loc, state, NULL, px_per_cell, width, height);
+}
+
+unsigned pic_belief_legend(const fl_localizer_t *loc, const void *state)
+{
+    fl_loc_grid_t g;
+    if (loc == NULL || state == NULL || (loc->belief_grid != NULL && loc->belief_grid(state, &g)))
+        return PIC_LEGEND_BELIEF;
+    return loc->belief_samples != NULL && loc->belief_sample != NULL &&
+                   loc->belief_samples(state) > 0
+               ? PIC_LEGEND_PARTICLES
+               : PIC_LEGEND_BELIEF;
 }
 
 typedef struct {
@@ -101,30 +153,183 @@ static void pic_to_px(const pic_map_t *m, double x, double y, double *u, double 
     *v = m->h - (y - m->y0) * m->s - 0.5;
 }
 
+static const uint8_t pic_carpet[3] = {18, 62, 28}, pic_white[3] = {235, 235, 235},
+                     pic_black[3] = {0, 0, 0};
+
+/* Field lines, centre circle, posts/beacons and marks. */
+static void pic_draw_field(host_image_t *out, const pic_map_t *m, const fl_field_t *f, int s)
+{
+    int i;
+    for (i = 0; i < f->n_lines; i++) {
+        double a, b, c2, d;
+        pic_to_px(m, f->lines[i].x0_mm, f->lines[i].y0_mm, &a, &b);
+        pic_to_px(m, f->lines[i].x1_mm, f->lines[i].y1_mm, &c2, &d);
+        pic_line(out, a, b, c2, d, pic_white, 0);
+    }
+    if (f->circle_radius_mm > 0) {
+        double cu, cv;
+        pic_to_px(m, 0, 0, &cu, &cv);
+        pic_ring(out, cu, cv, f->circle_radius_mm * m->s, pic_white);
+    }
+    for (i = 0; i < f->n_landmarks; i++) {
+        const fl_landmark_t *lm = &f->landmarks[i];
+        double a, b;
+        if (lm->kind != FL_LM_POST && lm->kind != FL_LM_BEACON && lm->kind != FL_LM_PENALTY_MARK &&
+            lm->kind != FL_LM_CENTRE_MARK)
+            continue;
+        pic_to_px(m, lm->x_mm, lm->y_mm, &a, &b);
+        if (lm->kind == FL_LM_POST || lm->kind == FL_LM_BEACON) {
+            static const uint8_t yellow[3] = {255, 220, 0}, sky[3] = {80, 180, 255},
+                                 pink[3] = {255, 120, 200};
+            const uint8_t *pc = lm->color == FL_COLOR_SKYBLUE ? sky
+                              : lm->color == FL_COLOR_YELLOW ? yellow
+                              : lm->color == FL_COLOR_WHITE ? pic_white : pink;
+            pic_square(out, a, b, s / 3 > 1 ? s / 3 : 1, pc, pic_black);
+        } else {
+            pic_line(out, a - 2, b, a + 2, b, pic_white, 0);
+            pic_line(out, a, b - 2, a, b + 2, pic_white, 0);
+        }
+    }
+}
+
+/* The observations seen from the estimate, the truth and the estimate. */
+static void pic_draw_marks(host_image_t *out, const pic_map_t *m, int s, const pic_pose_t *truth,
+                           const fl_loc_estimate_t *est, const fl_obs_list_t *obs)
+{
+    static const uint8_t cyan[3] = {0, 230, 255}, magenta[3] = {255, 40, 255};
+    int i;
+    if (obs != NULL && est != NULL) {
+        double eh = est->heading * (PIC_PI / 32768.0);
+        for (i = 0; i < obs->n; i++) {
+            const fl_obs_t *o = &obs->obs[i];
+            double b = eh + o->bearing * (PIC_PI / 32768.0), a, c2;
+            pic_to_px(m, est->x_mm + o->range_mm * cos(b), est->y_mm + o->range_mm * sin(b), &a,
+                      &c2);
+            pic_square(out, a, c2, s >= 6 ? 3 : 2, pic_white, pic_black);
+        }
+    }
+    if (truth != NULL) {
+        double a, b, h = truth->heading_deg * (PIC_PI / 180.0);
+        pic_to_px(m, truth->x_mm, truth->y_mm, &a, &b);
+        pic_ring(out, a, b, 1.6 * s, cyan);
+        pic_ring(out, a, b, 1.6 * s + 1, cyan);
+        pic_line(out, a, b, a + 3.5 * s * cos(h), b - 3.5 * s * sin(h), cyan, 0);
+    }
+    if (est != NULL) {
+        double a, b, h = est->heading * (PIC_PI / 32768.0);
+        double L = (2.0 + 2.5 * est->reliability_q16 / 65536.0) * s;
+        pic_to_px(m, est->x_mm, est->y_mm, &a, &b);
+        pic_ring(out, a, b, 1.1 * s, magenta);
+        pic_ring(out, a, b, 1.1 * s + 1, magenta);
+        pic_line(out, a, b, a + L * cos(h), b - L * sin(h), magenta, 0);
+        pic_line(out, a + 1, b, a + 1 + L * cos(h), b - L * sin(h), magenta, 0);
+    }
+}
+
+/* Color of a sample of relative weight w (0..1): in the estimate's cluster
+ * the grid's ramp from its second stop up (never darker than dark
+ * magenta, so a light particle still shows on the carpet), elsewhere a
+ * ramp of blues. */
+void pic_particle_color(double w, int in_mode, uint8_t *c)
+{
+    static const double lo[3] = {50, 70, 115}, hi[3] = {150, 195, 255};
+    int k;
+    w = w < 0 ? 0 : w > 1 ? 1 : w;
+    if (in_mode) {
+        pic_ramp(0.25 + 0.75 * w, c);
+        return;
+    }
+    for (k = 0; k < 3; k++)
+        c[k] = (uint8_t)lround(lo[k] + w * (hi[k] - lo[k]));
+}
+
+static int pic_sample_cmp(const void *pa, const void *pb)
+{
+    const fl_loc_sample_t *a = pa, *b = pb;
+    if (a->in_mode != b->in_mode)
+        return a->in_mode ? 1 : -1;
+    return (a->weight_q16 > b->weight_q16) - (a->weight_q16 < b->weight_q16);
+}
+
+/* Samples as dots with a heading tick, the lighter first (the cluster's
+ * and the heavy ones stay on top), then the cluster's spread: the
+ * estimate's 2-sd ellipse (from sd_x, sd_y and cov_xy) dotted. */
+static int pic_draw_samples(host_image_t *out, const pic_map_t *m, int s,
+                            const fl_localizer_t *loc, const void *state,
+                            const fl_loc_estimate_t *est)
+{
+    static const uint8_t lime[3] = {150, 255, 60};
+    uint16_t n = loc->belief_samples(state), i, k = 0;
+    fl_loc_sample_t *sp = malloc((size_t)n * sizeof *sp);
+    if (sp == NULL)
+        return -1;
+    for (i = 0; i < n; i++)
+        if (loc->belief_sample(state, i, &sp[k]))
+            k++;
+    qsort(sp, k, sizeof *sp, pic_sample_cmp);
+    for (i = 0; i < k; i++) {
+        /* 0.9 cell at the field's scale; shorter (in mm) when magnified,
+         * or a cluster's ticks hide each other */
+        double a, b, h = sp[i].heading * (PIC_PI / 32768.0),
+                  L = s <= PIC_DEFAULT_PX_PER_CELL ? 0.9 * s
+                                                   : 0.9 * PIC_DEFAULT_PX_PER_CELL +
+                                                         0.15 * (s - PIC_DEFAULT_PX_PER_CELL);
+        uint8_t col[3];
+        pic_particle_color(sp[i].weight_q16 / 65535.0, sp[i].in_mode, col);
+        pic_to_px(m, sp[i].x_mm, sp[i].y_mm, &a, &b);
+        pic_line(out, a, b, a + L * cos(h), b - L * sin(h), col, 0);
+        pic_square(out, a, b, s >= 24 ? 2 : s >= 6 ? 1 : 0, col, col);
+    }
+    free(sp);
+    if (est != NULL && est->state != FL_LOC_LOST && est->sd_x_mm > 0 && est->sd_y_mm > 0) {
+        /* Cholesky factor of the covariance: (l11, 0; l21, l22) */
+        double l11 = est->sd_x_mm, l21 = est->cov_xy_mm2 / l11,
+               r = (double)est->sd_y_mm * est->sd_y_mm - l21 * l21, l22 = r > 0 ? sqrt(r) : 0;
+        int j, steps = 96;
+        for (j = 0; j < steps; j++) {
+            double t = 2 * PIC_PI * j / steps, c = 2 * cos(t), d = 2 * sin(t), u0, v0, u1, v1;
+            double t1 = 2 * PIC_PI * (j + 1) / steps, c1 = 2 * cos(t1), d1 = 2 * sin(t1);
+            if (j & 1)
+                continue;
+            pic_to_px(m, est->x_mm + l11 * c, est->y_mm + l21 * c + l22 * d, &u0, &v0);
+            pic_to_px(m, est->x_mm + l11 * c1, est->y_mm + l21 * c1 + l22 * d1, &u1, &v1);
+            pic_line(out, u0, v0, u1, v1, lime, 0);
+        }
+    }
+    return 0;
+}
+
 int pic_belief(const fl_localizer_t *loc, const void *state, const fl_field_t *f, int px_per_cell,
                const pic_pose_t *truth, const fl_loc_estimate_t *est,
                const fl_obs_list_t *obs, host_image_t *out)
 {
-    static const uint8_t carpet[3] = {18, 62, 28}, white[3] = {235, 235, 235},
-                         black[3] = {0, 0, 0}, cyan[3] = {0, 230, 255},
-                         magenta[3] = {255, 40, 255};
-    int W, H, s, ix, iy, i, u, v;
+    int W, H, s, ix, iy, u, v, samples;
     pic_map_t m;
     fl_loc_grid_t gr;
     const fl_loc_grid_t *g = &gr;
     memset(out, 0, sizeof *out);
-    if (pic_belief_size(loc, state, px_per_cell, &W, &H) != 0 || loc->belief_cell == NULL ||
-        f == NULL)
+    if (f == NULL || pic_geometry(loc, state, f, &gr, &samples) != 0 ||
+        (!samples && loc->belief_cell == NULL))
         return -1;
-    loc->belief_grid(state, &gr);
-    s = W / g->nx;
-    *out = host_image_new(W, H, carpet[0], carpet[1], carpet[2]);
+    s = pic_scale(px_per_cell);
+    W = g->nx * s;
+    H = g->ny * s;
+    *out = host_image_new(W, H, pic_carpet[0], pic_carpet[1], pic_carpet[2]);
     if (out->rgb == NULL)
         return -1;
     m.x0 = g->x0_mm;
     m.y0 = g->y0_mm;
     m.s = (double)s / g->cell_mm;
     m.h = H;
+    if (samples) {
+        pic_draw_field(out, &m, f, s);
+        if (pic_draw_samples(out, &m, s, loc, state, est) != 0) {
+            host_image_free(out);
+            return -1;
+        }
+        pic_draw_marks(out, &m, s, truth, est, obs);
+        return 0;
+    }
     /* cells */
     for (iy = 0; iy < g->ny; iy++) {
         for (ix = 0; ix < g->nx; ix++) {
@@ -140,37 +345,7 @@ int pic_belief(const fl_localizer_t *loc, const void *state, const fl_field_t *f
                     pic_px(out, u0 + u, v0 + v, col);
         }
     }
-    /* field lines and circle */
-    for (i = 0; i < f->n_lines; i++) {
-        double a, b, c2, d;
-        pic_to_px(&m, f->lines[i].x0_mm, f->lines[i].y0_mm, &a, &b);
-        pic_to_px(&m, f->lines[i].x1_mm, f->lines[i].y1_mm, &c2, &d);
-        pic_line(out, a, b, c2, d, white, 0);
-    }
-    if (f->circle_radius_mm > 0) {
-        double cu, cv;
-        pic_to_px(&m, 0, 0, &cu, &cv);
-        pic_ring(out, cu, cv, f->circle_radius_mm * m.s, white);
-    }
-    for (i = 0; i < f->n_landmarks; i++) {
-        const fl_landmark_t *lm = &f->landmarks[i];
-        double a, b;
-        if (lm->kind != FL_LM_POST && lm->kind != FL_LM_BEACON && lm->kind != FL_LM_PENALTY_MARK &&
-            lm->kind != FL_LM_CENTRE_MARK)
-            continue;
-        pic_to_px(&m, lm->x_mm, lm->y_mm, &a, &b);
-        if (lm->kind == FL_LM_POST || lm->kind == FL_LM_BEACON) {
-            static const uint8_t yellow[3] = {255, 220, 0}, sky[3] = {80, 180, 255},
-                                 pink[3] = {255, 120, 200};
-            const uint8_t *pc = lm->color == FL_COLOR_SKYBLUE ? sky
-                              : lm->color == FL_COLOR_YELLOW ? yellow
-                              : lm->color == FL_COLOR_WHITE ? white : pink;
-            pic_square(out, a, b, s / 3 > 1 ? s / 3 : 1, pc, black);
-        } else {
-            pic_line(out, a - 2, b, a + 2, b, white, 0);
-            pic_line(out, a, b - 2, a, b + 2, white, 0);
-        }
-    }
+    pic_draw_field(out, &m, f, s);
     /* heading ticks */
     for (iy = 0; iy < g->ny; iy++) {
         for (ix = 0; ix < g->nx; ix++) {
@@ -181,36 +356,50 @@ int pic_belief(const fl_localizer_t *loc, const void *state, const fl_field_t *f
             if (!loc->belief_cell(state, ix, iy, &cl) || c->height_q8 < 64 || c->spread >= 8192)
                 continue;
             a = c->heading * (PIC_PI / 32768.0);
-            pic_line(out, cu, cv, cu + L * cos(a), cv - L * sin(a), black, 0);
+            pic_line(out, cu, cv, cu + L * cos(a), cv - L * sin(a), pic_black, 0);
         }
     }
-    /* observations from the estimate */
-    if (obs != NULL && est != NULL) {
-        double eh = est->heading * (PIC_PI / 32768.0);
-        for (i = 0; i < obs->n; i++) {
-            const fl_obs_t *o = &obs->obs[i];
-            double b = eh + o->bearing * (PIC_PI / 32768.0), a, c2;
-            pic_to_px(&m, est->x_mm + o->range_mm * cos(b), est->y_mm + o->range_mm * sin(b), &a,
-                      &c2);
-            pic_square(out, a, c2, s >= 6 ? 3 : 2, white, black);
-        }
+    pic_draw_marks(out, &m, s, truth, est, obs);
+    return 0;
+}
+
+int pic_belief_zoom(const fl_localizer_t *loc, const void *state, const fl_field_t *f,
+                    int32_t cx_mm, int32_t cy_mm, int px_per_cell, int size_px,
+                    const pic_pose_t *truth, const fl_loc_estimate_t *est,
+                    const fl_obs_list_t *obs, host_image_t *out)
+{
+    static const uint8_t frame_col[3] = {150, 150, 150};
+    int s, samples, i;
+    pic_map_t m;
+    fl_loc_grid_t g;
+    char label[32];
+    memset(out, 0, sizeof *out);
+    if (f == NULL || pic_geometry(loc, state, f, &g, &samples) != 0 || !samples ||
+        size_px < 32 || size_px > 4096)
+        return -1;
+    s = px_per_cell <= 0 ? 4 * PIC_DEFAULT_PX_PER_CELL : px_per_cell < 2 ? 2 : px_per_cell > 128 ? 128 : px_per_cell;
+    *out = host_image_new(size_px, size_px, pic_carpet[0], pic_carpet[1], pic_carpet[2]);
+    if (out->rgb == NULL)
+        return -1;
+    m.s = (double)s / g.cell_mm;
+    m.x0 = cx_mm - size_px / 2.0 / m.s;
+    m.y0 = cy_mm - size_px / 2.0 / m.s;
+    m.h = size_px;
+    pic_draw_field(out, &m, f, s);
+    if (pic_draw_samples(out, &m, s, loc, state, est) != 0) {
+        host_image_free(out);
+        return -1;
     }
-    if (truth != NULL) {
-        double a, b, h = truth->heading_deg * (PIC_PI / 180.0);
-        pic_to_px(&m, truth->x_mm, truth->y_mm, &a, &b);
-        pic_ring(out, a, b, 1.6 * s, cyan);
-        pic_ring(out, a, b, 1.6 * s + 1, cyan);
-        pic_line(out, a, b, a + 3.5 * s * cos(h), b - 3.5 * s * sin(h), cyan, 0);
+    pic_draw_marks(out, &m, s, truth, est, obs);
+    for (i = 0; i < size_px; i++) {
+        pic_px(out, i, 0, frame_col);
+        pic_px(out, i, size_px - 1, frame_col);
+        pic_px(out, 0, i, frame_col);
+        pic_px(out, size_px - 1, i, frame_col);
     }
-    if (est != NULL) {
-        double a, b, h = est->heading * (PIC_PI / 32768.0);
-        double L = (2.0 + 2.5 * est->reliability_q16 / 65536.0) * s;
-        pic_to_px(&m, est->x_mm, est->y_mm, &a, &b);
-        pic_ring(out, a, b, 1.1 * s, magenta);
-        pic_ring(out, a, b, 1.1 * s + 1, magenta);
-        pic_line(out, a, b, a + L * cos(h), b - L * sin(h), magenta, 0);
-        pic_line(out, a + 1, b, a + 1 + L * cos(h), b - L * sin(h), magenta, 0);
-    }
+    snprintf(label, sizeof label, "x%g: %.1f m wide", (double)s / PIC_DEFAULT_PX_PER_CELL,
+             size_px / m.s / 1000.0);
+    font_draw(out, 4, 4, label, frame_col, 1);
     return 0;
 }
 

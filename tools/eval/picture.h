@@ -17,6 +17,16 @@
  * line; estimate: magenta ring with a heading line (longer when more
  * reliable); observations: small white/black squares at the estimate
  * pose + (range, bearing).
+ *
+ * A localizer whose belief is a set of samples (belief_samples > 0, no
+ * belief_grid) gets the same picture geometry (the grid the fuzzy
+ * localizer would have on that field's carpet: same size and scale) with,
+ * on the carpet, every sample as a dot with a heading tick (0.9 cell
+ * long; pic_belief_zoom: a little longer in pixels, shorter in mm) shaded by its relative weight: in the estimate's cluster (in_mode)
+ * on the grid's ramp from dark magenta (light) to pale yellow (heaviest),
+ * the others in blues (dark: light, pale: heavy); drawn lightest first;
+ * then the cluster's spread, the estimate's 2-sd ellipse (lime, dotted),
+ * and the same lines, observations, truth and estimate.
  */
 #ifndef FL_TOOLS_PICTURE_H
 #define FL_TOOLS_PICTURE_H
@@ -39,15 +49,40 @@ typedef struct {
 int pic_belief_size(const fl_localizer_t *loc, const void *state, int px_per_cell,
                     int *width, int *height);
 
+/* The same for any localizer: a sample localizer's picture needs the
+ * field (its carpet gives the geometry).  pic_belief_size refuses it. */
+int pic_belief_size_on(const fl_localizer_t *loc, const void *state, const fl_field_t *field,
+                       int px_per_cell, int *width, int *height);
+
+/* The legend set of the belief picture of this state: PIC_LEGEND_PARTICLES
+ * for a sample localizer, PIC_LEGEND_BELIEF otherwise. */
+unsigned pic_belief_legend(const fl_localizer_t *loc, const void *state);
+
+/* Color of a sample of relative weight w (0..1), in the estimate's
+ * cluster or not (the legend's swatches use it). */
+void pic_particle_color(double w, int in_mode, uint8_t *c);
+
 /* Draw the belief into a new image (out->rgb malloc'd; free with
  * host_image_free); field: the state's field (lines drawn).  truth, est,
  * obs may be NULL.  0 on success, -1 on a
- * NULL/uninitialized state, a localizer without belief_grid or out of
- * memory. */
+ * NULL/uninitialized state, a localizer with neither a grid nor samples,
+ * or out of memory. */
 int pic_belief(const fl_localizer_t *loc, const void *state, const fl_field_t *field,
                int px_per_cell,
                const pic_pose_t *truth, const fl_loc_estimate_t *est,
                const fl_obs_list_t *obs, host_image_t *out);
+
+/* A sample localizer's belief magnified: a size_px square centred on
+ * (cx, cy) at px_per_cell pixels per 100 mm cell (0: 4 x the default, 32;
+ * clamped to 2..128), drawn as pic_belief draws it (particles, cluster,
+ * lines, truth, estimate, observations) with a grey frame and its scale
+ * written in the top left corner.  0 on success; -1 for a grid localizer
+ * (its picture shows the cells already), no samples, size_px outside
+ * 32..4096 or out of memory. */
+int pic_belief_zoom(const fl_localizer_t *loc, const void *state, const fl_field_t *field,
+                    int32_t cx_mm, int32_t cy_mm, int px_per_cell, int size_px,
+                    const pic_pose_t *truth, const fl_loc_estimate_t *est,
+                    const fl_obs_list_t *obs, host_image_t *out);
 
 /* The frame with the last vision run of det drawn over it (det_draw) and,
  * when pose is not NULL, the field lines and circle projected from that
@@ -67,7 +102,8 @@ int pic_side_by_side(const host_image_t *a, const host_image_t *b, int gap,
  * image (never over data): optional caption lines (time, error,
  * reliability...), then one swatch + text per mark, wrapped to the width.
  * The text uses the built-in 5 x 7 font (tools/io/font.h), light grey on
- * PIC_LEGEND_BG.  The sets name the marks of each drawing function: */
+ * PIC_LEGEND_BG.  An item two sets share (same mark, color and text) is
+ * shown once.  The sets name the marks of each drawing function: */
 #define PIC_LEGEND_DETECT  0x01u  /* det_draw: points, segments, crossings, posts, circle */
 #define PIC_LEGEND_MODEL   0x02u  /* pic_frame: the field model seen from the estimate */
 #define PIC_LEGEND_BELIEF  0x04u  /* pic_belief: shading, ticks, truth, estimate, obs */
@@ -77,6 +113,9 @@ int pic_side_by_side(const host_image_t *a, const host_image_t *b, int gap,
 #define PIC_LEGEND_EVAL    0x40u  /* eval-detect: truth rings */
 #define PIC_LEGEND_MASK    0x80u  /* render --mask: the renderer's pixel classes */
 #define PIC_LEGEND_TRUTH   0x100u /* pic_belief with a truth pose: its ring */
+#define PIC_LEGEND_PARTICLES 0x200u /* pic_belief of samples (instead of _BELIEF):
+                                       carpet, particles, cluster, lines, estimate,
+                                       obs */
 
 /* Strip background; the caption and labels are drawn in PIC_LEGEND_FG. */
 #define PIC_LEGEND_BG 24

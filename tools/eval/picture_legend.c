@@ -26,7 +26,7 @@
 
 typedef enum {
     MK_FILL, MK_BOX, MK_LINE, MK_DOTTED, MK_DOTS, MK_RING, MK_CROSS, MK_SQUARE, MK_RAMP,
-    MK_TICK
+    MK_TICK, MK_PART_IN, MK_PART_OUT
 } pic_mark_t;
 
 typedef struct {
@@ -56,6 +56,16 @@ static const pic_item_t set_belief[] = {
     {MK_FILL, {18, 62, 28}, "belief 0"},
     {MK_RAMP, {0, 0, 0}, "belief low..high"},
     {MK_TICK, {0, 0, 0}, "cell heading"},
+    {MK_LINE, {235, 235, 235}, "field lines"},
+    {MK_RING, {255, 40, 255}, "estimate (longer = more reliable)"},
+    {MK_SQUARE, {255, 255, 255}, "observation from the estimate"},
+    {MK_SQUARE, {255, 220, 0}, "post/beacon"},
+};
+static const pic_item_t set_particles[] = {
+    {MK_FILL, {18, 62, 28}, "carpet"},
+    {MK_PART_IN, {0, 0, 0}, "particle in the estimate's cluster (shade = weight, tick = heading)"},
+    {MK_PART_OUT, {0, 0, 0}, "other particle"},
+    {MK_DOTTED, {150, 255, 60}, "cluster spread (2 sd)"},
     {MK_LINE, {235, 235, 235}, "field lines"},
     {MK_RING, {255, 40, 255}, "estimate (longer = more reliable)"},
     {MK_SQUARE, {255, 255, 255}, "observation from the estimate"},
@@ -106,7 +116,8 @@ static const struct {
     PIC_SET(PIC_LEGEND_SCAN, set_scan),   PIC_SET(PIC_LEGEND_CLASSES, set_classes),
     PIC_SET(PIC_LEGEND_BORDER, set_border), PIC_SET(PIC_LEGEND_DETECT, set_detect),
     PIC_SET(PIC_LEGEND_EVAL, set_eval),   PIC_SET(PIC_LEGEND_MODEL, set_model),
-    PIC_SET(PIC_LEGEND_BELIEF, set_belief), PIC_SET(PIC_LEGEND_TRUTH, set_truth),
+    PIC_SET(PIC_LEGEND_BELIEF, set_belief), PIC_SET(PIC_LEGEND_PARTICLES, set_particles),
+    PIC_SET(PIC_LEGEND_TRUTH, set_truth),
     PIC_SET(PIC_LEGEND_MASK, set_mask),
 #undef PIC_SET
 };
@@ -156,6 +167,26 @@ static void swatch(host_image_t *im, int x, int y, int sc, const pic_item_t *it)
         for (i = c; i < PIC_SW - 1; i++)
             sput(im, x, y, sc, i, c, black);
         break;
+    case MK_PART_IN:
+    case MK_PART_OUT: {
+        /* three particles on the carpet, light to heavy, ticks to the right */
+        static const uint8_t carpet[3] = {18, 62, 28};
+        static const int pu[3] = {2, 2, 6}, pv[3] = {2, 8, 5};
+        static const double pw[3] = {0.1, 0.5, 1.0};
+        int n;
+        for (j = 0; j < PIC_SW; j++)
+            for (i = 0; i < PIC_SW; i++)
+                sput(im, x, y, sc, i, j, carpet);
+        for (n = 0; n < 3; n++) {
+            uint8_t col[3];
+            pic_particle_color(pw[n], it->mark == MK_PART_IN, col);
+            for (i = -1; i <= 3; i++)
+                sput(im, x, y, sc, pu[n] + i, pv[n], col);
+            sput(im, x, y, sc, pu[n], pv[n] - 1, col);
+            sput(im, x, y, sc, pu[n], pv[n] + 1, col);
+        }
+        break;
+    }
     case MK_BOX:
         for (i = -3; i <= 3; i++) {
             sput(im, x, y, sc, c + i, c - 3, it->rgb);
@@ -193,6 +224,25 @@ static void swatch(host_image_t *im, int x, int y, int sc, const pic_item_t *it)
                      (abs(i) == 3 || abs(j) == 3) ? black : it->rgb);
         break;
     }
+}
+
+/* Whether an identical item (mark, color, text) of the sets comes before
+ * item i of set k: shown once (a grid's and a particle picture's legends
+ * side by side share the lines, estimate, observations). */
+static int pic_item_repeated(unsigned sets, int k, int i)
+{
+    const pic_item_t *it = &pic_sets[k].items[i];
+    int k2, i2;
+    for (k2 = 0; k2 <= k; k2++) {
+        if (!(sets & pic_sets[k2].bit))
+            continue;
+        for (i2 = 0; i2 < (k2 == k ? i : pic_sets[k2].n); i2++) {
+            const pic_item_t *o = &pic_sets[k2].items[i2];
+            if (o->mark == it->mark && !memcmp(o->rgb, it->rgb, 3) && !strcmp(o->text, it->text))
+                return 1;
+        }
+    }
+    return 0;
 }
 
 /* Lay out (and, with im, draw) the strip at row y0 of an image of width W;
@@ -242,6 +292,8 @@ static int pic_legend_layout(host_image_t *im, int W, int y0, unsigned sets,
         for (i = 0; i < pic_sets[k].n; i++) {
             const pic_item_t *it = &pic_sets[k].items[i];
             int w = (PIC_SW + 4) * cs + font_text_width(it->text, cs);
+            if (pic_item_repeated(sets, k, i))
+                continue;
             if (x > PIC_PAD && x + w > W - PIC_PAD) {
                 x = PIC_PAD;
                 y += PIC_ROW * cs;
