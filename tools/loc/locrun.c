@@ -522,13 +522,13 @@ static void lr_seq_picture(const lr_seq_opts_t *o, lr_t *lr, const render_frame_
     snprintf(caption, sizeof caption, "%s  %s", o->name ? o->name : "", info);
     if (have_frame && pic_frame(&lr->det, &fr->view, &lr->cam, lr->field, &ep, 2, &frame) == 0) {
         if (pic_side_by_side(&frame, &belief, 8, &both) == 0) {
-            if (pic_legend_inplace(&both, PIC_LEGEND_DETECT | PIC_LEGEND_MODEL | PIC_LEGEND_BELIEF,
-                                   caption) == 0)
+            if (pic_legend_inplace(&both, PIC_LEGEND_DETECT | PIC_LEGEND_MODEL |
+                                   pic_belief_legend(lr->loc, lr->state), caption) == 0)
                 pic_save(&both, base, 1, NULL);
             host_image_free(&both);
         }
         host_image_free(&frame);
-    } else if (pic_legend_inplace(&belief, PIC_LEGEND_BELIEF, caption) == 0) {
+    } else if (pic_legend_inplace(&belief, pic_belief_legend(lr->loc, lr->state), caption) == 0) {
         pic_save(&belief, base, 1, NULL);
     }
     host_image_free(&belief);
