@@ -13,6 +13,7 @@ T_SUITE(color_file);
 T_SUITE(scan);
 T_SUITE(fuzzy);
 T_SUITE(localizer);
+T_SUITE(mcl);
 T_SUITE(confidence);
 T_SUITE(lines);
 T_SUITE(features);
