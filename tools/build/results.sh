@@ -28,7 +28,7 @@
 # with the parameter "seed") over random-generator seeds $RNG_SEEDS
 # (default 1-5); a particle localizer (parameter "n_particles") over the
 # counts $PARTICLE_COUNTS (default 32 64 128 256 512; frames mode, RNG
-# seeds $COUNT_RNG_SEEDS, default 1), the counts above the default capacity
+# seeds $COUNT_RNG_SEEDS, default 1-3), the counts above the default capacity
 # with a second CLI built into BUILD/p512 with $BIG_DEFS (default
 # -DFL_MCL_MAX_PARTICLES=512); `localize --uva-spots` per localizer.
 # LOC_JOBS runs that many walks at a time (default: the online CPUs).
@@ -51,7 +51,7 @@ FEATURE_SEEDS=${FEATURE_SEEDS:-"1 2 3 4 5 6"}
 FRAME_SEEDS=${FRAME_SEEDS:-"1 2 3 4 5 6"}
 RNG_SEEDS=${RNG_SEEDS:-"1 2 3 4 5"}
 PARTICLE_COUNTS=${PARTICLE_COUNTS:-"32 64 128 256 512"}
-COUNT_RNG_SEEDS=${COUNT_RNG_SEEDS:-"1"}
+COUNT_RNG_SEEDS=${COUNT_RNG_SEEDS:-"1 2 3"}
 BIG_DEFS=${BIG_DEFS:-"-DFL_MCL_MAX_PARTICLES=512"}
 LOC_JOBS=${LOC_JOBS:-$(nproc)}
 OBS_CACHE_DIR=${OBS_CACHE_DIR:-}
@@ -320,7 +320,7 @@ echo "Command per localizer L: \`$CLI reliability --localizer L --seeds $(commas
 echo
 echo "The contract of include/fieldloc/localizer.h: of the estimates reported with reliability >= r, at"
 echo "least the share r is within 500 mm and 20 degrees of the true pose (the plain truth: a pose on the"
-echo "wrong half is wrong), for every r. Records of the walks above (held-out seeds: the calibration in"
+echo "wrong half is wrong), for every r. Records of the walks above (held-out seeds: the fuzzy grid's calibration in"
 echo "src/loc/fuzzy_estimate.c was fitted on seeds 11 and up), binned by reported reliability; the"
 echo "command fails (and so does this script, unless RELIABILITY_FAILS_OK=1) when the contract fails."
 echo
