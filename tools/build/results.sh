@@ -277,6 +277,9 @@ echo "simulator's feature-level observations (range noise, misses, false positiv
 echo "every step. Mode \`frames\`: each frame rendered at the true pose and run through the vision path"
 echo "on every 3rd step (10 Hz), odometry accumulated between."
 echo
+echo "The fuzzy grid per walk; every localizer of the catalogue side by side, over the same walks and"
+echo "observations: the next section."
+echo
 echo "Columns (definitions at the top of tools/cli/cmd_simulate.c): position and heading RMSE after"
 echo "convergence, excluding the kidnap's and the penalty placement's recovery windows (mm, degrees);"
 echo "convergence time from total ignorance (s; error < 300 mm and 15 deg for 1 s); kidnap recovery time"
