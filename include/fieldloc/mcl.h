@@ -34,11 +34,12 @@
  * and build give the same particles on every target.
  *
  * Memory (FL_MCL_MAX_PARTICLES = 256): particles 8 B each, double-buffered
- * (16 B per particle = 4,096 B), per-particle negative log-likelihood
- * scratch 4 B (1,024 B), landmark tables 264 B, the rest (params,
- * prior, track, averages, the frame's reset observations, counters) about
- * 300 B: sizeof(fl_mcl_t) is 5,656 B on x86-64 (printed by the mcl suite),
- * below 24 B per particle + 1 KiB.  Stack below 1 KiB per call.
+ * (16 B per particle = 4,096 B), per-particle update scratch 8 B (the
+ * negative log-likelihood and the heading's cos and sin: 2,048 B),
+ * landmark tables 264 B, the rest (params, prior, track, averages, the
+ * frame's reset observations, counters) about 300 B: sizeof(fl_mcl_t) is
+ * 6,680 B on x86-64 (printed by the mcl suite), below 24 B per particle
+ * + 1 KiB.  Stack below 1 KiB per call.
  * Cost: predict O(n); update O(n x observations x landmarks of the kind);
  * resample O(n); estimate O(n) (a few passes).  Measured by callgrind.
  */
@@ -162,8 +163,12 @@ typedef struct {
                                     reset to ignorance */
     bool half_known;             /* the game told the half (prior, reset) */
     bool track_valid;
+    bool jitter_due;             /* resampled since the last motion: the
+                                    next predict adds the jitter */
     fl_mcl_particle_t buf[2][FL_MCL_MAX_PARTICLES];
     uint32_t nll[FL_MCL_MAX_PARTICLES];  /* update scratch, Q8 nats */
+    int16_t trig[FL_MCL_MAX_PARTICLES][2];  /* update scratch: cos, sin of
+                                               each particle's heading */
     uint8_t lm_index[FL_MCL_MAX_LANDMARKS];   /* landmark ids by kind */
     uint8_t kind_start[FL_LM_KIND_COUNT + 1]; /* kind k: lm_index[start[k]
                                                  .. start[k+1]) */

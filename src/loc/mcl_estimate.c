@@ -61,43 +61,57 @@ static int32_t bin_cy(const fl_mcl_t *s, int by)
     return -s->box_y_mm + (int32_t)(((2 * by + 1) * (int64_t)(2 * s->box_y_mm + 1)) / (2 * NBY));
 }
 
+/* Whether bin centre (x, y) is in the reference region: near the track,
+ * else in the prior's region. */
+static bool in_reference(const fl_mcl_t *s, int32_t x, int32_t y)
+{
+    if (s->track_valid) {
+        int64_t dx = x - s->track_x_mm, dy = y - s->track_y_mm;
+        int64_t r = 2 * s->params.cluster_mm;
+        return dx * dx + dy * dy <= r * r;
+    }
+    if (s->prior == FL_MCL_PRIOR_HALF)
+        return s->prior_half < 0 ? x < 0 : x > 0;
+    if (s->prior == FL_MCL_PRIOR_POSE) {
+        int64_t dx = x - s->prior_x_mm, dy = y - s->prior_y_mm;
+        int64_t r = s->prior_radius_mm + s->params.cluster_mm;
+        return dx * dx + dy * dy <= r * r;
+    }
+    return false;
+}
+
 /* Steps 1-2: the dominant bin; *switched when the track is given up. */
 static int dominant_bin(const fl_mcl_t *s, bool *switched)
 {
-    uint32_t h[NBY][NBX];
+    uint32_t h[NBY][NBX], r3[NBY][NBX];
+    int32_t cxs[NBX], cys[NBY];
     const fl_mcl_particle_t *p = mcl_live_c(s);
     uint64_t best = 0, bref = 0;
     int gi = 0, ri = -1, bx, by, i;
     memset(h, 0, sizeof h);
+    for (bx = 0; bx < NBX; bx++)
+        cxs[bx] = bin_cx(s, bx);
+    for (by = 0; by < NBY; by++)
+        cys[by] = bin_cy(s, by);
     for (i = 0; i < s->n; i++)
         h[bin_y(s, p[i].y_mm)][bin_x(s, p[i].x_mm)] += p[i].weight;
+    /* 3 x 3 sums, separably: along x, then along y */
+    for (by = 0; by < NBY; by++)
+        for (bx = 0; bx < NBX; bx++)
+            r3[by][bx] = h[by][bx] + (bx > 0 ? h[by][bx - 1] : 0u) +
+                         (bx + 1 < NBX ? h[by][bx + 1] : 0u);
     for (by = 0; by < NBY; by++)
         for (bx = 0; bx < NBX; bx++) {
-            uint64_t sum = 0;
-            int u, v;
-            bool in_ref = false;
-            for (v = by - 1; v <= by + 1; v++)
-                for (u = bx - 1; u <= bx + 1; u++)
-                    if (u >= 0 && u < NBX && v >= 0 && v < NBY)
-                        sum += h[v][u];
+            uint64_t sum;
             if (h[by][bx] == 0u)
                 continue;
+            sum = (uint64_t)r3[by][bx] + (by > 0 ? r3[by - 1][bx] : 0u) +
+                  (by + 1 < NBY ? r3[by + 1][bx] : 0u);
             if (sum > best) {
                 best = sum;
                 gi = by * NBX + bx;
             }
-            if (s->track_valid) {
-                int64_t dx = bin_cx(s, bx) - s->track_x_mm, dy = bin_cy(s, by) - s->track_y_mm;
-                int64_t r = 2 * s->params.cluster_mm;
-                in_ref = dx * dx + dy * dy <= r * r;
-            } else if (s->prior == FL_MCL_PRIOR_HALF) {
-                in_ref = s->prior_half < 0 ? bin_cx(s, bx) < 0 : bin_cx(s, bx) > 0;
-            } else if (s->prior == FL_MCL_PRIOR_POSE) {
-                int64_t dx = bin_cx(s, bx) - s->prior_x_mm, dy = bin_cy(s, by) - s->prior_y_mm;
-                int64_t r = s->prior_radius_mm + s->params.cluster_mm;
-                in_ref = dx * dx + dy * dy <= r * r;
-            }
-            if (in_ref && sum > bref) {
+            if (sum > bref && in_reference(s, cxs[bx], cys[by])) {
                 bref = sum;
                 ri = by * NBX + bx;
             }

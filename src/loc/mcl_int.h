@@ -57,7 +57,7 @@ static inline int32_t mcl_noise(uint32_t *rng, int32_t sd)
 {
     if (sd <= 0)
         return 0;
-    return fl_rshift_round((int64_t)fl_mcl_gauss_q12(rng) * sd, 12);
+    return mcl_asr((int64_t)fl_mcl_gauss_q12(rng) * sd + 2048, 12);
 }
 
 /* |a| of a binary angle difference, 0..32768. */

@@ -50,14 +50,23 @@ void fl_mcl_predict(fl_mcl_t *s, int32_t dx_mm, int32_t dy_mm, fl_angle_t dtheta
     }
     if (s->weighted)
         fl_mcl_internal_resample(s);
-    if (dx_mm == 0 && dy_mm == 0 && dtheta == 0)
-        return;
     motion_sd(&s->params, dx_mm, dy_mm, dtheta, &sd_xy, &sd_h);
+    if (s->jitter_due) {
+        /* the resampling's jitter, drawn with the motion noise (one
+         * deviate per coordinate instead of two) */
+        int32_t jh = (int32_t)(((int64_t)s->params.jitter_mdeg * 65536) / 360000);
+        sd_xy = (int32_t)fl_isqrt64((uint64_t)((int64_t)sd_xy * sd_xy +
+                                               (int64_t)s->params.jitter_mm * s->params.jitter_mm));
+        sd_h = (int32_t)fl_isqrt64((uint64_t)((int64_t)sd_h * sd_h + (int64_t)jh * jh));
+        s->jitter_due = false;
+    }
+    if (dx_mm == 0 && dy_mm == 0 && dtheta == 0 && sd_xy == 0 && sd_h == 0)
+        return;
     p = mcl_live(s);
     for (i = 0; i < s->n; i++) {
         int32_t c = fl_cos_q15(p[i].heading), sn = fl_sin_q15(p[i].heading);
-        int32_t x = p[i].x_mm + fl_rshift_round((int64_t)dx_mm * c - (int64_t)dy_mm * sn, 15);
-        int32_t y = p[i].y_mm + fl_rshift_round((int64_t)dx_mm * sn + (int64_t)dy_mm * c, 15);
+        int32_t x = p[i].x_mm + mcl_asr((int64_t)dx_mm * c - (int64_t)dy_mm * sn + 16384, 15);
+        int32_t y = p[i].y_mm + mcl_asr((int64_t)dx_mm * sn + (int64_t)dy_mm * c + 16384, 15);
         x += mcl_noise(&s->rng, sd_xy);
         y += mcl_noise(&s->rng, sd_xy);
         fl_mcl_internal_clamp(s, &x, &y);
@@ -169,8 +178,6 @@ void fl_mcl_internal_resample(fl_mcl_t *s)
     const fl_mcl_particle_t *src = mcl_live_c(s);
     fl_mcl_particle_t *dst = s->buf[(s->cur & 1u) ^ 1u];
     uint16_t n_out = s->params.n_particles, m;
-    int32_t jx = s->params.jitter_mm;
-    int32_t jh = (int32_t)(((int64_t)s->params.jitter_mdeg * 65536) / 360000);
     s->weighted = false;
     if (n_out < 1 || n_out > FL_MCL_MAX_PARTICLES)
         n_out = s->n;
@@ -178,20 +185,14 @@ void fl_mcl_internal_resample(fl_mcl_t *s)
         return;
     for (m = 0; m < n_out; m++) {
         fl_mcl_particle_t *d = &dst[m];
-        int32_t x, y;
         if (s->inject_q16 != 0u && (fl_mcl_rand(&s->rng) >> 16) < s->inject_q16) {
             fl_mcl_internal_inject(s, d);
             continue;
         }
         *d = src[idx[m]];
-        x = d->x_mm + mcl_noise(&s->rng, jx);
-        y = d->y_mm + mcl_noise(&s->rng, jx);
-        fl_mcl_internal_clamp(s, &x, &y);
-        d->x_mm = (int16_t)x;
-        d->y_mm = (int16_t)y;
-        d->heading = fl_angle_add(d->heading, fl_angle_wrap(mcl_noise(&s->rng, jh)));
         d->weight = 65535u;
     }
+    s->jitter_due = true;
     s->cur = (uint8_t)((s->cur & 1u) ^ 1u);
     s->n = n_out;
 }

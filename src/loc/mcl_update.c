@@ -172,6 +172,8 @@ typedef struct {
     int32_t sd_r, sd_a;          /* along and across sds, mm */
     uint64_t k_r, k_a;           /* 128 * 2^32 / sd^2 */
     uint8_t cand[FL_MCL_MAX_LANDMARKS];  /* candidate landmarks (field ids) */
+    int16_t cx[FL_MCL_MAX_LANDMARKS], cy[FL_MCL_MAX_LANDMARKS];  /* their
+                                                                    positions */
     uint8_t n_cand;
 } obs_c_t;
 
@@ -189,9 +191,14 @@ static bool prepare(const fl_mcl_t *s, const fl_obs_t *o, obs_c_t *c)
         return false;
     k = (int)o->kind;
     c->n_cand = 0;
-    for (a = s->kind_start[k]; a < s->kind_start[k + 1]; a++)
-        if (lm_matches(&s->field->landmarks[s->lm_index[a]], o))
-            c->cand[c->n_cand++] = s->lm_index[a];
+    for (a = s->kind_start[k]; a < s->kind_start[k + 1]; a++) {
+        const fl_landmark_t *lm = &s->field->landmarks[s->lm_index[a]];
+        if (!lm_matches(lm, o))
+            continue;
+        c->cx[c->n_cand] = (int16_t)mcl_clamp(lm->x_mm, -20000, 20000);
+        c->cy[c->n_cand] = (int16_t)mcl_clamp(lm->y_mm, -20000, 20000);
+        c->cand[c->n_cand++] = s->lm_index[a];
+    }
     if (c->n_cand == 0)
         return false;
     c->o = o;
@@ -221,16 +228,18 @@ static uint32_t obs_nll(const fl_mcl_t *s, const obs_c_t *c, int32_t px, int32_t
                         int32_t ch, int32_t sh, fl_angle_t h)
 {
     const fl_mcl_params_t *p = &s->params;
-    int32_t fx = px + mcl_asr((int64_t)c->ox * ch - (int64_t)c->oy * sh, 15);
-    int32_t fy = py + mcl_asr((int64_t)c->ox * sh + (int64_t)c->oy * ch, 15);
+    /* |fx|, |fy| <= 25000 and the landmarks within +-20000: differences
+     * below 45000, squares below 2^31, their sum below 2^32 */
+    int32_t fx = mcl_clamp(px + mcl_asr((int64_t)c->ox * ch - (int64_t)c->oy * sh, 15), -25000,
+                           25000);
+    int32_t fy = mcl_clamp(py + mcl_asr((int64_t)c->ox * sh + (int64_t)c->oy * ch, 15), -25000,
+                           25000);
     int32_t ux = mcl_asr(c->cb * ch - c->sb * sh, 15), uy = mcl_asr(c->cb * sh + c->sb * ch, 15);
     uint32_t b1 = UINT32_MAX, b2 = UINT32_MAX, q;
     int best = c->cand[0], a;
     int32_t ex, ey, along, across;
     for (a = 0; a < c->n_cand; a++) {
-        const fl_landmark_t *lm = &s->field->landmarks[c->cand[a]];
-        int32_t dx = mcl_clamp(lm->x_mm - fx, -46000, 46000);
-        int32_t dy = mcl_clamp(lm->y_mm - fy, -46000, 46000);
+        int32_t dx = c->cx[a] - fx, dy = c->cy[a] - fy;
         uint32_t d = (uint32_t)(dx * dx) + (uint32_t)(dy * dy);
         if (d < b1) {
             b2 = b1;
@@ -317,10 +326,9 @@ static void apply_obs(fl_mcl_t *s, const obs_c_t *c, const uint16_t *tab)
 {
     const fl_mcl_particle_t *p = mcl_live_c(s);
     uint16_t i;
-    for (i = 0; i < s->n; i++) {
-        int32_t ch = fl_cos_q15(p[i].heading), sh = fl_sin_q15(p[i].heading);
-        s->nll[i] += mixture(tab, obs_nll(s, c, p[i].x_mm, p[i].y_mm, ch, sh, p[i].heading));
-    }
+    for (i = 0; i < s->n; i++)
+        s->nll[i] += mixture(tab, obs_nll(s, c, p[i].x_mm, p[i].y_mm, s->trig[i][0],
+                                          s->trig[i][1], p[i].heading));
 }
 
 /* Under ignorance the first observations replace the uniform particles by
@@ -365,13 +373,17 @@ uint16_t fl_mcl_update(fl_mcl_t *s, const fl_obs_list_t *obs)
         seed_from_obs(s);
     mixture_table(s->params.outlier_q16, tab);
     memset(s->nll, 0, sizeof s->nll);
+    p = mcl_live(s);
+    for (i = 0; i < s->n; i++) {
+        s->trig[i][0] = fl_cos_q15(p[i].heading);
+        s->trig[i][1] = fl_sin_q15(p[i].heading);
+    }
     /* pass 2: the likelihoods */
     for (i = 0, used = 0; i < nmax && used < MCL_OBS_PER_FRAME; i++)
         if (prepare(s, &obs->obs[i], &c)) {
             apply_obs(s, &c, tab);
             used++;
         }
-    p = mcl_live(s);
     for (i = 0; i < s->n; i++)
         if (s->nll[i] < nmin)
             nmin = s->nll[i];
