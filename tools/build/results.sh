@@ -1,8 +1,9 @@
 #!/bin/sh
 # Generate docs/RESULTS.md: machine, test-runner notes, bench table,
-# callgrind rows, simulated walks, the reliability diagram (fieldloc
-# reliability over the frames walks' observations, kept with --obs-cache)
-# and detection scoring.  Run through
+# callgrind rows, simulated walks, every localizer of the catalogue side by
+# side (tools/build/loc_table.py), the reliability diagram of each
+# (fieldloc reliability over the frames walks' observations, kept with
+# --obs-cache) and detection scoring.  Run through
 # `make results` (which runs `make test` first, so BUILD/test.log is fresh);
 # the generated file is never edited by hand.
 # Usage: tools/build/results.sh BUILD OUT
@@ -12,24 +13,61 @@
 # over OUT only at the end).
 #
 # The walks: every field (spl2013, uva2013, aibo2004) in feature mode
-# (seeds 1 2 3, about 1 s each) and in frames mode (rendered frames through
-# the vision path at 10 Hz; seeds $FRAME_SEEDS, default "1 2 3": rendering
-# is the slow part, about 85 s for the three fields of one seed on 2 idle
-# cores, more under load; the whole `make results` takes about 7 minutes
-# there, `make bench` about 100 s of it).  Seeds 1-3 are the ones the
-# project's localization figures used.  FIELDLOC_THREADS sets the
-# rendering threads (default: the online CPUs).
+# (seeds $FEATURE_SEEDS, default 1-6, about 1 s each for the fuzzy grid) and
+# in frames mode (rendered frames through the vision path at 10 Hz; seeds
+# $FRAME_SEEDS, default 1-6: rendering is the slow part, about 85 s for the
+# three fields of one seed on 2 idle cores, more under load).  Each frames
+# walk is rendered once, by the fuzzy grid's run, into BUILD/results.work/
+# FIELD.SEED.obs (simulate --obs-cache); every other localizer, random-
+# generator seed and particle count reads those observations.  Seeds 1-3
+# are the ones the project's localization figures used.  FIELDLOC_THREADS
+# sets the rendering threads (default: the online CPUs).
+#
+# The comparison (tools/build/loc_table.py): every localizer of the
+# catalogue, both modes, the walk seeds above; a stochastic localizer (one
+# with the parameter "seed") over random-generator seeds $RNG_SEEDS
+# (default 1-5); a particle localizer (parameter "n_particles") over the
+# counts $PARTICLE_COUNTS (default 32 64 128 256 512; frames mode, RNG
+# seeds $COUNT_RNG_SEEDS, default 1-3), the counts above the default capacity
+# with a second CLI built into BUILD/p512 with $BIG_DEFS (default
+# -DFL_MCL_MAX_PARTICLES=512); `localize --uva-spots` per localizer.
+# LOC_JOBS runs that many walks at a time (default: the online CPUs).
+#
+# Other knobs, for trying the script on a subset:
+#   OBS_CACHE_DIR=DIR  copy DIR/FIELD.SEED.obs into the work folder before
+#                      the walks (simulate reads them instead of rendering;
+#                      it re-renders one that holds another walk); DIR is
+#                      never written.  The document names DIR.
+#   SKIP_BENCH=1       no `make bench` (the document says so)
+#   DRY_RUN=1          print the commands, run none, write nothing
+#   LOCALIZERS="a b"   those localizers only (default: the catalogue)
 set -u
 B=${1:-build}
 OUT=${2:-docs/RESULTS.md}
 CLI=$B/fieldloc
 RD=../shared/realdata
 FIELDS="spl2013 uva2013 aibo2004"
-FEATURE_SEEDS=${FEATURE_SEEDS:-"1 2 3"}
-FRAME_SEEDS=${FRAME_SEEDS:-"1 2 3"}
+FEATURE_SEEDS=${FEATURE_SEEDS:-"1 2 3 4 5 6"}
+FRAME_SEEDS=${FRAME_SEEDS:-"1 2 3 4 5 6"}
+RNG_SEEDS=${RNG_SEEDS:-"1 2 3 4 5"}
+PARTICLE_COUNTS=${PARTICLE_COUNTS:-"32 64 128 256 512"}
+COUNT_RNG_SEEDS=${COUNT_RNG_SEEDS:-"1 2 3"}
+BIG_DEFS=${BIG_DEFS:-"-DFL_MCL_MAX_PARTICLES=512"}
+LOC_JOBS=${LOC_JOBS:-$(nproc)}
+OBS_CACHE_DIR=${OBS_CACHE_DIR:-}
+SKIP_BENCH=${SKIP_BENCH:-0}
+DRY_RUN=${DRY_RUN:-0}
+LOCALIZERS=${LOCALIZERS:-}
 TMP=$OUT.tmp
 WORK=$B/results.work
+BIG=$B/p512
 start=$(date +%s)
+# the whole `make results` (make test included) when the Makefile says when
+# it started
+make_start=${RESULTS_START:-$start}
+# a list "1 2 3" as "1,2,3" (split on purpose)
+# shellcheck disable=SC2048,SC2086
+commas() { echo $* | tr ' ' ,; }
 
 die() {
     echo "results: FAILED: $*" >&2
@@ -41,6 +79,7 @@ die() {
 run() {
     log=$1; shift
     echo "results: $*" >&2
+    [ "$DRY_RUN" = 1 ] && return 0
     "$@" > "$log" 2>&1
     rc=$?
     [ $rc -eq 0 ] || { tail -n 20 "$log" >&2; die "\`$*\` exited with status $rc (output in $log)"; }
@@ -59,41 +98,121 @@ else
 fi
 
 # ---- run everything first; the document is written only when all passed
-run "$WORK/bench.log" make --no-print-directory bench
-[ -f "$B/bench.tsv" ] || die "make bench wrote no $B/bench.tsv"
-if grep -q 'failed\|not built' "$WORK/bench.log"; then
-    grep 'failed\|not built' "$WORK/bench.log" >&2
-    die "make bench: a callgrind row failed"
+if [ "$SKIP_BENCH" = 1 ]; then
+    echo "results: SKIP_BENCH=1: no make bench" >&2
+else
+    run "$WORK/bench.log" make --no-print-directory bench
+    if [ "$DRY_RUN" != 1 ]; then
+        [ -f "$B/bench.tsv" ] || die "make bench wrote no $B/bench.tsv"
+        if grep -q 'failed\|not built' "$WORK/bench.log"; then
+            grep 'failed\|not built' "$WORK/bench.log" >&2
+            die "make bench: a callgrind row failed"
+        fi
+    fi
 fi
 bench_s=$(( $(date +%s) - start ))
 
+# the localizers: the catalogue (or $LOCALIZERS), with their kinds
+python3 tools/build/loc_table.py catalogue --cli "$CLI" > "$WORK/catalogue.txt" ||
+    die "tools/build/loc_table.py catalogue failed"
+[ -n "$LOCALIZERS" ] || LOCALIZERS=$(awk '{ print $1 }' "$WORK/catalogue.txt" | tr '\n' ' ' | sed 's/ $//')
+echo "results: localizers: $LOCALIZERS" >&2
+
+cached=""
+if [ -n "$OBS_CACHE_DIR" ]; then
+    for f in $FIELDS; do
+        for s in $FRAME_SEEDS; do
+            if [ -f "$OBS_CACHE_DIR/$f.$s.obs" ]; then
+                cp "$OBS_CACHE_DIR/$f.$s.obs" "$WORK/$f.$s.obs" || die "cannot copy $OBS_CACHE_DIR/$f.$s.obs"
+                cached="$cached $f.$s"
+            fi
+        done
+    done
+    echo "results: observation caches copied from $OBS_CACHE_DIR:$cached" >&2
+fi
+
+# the fuzzy grid's walks (the per-walk table); frames mode renders each walk
+# into WORK/FIELD.SEED.obs (simulate --obs-cache), which every later run
+# reads: nothing is rendered twice.  The outputs are where loc_table.py
+# looks for them, so it does not repeat them.
+mkdir -p "$WORK/runs" || die "cannot create $WORK/runs"
 walks=""
 for mode in features frames; do
     if [ $mode = features ]; then seeds=$FEATURE_SEEDS; else seeds=$FRAME_SEEDS; fi
     for f in $FIELDS; do
         for s in $seeds; do
             w=$f.$mode.$s
-            # frames: the vision observations are kept for the reliability
-            # diagram below (simulate --obs-cache; nothing is rendered twice)
             cache=""
             [ $mode = frames ] && cache="--obs-cache $WORK/$f.$s.obs"
             echo "$CLI simulate --field $f --localizer fuzzy --seed $s --$mode --quiet $cache" > "$WORK/$w.cmd"
             # shellcheck disable=SC2086
-            run "$WORK/$w.out" "$CLI" simulate --field "$f" --localizer fuzzy --seed "$s" --"$mode" --quiet $cache
-            grep -q '^flips ' "$WORK/$w.out" || die "$w: no summary lines in $WORK/$w.out"
+            run "$WORK/runs/fuzzy.$f.$mode.s$s.out" "$CLI" simulate --field "$f" --localizer fuzzy --seed "$s" --"$mode" --quiet $cache
+            [ "$DRY_RUN" = 1 ] || grep -q '^flips ' "$WORK/runs/fuzzy.$f.$mode.s$s.out" ||
+                die "$w: no summary lines in $WORK/runs/fuzzy.$f.$mode.s$s.out"
             walks="$walks $w"
         done
     done
 done
 walk_s=$(( $(date +%s) - start - bench_s ))
 
-# the reliability diagram over the same (held-out) seeds; fails when the
-# calibration contract of localizer.h fails
-rel_cmd="$CLI reliability --localizer fuzzy --seeds $(echo $FEATURE_SEEDS | tr ' ' ,) --frame-seeds $(echo $FRAME_SEEDS | tr ' ' ,) --obs-cache-dir $WORK"
+# a second CLI with a larger particle capacity, when a particle localizer
+# does not take the largest count
+big=""
+max_count=$(echo $PARTICLE_COUNTS | tr ' ' '\n' | sort -n | tail -n 1)
+for l in $LOCALIZERS; do
+    grep -q "^$l .*particles=1" "$WORK/catalogue.txt" || continue
+    "$CLI" simulate --field spl2013 --seed 1 --steps 0 --quiet --localizer "$l" --param n_particles="$max_count" \
+        > /dev/null 2>&1 && continue
+    run "$WORK/big_build.log" make --no-print-directory -j"$(nproc)" BUILD="$BIG" CONFIG_DEFS="${CONFIG_DEFS:-} $BIG_DEFS" "$BIG/fieldloc"
+    big="--cli-big $BIG/fieldloc"
+    break
+done
+
+# every localizer side by side (tools/build/loc_table.py)
+dry=""
+[ "$DRY_RUN" = 1 ] && dry=--dry-run
+loc_cmd="python3 tools/build/loc_table.py run --cli $CLI $big --work $WORK --jobs $LOC_JOBS $dry \
+--localizers $(commas $LOCALIZERS) --fields $(commas $FIELDS) \
+--feature-seeds $(commas $FEATURE_SEEDS) --frame-seeds $(commas $FRAME_SEEDS) --rng-seeds $(commas $RNG_SEEDS) \
+--counts $(commas $PARTICLE_COUNTS) --count-rng-seeds $(commas $COUNT_RNG_SEEDS)"
+echo "results: $loc_cmd" >&2
 # shellcheck disable=SC2086
-run "$WORK/reliability.out" $rel_cmd
+$loc_cmd > "$WORK/loc_table.md" 2> "$WORK/loc_table.log"
+rc=$?
+[ "$DRY_RUN" = 1 ] && cat "$WORK/loc_table.log" >&2
+[ $rc -eq 0 ] || { tail -n 30 "$WORK/loc_table.log" >&2; die "tools/build/loc_table.py exited with status $rc"; }
+loc_s=$(( $(date +%s) - start - bench_s - walk_s ))
+
+# the reliability diagram of each localizer over the same (held-out) seeds;
+# each fails when the calibration contract of localizer.h fails: every
+# localizer runs, then the script stops if any failed (RELIABILITY_FAILS_OK=1
+# writes the document anyway, the failure stated in it)
+rel_failed=""
+for l in $LOCALIZERS; do
+    rel_cmd="$CLI reliability --localizer $l --seeds $(commas $FEATURE_SEEDS) --frame-seeds $(commas $FRAME_SEEDS) --obs-cache-dir $WORK"
+    echo "$rel_cmd" > "$WORK/reliability.$l.cmd"
+    echo "results: $rel_cmd" >&2
+    [ "$DRY_RUN" = 1 ] && continue
+    # shellcheck disable=SC2086
+    $rel_cmd > "$WORK/reliability.$l.out" 2>&1
+    rc=$?
+    echo $rc > "$WORK/reliability.$l.rc"
+    if [ $rc -ne 0 ]; then
+        tail -n 12 "$WORK/reliability.$l.out" >&2
+        echo "results: \`$rel_cmd\` exited with status $rc" >&2
+        rel_failed="$rel_failed $l"
+    fi
+done
+if [ -n "$rel_failed" ] && [ "${RELIABILITY_FAILS_OK:-0}" != 1 ]; then
+    die "the reliability check failed for:$rel_failed (outputs in $WORK/reliability.*.out)"
+fi
+rel_s=$(( $(date +%s) - start - bench_s - walk_s - loc_s ))
 
 run "$WORK/eval.out" "$CLI" eval-detect
+if [ "$DRY_RUN" = 1 ]; then
+    echo "results: DRY_RUN=1: nothing run, $OUT unchanged" >&2
+    exit 0
+fi
 
 # ---- the document
 {
@@ -108,6 +227,10 @@ echo "- machine: $(uname -m), $(grep -m1 'model name' /proc/cpuinfo 2>/dev/null 
 echo "- compiler: $(${CC:-cc} --version | head -1)"
 echo "- ../shared/realdata: $realdata"
 echo "- rendering threads: ${FIELDLOC_THREADS:-$(nproc) (default: the online CPUs)}"
+if [ -n "$OBS_CACHE_DIR" ]; then
+    echo "- observation caches: copied from $OBS_CACHE_DIR (OBS_CACHE_DIR) for${cached:- none}; the other frames walks rendered"
+fi
+echo "- localizers: $LOCALIZERS"
 echo
 echo "## Test runner notes"
 echo
@@ -129,6 +252,9 @@ echo "(as each section names): fieldloc_ns fieldloc's code, peer_ns the same wor
 echo "implementation the bench names (libm, OpenCV, a float version; \`-\` when none), speedup ="
 echo "peer_ns / fieldloc_ns. Wall-clock figures vary with the machine and its load."
 echo
+if [ "$SKIP_BENCH" = 1 ]; then
+echo "**Skipped** (SKIP_BENCH=1): no bench rows in this document."
+else
 echo '```'
 cat "$B/bench.tsv"
 echo '```'
@@ -140,6 +266,7 @@ echo
 echo '```'
 grep '^callgrind' "$WORK/bench.log"
 echo '```'
+fi
 echo
 echo "## Simulated walks"
 echo
@@ -149,6 +276,9 @@ echo "kidnap, one penalty; \`--quiet\` prints the summary lines only). Mode \`fe
 echo "simulator's feature-level observations (range noise, misses, false positives, L/T confusion),"
 echo "every step. Mode \`frames\`: each frame rendered at the true pose and run through the vision path"
 echo "on every 3rd step (10 Hz), odometry accumulated between."
+echo
+echo "The fuzzy grid per walk; every localizer of the catalogue side by side, over the same walks and"
+echo "observations: the next section."
 echo
 echo "Columns (definitions at the top of tools/cli/cmd_simulate.c): position and heading RMSE after"
 echo "convergence, excluding the kidnap's and the penalty placement's recovery windows (mm, degrees);"
@@ -169,32 +299,47 @@ for w in $walks; do
         /^# every record/ { for (i = 1; i < NF; i++) { if ($i == "pos_rmse_mm") ep = $(i + 1); if ($i == "heading_rmse_deg") eh = $(i + 1) } }
         /^# localizer:/ { kd = $3 }
         END { printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s / %s | %s |\n", f, m, s, p, h, c, k, fl, ep, eh, kd }
-    ' "$WORK/$w.out"
+    ' "$WORK/runs/fuzzy.$f.$m.s$s.out"
 done
 echo
 echo "The summary lines as printed, per walk (the \`# simulate\` line, then the five summary lines):"
 echo
 echo '```'
 for w in $walks; do
+    f=${w%%.*}; r=${w#*.}; m=${r%%.*}; s=${r#*.}
     echo "\$ $(cat "$WORK/$w.cmd")"
-    grep -E '^# simulate |^(pos_rmse_mm|heading_rmse_deg|converge_s|kidnap_recover_s|flips) ' "$WORK/$w.out"
+    grep -E '^# simulate |^(pos_rmse_mm|heading_rmse_deg|converge_s|kidnap_recover_s|flips) ' "$WORK/runs/fuzzy.$f.$m.s$s.out"
 done
 echo '```'
 echo
+echo "## Localizers side by side"
+echo
+echo "Command: \`$loc_cmd\` (tools/build/loc_table.py; the runs' outputs stay in $WORK/runs/)."
+echo
+cat "$WORK/loc_table.md"
 echo "## Reliability"
 echo
-echo "Command: \`$rel_cmd\`"
+echo "Command per localizer L: \`$CLI reliability --localizer L --seeds $(commas $FEATURE_SEEDS) --frame-seeds $(commas $FRAME_SEEDS) --obs-cache-dir $WORK\`"
 echo
 echo "The contract of include/fieldloc/localizer.h: of the estimates reported with reliability >= r, at"
 echo "least the share r is within 500 mm and 20 degrees of the true pose (the plain truth: a pose on the"
-echo "wrong half is wrong), for every r. Records of the walks above (held-out seeds: the calibration in"
+echo "wrong half is wrong), for every r. Records of the walks above (held-out seeds: the fuzzy grid's calibration in"
 echo "src/loc/fuzzy_estimate.c was fitted on seeds 11 and up), binned by reported reliability; the"
-echo "command fails (and so does this script) when the contract fails."
+echo "command fails (and so does this script, unless RELIABILITY_FAILS_OK=1) when the contract fails."
 echo
-echo '```'
-cat "$WORK/reliability.out"
-echo '```'
-echo
+for l in $LOCALIZERS; do
+    echo "### $l"
+    echo
+    if [ "$(cat "$WORK/reliability.$l.rc")" != 0 ]; then
+        echo "**The calibration contract FAILED for $l** (exit status $(cat "$WORK/reliability.$l.rc"); written"
+        echo "only because RELIABILITY_FAILS_OK=1)."
+        echo
+    fi
+    echo '```'
+    cat "$WORK/reliability.$l.out"
+    echo '```'
+    echo
+done
 echo "## Detection scoring"
 echo
 echo "Command: \`$CLI eval-detect\`"
@@ -208,8 +353,14 @@ echo '```'
 cat "$WORK/eval.out"
 echo '```'
 echo
-echo "Time of this script: $(( $(date +%s) - start )) s (make bench $bench_s s, walks $walk_s s;"
-echo "\`make test\` ran before it)."
+now=$(date +%s)
+if [ -n "${RESULTS_START:-}" ]; then
+    echo "Time of \`make results\`: $(( now - make_start )) s: \`make test\` $(( start - make_start )) s, then this script"
+else
+    echo "Time of this script: (\`make test\` ran before it, not timed: run through \`make results\`)"
+fi
+echo "$(( now - start )) s (make bench $bench_s s, rendering and the fuzzy walks $walk_s s, the localizer"
+echo "comparison $loc_s s ($LOC_JOBS runs at a time), reliability $rel_s s, detection scoring $(( now - start - bench_s - walk_s - loc_s - rel_s )) s)."
 } > "$TMP" || die "cannot write $TMP"
 mv "$TMP" "$OUT" || die "cannot move $TMP to $OUT"
-echo "results: wrote $OUT in $(( $(date +%s) - start )) s" >&2
+echo "results: wrote $OUT in $(( $(date +%s) - start )) s (make results: $(( $(date +%s) - make_start )) s)" >&2
