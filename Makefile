@@ -122,6 +122,18 @@ $(BUILD)/host_tests/test_config.o: HOST_CFLAGS += -DFL_TEST_CC='"$(CC)"' \
   -DFL_TEST_FLAGS='"$(ARCHFLAGS) $(CONFIG_DEFS)"' -DFL_TEST_ARCHFLAGS='"$(ARCHFLAGS)"' \
   -DFL_TEST_BUILD='"$(BUILD)"' -DFL_TEST_EXEC='"$(TEST_EXEC)"'
 
+# The README example with its one localizer line changed to "mcl"
+# (host_tests/test_example_swap.c): the rule fails unless exactly that one
+# line differs, so the README's claim is what is tested.
+SWAP_INC := $(BUILD)/gen/readme_example_mcl.inc
+$(SWAP_INC): host_tests/readme_example.inc
+	@mkdir -p $(dir $@)
+	sed 's/^#define LOCALIZER "fuzzy" /#define LOCALIZER "mcl"   /' $< > $@.tmp
+	@[ "$$(diff $< $@.tmp | grep -c '^>')" = 1 ] || { echo "$@: the LOCALIZER line was not found"; exit 1; }
+	mv $@.tmp $@
+$(BUILD)/host_tests/test_example_swap.o: $(SWAP_INC)
+$(BUILD)/host_tests/test_example_swap.o: HOST_CFLAGS += -I$(BUILD)/gen
+
 $(BUILD)/tools/%.o: tools/%.c $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@

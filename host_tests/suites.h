@@ -22,6 +22,7 @@ T_SUITE(localize);
 T_SUITE(adversarial);
 T_SUITE(walks);
 T_SUITE(example);
+T_SUITE(example_swap);
 T_SUITE(config);
 T_SUITE(fuzz_regress);
 T_SUITE(cli);
