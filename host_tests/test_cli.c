@@ -431,6 +431,51 @@ static int write_text(const char *name, const char *text)
     return fclose(f);
 }
 
+/* simulate --export-stream, replay --stream end to end: the same step and
+ * summary lines; a malformed stream refused with its line (status 2, one
+ * stderr line); --kidnaps checked like every number. */
+static void t_stream(void)
+{
+    static char out[1 << 16], out2[1 << 16];
+    char err[1024], args[2600], msg[1400];
+    const char *a, *b;
+    if (cli_find() != 0) {
+        t_info("cli.stream: %s not built, skipped", t_cli);
+        return;
+    }
+    expect_error("simulate --field spl2013 --kidnaps 17",
+                 "fieldloc simulate: --kidnaps: 17 is out of range 0..16");
+    snprintf(args, sizeof args, "simulate --field aibo2004 --seed 4 --steps 60 --kidnaps 3 "
+                                "--export-stream %s/walk.stream", t_dir);
+    CHECK_EQ(cli_run(args, out, sizeof out, err, sizeof err), 0);
+    snprintf(args, sizeof args, "replay --stream %s/walk.stream --localizer fuzzy", t_dir);
+    CHECK_EQ(cli_run(args, out2, sizeof out2, err, sizeof err), 0);
+    CHECK_EQ(err[0], '\0');
+    /* from the first step line to the end, except simulate's "# steps" and
+     * replay's "# records" lines (the one-line counts each prints) */
+    a = strstr(out, "\nstep 0 ");
+    b = strstr(out2, "\nstep 0 ");
+    CHECK(a != NULL && b != NULL);
+    if (a != NULL && b != NULL) {
+        const char *ea = strstr(a, "\n# steps "), *eb = strstr(b, "\n# records ");
+        CHECK(ea != NULL && eb != NULL);
+        if (ea != NULL && eb != NULL) {
+            CHECK_EQ(ea - a, eb - b);
+            CHECK(strncmp(a, b, (size_t)(ea - a)) == 0);
+            ea = strstr(ea, "\n# localizer:");
+            eb = strstr(eb, "\n# localizer:");
+            CHECK(ea != NULL && eb != NULL && strcmp(ea, eb) == 0);
+        }
+    }
+    CHECK_EQ(write_text("bad.stream", "fieldloc-stream 1\nfield spl2013\ncamera nao4-top-320\n"
+                                      "mode features\nevery 1\nframe_hz 30\nprior_half 1\n"
+                                      "record 0 0 0 0 0 0\npredict 1 2 three\n"), 0);
+    snprintf(args, sizeof args, "replay --stream %s/bad.stream", t_dir);
+    snprintf(msg, sizeof msg, "replay: %s/bad.stream: line 9: 'three' is not an integer in its "
+                              "range", t_dir);
+    expect_error_at(__LINE__, args, msg);
+}
+
 /* calibrate --frames: frames rendered by `fieldloc render` with a neck of
  * 480 mm and a pitch offset of 0.04 rad (2.29 deg) against the camera's
  * 445 mm / 0, fitted, written, read back by detect --calib and localize
@@ -547,4 +592,5 @@ void suite_cli(void)
     t_run("cli.numbers", t_numbers);
     t_run("cli.pictures", t_pictures);
     t_run("cli.calib_files", t_calib_files);
+    t_run("cli.stream", t_stream);
 }

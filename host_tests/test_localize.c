@@ -157,8 +157,10 @@ static void t_odometry(void)
         char err[128];
         CHECK(lr_localizer(NULL, err, (int)sizeof err) == loc);
         CHECK(lr_localizer("fuzzy", err, (int)sizeof err) == loc);
-        CHECK(lr_localizer("mcl", err, (int)sizeof err) == NULL);
-        CHECK(strstr(err, "unknown localizer 'mcl'") != NULL && strstr(err, "fuzzy") != NULL);
+        CHECK(lr_localizer("mcl", err, (int)sizeof err) == fl_localizer_find("mcl"));
+        CHECK(lr_localizer("upf", err, (int)sizeof err) == NULL);
+        CHECK(strstr(err, "unknown localizer 'upf'") != NULL && strstr(err, "fuzzy") != NULL &&
+              strstr(err, "mcl") != NULL);
     }
 }
 

@@ -20,7 +20,8 @@ static void test_catalogue(void)
     CHECK(fl_localizer_find("") == NULL);
     CHECK(fl_localizer_find("fuzz") == NULL);
     CHECK(fl_localizer_find("fuzzyx") == NULL);
-    CHECK(fl_localizer_find("mcl") == NULL);
+    CHECK(fl_localizer_find("mcl") == &fl_localizer_mcl);
+    CHECK(fl_localizer_find("mc") == NULL);
     CHECK(fl_localizer_count() >= 1);
     CHECK(fl_localizer_get(fl_localizer_count()) == NULL);
     for (i = 0; i < fl_localizer_count(); i++) {

@@ -79,6 +79,18 @@
 #error "FL_FUZZY_MAX_REGIONS must be in 8..255"
 #endif
 
+/* ---- Monte Carlo localizer (mcl.h, seed 000) -----------------------------
+ * FL_MCL_MAX_PARTICLES  particle capacity (the run-time count,
+ *                    params.n_particles, is at most this).  Default 256,
+ *                    range 8..4096.  Memory: 20 B per particle (two 8 B
+ *                    buffers and a 4 B likelihood) + about 0.6 KiB. */
+#ifndef FL_MCL_MAX_PARTICLES
+#define FL_MCL_MAX_PARTICLES 256
+#endif
+#if FL_MCL_MAX_PARTICLES < 8 || FL_MCL_MAX_PARTICLES > 4096
+#error "FL_MCL_MAX_PARTICLES must be in 8..4096"
+#endif
+
 /* ---- column scanner (scan.h, seed 000) ----------------------------------
  * FL_SCAN_MAX_COLS   grid columns of one scan (width / col_step, rounded
  *                    up).  Default 640: every column of a 640x480 frame.
@@ -241,11 +253,11 @@
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
-    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
     FL_ABI_VERSION), \
     FL_IMAGE_MAX_DIM), \
     FL_FUZZY_CELL_MM), FL_FUZZY_MAX_NX), FL_FUZZY_MAX_NY), \
-    FL_FUZZY_MAX_REGIONS), \
+    FL_FUZZY_MAX_REGIONS), FL_MCL_MAX_PARTICLES), \
     FL_SCAN_MAX_COLS), FL_SCAN_MAX_ROWS), FL_SCAN_MAX_FEET), \
     FL_LINES_MAX_POINTS), FL_LINES_MAX_SEGMENTS), FL_LINES_MAX_BUCKETS), \
     FL_LINES_WTAB), FL_CROSSINGS_MAX), FL_GOAL_MAX_POSTS), \

@@ -24,6 +24,7 @@
 #include "fieldloc/beacon.h"
 #include "fieldloc/vision.h"
 #include "fieldloc/fuzzy.h"
+#include "fieldloc/mcl.h"
 #include "fieldloc/localizer.h"
 
 #endif /* FIELDLOC_FIELDLOC_H */

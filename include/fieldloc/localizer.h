@@ -244,6 +244,9 @@ typedef struct fl_localizer {
 
 /* The fuzzy position grid (fuzzy.h; adapter src/loc/loc_fuzzy.c), "fuzzy". */
 extern const fl_localizer_t fl_localizer_fuzzy;
+/* Augmented Monte Carlo localization (mcl.h; adapter src/loc/loc_mcl.c),
+ * "mcl". */
+extern const fl_localizer_t fl_localizer_mcl;
 
 /* NULL for NULL or an unknown name. */
 const fl_localizer_t *fl_localizer_find(const char *name);

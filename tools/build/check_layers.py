@@ -38,8 +38,8 @@ HEADER_LAYER = {
     "color.h": "vision", "scan.h": "vision", "lines.h": "vision",
     "crossings.h": "vision", "circle.h": "vision", "goal.h": "vision",
     "beacon.h": "vision", "vision.h": "vision",
-    "fuzzy.h": "loc", "localizer.h": "loc",
-    # future localizers: "mcl.h": "loc", "upf.h": "loc", "grid.h": "loc",
+    "fuzzy.h": "loc", "localizer.h": "loc", "mcl.h": "loc",
+    # future localizers: "upf.h": "loc", "grid.h": "loc",
     "fieldloc.h": "umbrella",    # users only: never included from src/, include/
 }
 # src/<folder>/ by layer (the folder's .c and _int.h files take its layer).

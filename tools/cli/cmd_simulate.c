@@ -6,11 +6,28 @@
  *   fieldloc simulate --field spl2013|uva2013|aibo2004 --localizer fuzzy
  *                     --seed N [--features | --frames] [--steps N] [--quiet]
  *                     [--scenario FILE.walk] [--every N] [--param NAME=V]...
- *                     [--obs-cache FILE] [--print-obs]
+ *                     [--obs-cache FILE] [--print-obs] [--kidnaps N]
+ *                     [--export-stream FILE]
  *
  * The walk is the built-in scenario of the field (fixtures/walks/NAME.walk:
  * >= 120 s of walking with head scanning, one kidnap, one penalty), with its
  * PRNG seed replaced by --seed.  --steps N stops after N simulator steps.
+ * --kidnaps N (0..16) gives the walk N kidnaps instead of its own count
+ * (tools/world/sim.h sim_scenario_set_kidnaps: added ones at the times
+ * farthest from the start, the end, the other kidnaps and the penalty, to
+ * random targets on the carpet drawn from a PRNG stream of their own, so
+ * the walk is the same up to the first added kidnap; kidnap k is the same
+ * for every N >= k).  The walk's name gets "+kN", so an observation cache
+ * of the unchanged walk is not taken for it (and is refused rather than
+ * overwritten).
+ *
+ * --export-stream FILE writes the localizer's inputs as a text stream
+ * (docs/STREAM.md): per record the truth, the told and untold events, and
+ * every predict, penalty reset and update call with the integers the
+ * localizer received (frames mode: the split predict calls and the
+ * observations and view vision gave); `fieldloc replay --stream FILE
+ * [--localizer NAME]` runs any catalogue localizer on it and prints the
+ * same step and summary lines.
  *
  * --features (default) feeds the simulator's feature-level observations
  * (fl_obs_list_t) to the localizer.  Per step: predict(odometry); on
@@ -66,9 +83,9 @@
  * (K the simulator step) then "# ..." information lines and exactly these
  * summary lines:
  *   pos_rmse_mm X       root mean square position error over the records
- *                       after convergence (t >= converge_s), excluding the
- *                       kidnap's window [kidnap, kidnap + kidnap_recover_s)
- *                       (to the end of the run when it never recovers)
+ *                       after convergence (t >= converge_s), excluding each
+ *                       kidnap's window [kidnap, recovery) (to the window's
+ *                       close when it never recovers)
  *                       and the same window after the penalty placement
  *                       (the robot is told "one of the two touchline
  *                       spots"; until a landmark decides, its estimate is
@@ -80,9 +97,23 @@
  *   converge_s X        first time t from the start (total ignorance) such
  *                       that the error stays below 300 mm AND 15 degrees for
  *                       every record in [t, t + 1 s]; inf if never
- *   kidnap_recover_s X  time from the first kidnap to the first t after it
- *                       with the same 1 s criterion; inf if never, nan if
- *                       the run has no kidnap
+ *   kidnap_recover_s X  per kidnap: the time from the kidnap to the first
+ *                       t after it with the same 1 s criterion, the whole
+ *                       second lying before the kidnap's window closes:
+ *                       at the next penalty placement (a told reset: what
+ *                       comes after it is not the filter recovering by
+ *                       itself), the next kidnap or the end of the run;
+ *                       inf ("never") otherwise.  The value is the median
+ *                       over the run's kidnaps (with an even count the
+ *                       mean of the two middle ones; one kidnap: its own
+ *                       time); nan if the run has no kidnap.  Each kidnap
+ *                       gets a line before the summary,
+ *                         # kidnap K at T_S recovered after S s
+ *                         # kidnap K at T_S never recovered before the
+ *                           penalty placement at T | the next kidnap at T
+ *                           | the run ended at T
+ *                       and "# kidnap_recover_worst_s X" gives the largest
+ *                       (inf when one never recovered)
  *   flips N             symmetric flips: episodes (counted once per entry)
  *                       during which the starting half is known and the
  *                       estimate is near the 180-degree mirror of the truth
@@ -99,6 +130,7 @@
 #include "cli/args.h"
 #include "loc/locrun.h"
 #include "cli/registry.h"
+#include "loc/stream.h"
 #include "world/sim.h"
 
 #include <math.h>
@@ -106,16 +138,35 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The obs cache file exists and its header names another walk. */
+static int cache_of_other_walk(const char *path, const char *walk)
+{
+    char line[160], name[64];
+    FILE *f = fopen(path, "rb");
+    int other = 0;
+    if (f == NULL)
+        return 0;
+    if (fgets(line, sizeof line, f) != NULL &&
+        sscanf(line, "fieldloc-obs-cache 1 %63s", name) == 1)
+        other = strcmp(name, walk) != 0;
+    fclose(f);
+    return other;
+}
+
 static void usage(void)
 {
     fprintf(stderr,
             "usage: fieldloc simulate --field spl2013|uva2013|aibo2004 [--localizer fuzzy]\n"
             "                         --seed N [--features | --frames] [--steps N] [--quiet]\n"
             "                         [--scenario FILE.walk] [--every N] [--param NAME=V]...\n"
-            "                         [--obs-cache FILE] [--print-obs]\n"
+            "                         [--obs-cache FILE] [--print-obs] [--kidnaps N]\n"
+            "                         [--export-stream FILE]\n"
             "  --frames: render each frame at the true pose and run the vision path;\n"
             "            vision on every Nth step (--every, default 3 = 10 Hz at 30 Hz)\n"
-            "  --seed 0..2147483647, --steps 0..100000000, --every 1..1000, --post-sides 0|1\n");
+            "  --seed 0..2147483647, --steps 0..100000000, --every 1..1000, --post-sides 0|1,\n"
+            "  --kidnaps 0..16 (default: the walk's own)\n"
+            "  --export-stream FILE: the localizer's inputs and the truth (docs/STREAM.md;\n"
+            "            fieldloc replay --stream FILE runs any localizer on them)\n");
 }
 
 int cmd_simulate(int argc, char **argv)
@@ -127,7 +178,9 @@ int cmd_simulate(int argc, char **argv)
     lr_walk_opts_t o;
     lr_walk_result_t res;
     char err[256];
-    const char *obs_cache = NULL, *param[64];
+    const char *obs_cache = NULL, *param[64], *stream_path = NULL;
+    long kidnaps = -1;
+    FILE *stream = NULL;
     int n_param = 0;
     const fl_localizer_t *loc;
     void *params = NULL, *defaults = NULL;
@@ -152,7 +205,12 @@ int cmd_simulate(int argc, char **argv)
                 param[n_param++] = argv[++k];
         } else if (!strcmp(argv[k], "--obs-cache") && k + 1 < argc)
             obs_cache = argv[++k];
-        else if (!strcmp(argv[k], "--scenario") && k + 1 < argc)
+        else if (!strcmp(argv[k], "--export-stream") && k + 1 < argc)
+            stream_path = argv[++k];
+        else if (!strcmp(argv[k], "--kidnaps") && k + 1 < argc) {
+            if (arg_long("simulate", "--kidnaps", argv[++k], 0, SIM_MAX_EVENTS, NULL, &kidnaps))
+                return 2;
+        } else if (!strcmp(argv[k], "--scenario") && k + 1 < argc)
             scen_path = argv[++k];
         else if (!strcmp(argv[k], "--frames"))
             frames = 1;
@@ -171,7 +229,8 @@ int cmd_simulate(int argc, char **argv)
         } else
             return arg_unknown("simulate", argv[k],
                                "--field=1 --localizer=1 --seed=1 --steps=1 --every=1 --param=1 "
-                               "--obs-cache=1 --scenario=1 --post-sides=1");
+                               "--obs-cache=1 --scenario=1 --post-sides=1 --export-stream=1 "
+                               "--kidnaps=1");
     }
     if (scen_path == NULL && field_name == NULL) {
         usage();
@@ -215,6 +274,30 @@ int cmd_simulate(int argc, char **argv)
     }
     if (seed >= 0)
         sc.seed = (uint64_t)seed;
+    if (kidnaps >= 0) {
+        char was[SIM_NAME_LEN];
+        memcpy(was, sc.name, sizeof was);
+        if (sim_scenario_set_kidnaps(&sc, (int)kidnaps) != 0) {
+            fprintf(stderr, "simulate: --kidnaps %ld does not fit the walk (at most %d events, "
+                            "kidnaps at least 2 s apart and off the penalties)\n",
+                    kidnaps, SIM_MAX_EVENTS);
+            rc = 2;
+            goto done;
+        }
+        if (strcmp(was, sc.name) != 0 && obs_cache != NULL && frames &&
+            cache_of_other_walk(obs_cache, sc.name)) {
+            /* it would be overwritten with this walk's observations */
+            fprintf(stderr, "simulate: %s holds the observations of another walk; --kidnaps "
+                            "changes the walk: give a cache file of its own\n", obs_cache);
+            rc = 2;
+            goto done;
+        }
+    }
+    if (stream_path != NULL && (stream = fopen(stream_path, "w")) == NULL) {
+        fprintf(stderr, "simulate: cannot write %s\n", stream_path);
+        rc = 1;
+        goto done;
+    }
     memset(&o, 0, sizeof o);
     o.frames = frames;
     o.every = (int)every;
@@ -225,6 +308,7 @@ int cmd_simulate(int argc, char **argv)
     o.loc = loc;
     o.params = params;
     o.obs_cache = obs_cache;
+    o.stream = stream;
     printf("# simulate field %s localizer %s seed %llu %s, %.0f s at %.0f Hz\n",
            sc.field->name, loc->name, (unsigned long long)sc.seed, frames ? "frames" : "features",
            sc.duration_s, sc.frame_hz);
@@ -247,12 +331,7 @@ int cmd_simulate(int argc, char **argv)
     }
     printf("# steps %ld (%.1f s), %ld records, rmse over %ld records\n", res.steps,
            (double)res.steps / sc.frame_hz, res.records, res.used);
-    printf("# localizer: %u kidnaps detected, %u empty resets, %u mode switches, "
-           "%u obs used, %u deferred (contradicting the tracked mode), %u ignored, "
-           "%u odometry rejected\n",
-           res.stats.kidnaps, res.stats.empty_resets, res.stats.mode_switches,
-           res.stats.obs_used, res.stats.obs_gated, res.stats.obs_ignored,
-           res.stats.odo_rejected);
+    lr_walk_print_stats(stdout, &res);
     if (frames) {
         lr_walk_print_vdiag(stdout, &res);
         printf("# time: rendering %.1f s, vision + grid %.1f s (%.2f ms per frame)\n",
@@ -262,6 +341,10 @@ int cmd_simulate(int argc, char **argv)
     lr_walk_print_summary(stdout, &res);
     rc = 0;
 done:
+    if (stream != NULL && fclose(stream) != 0 && rc == 0) {
+        fprintf(stderr, "simulate: error writing %s\n", stream_path);
+        rc = 1;
+    }
     free(params);
     free(defaults);
     return rc;

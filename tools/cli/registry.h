@@ -28,6 +28,7 @@
     X(eval_detect, "score detections against ground truth")                   \
     X(simulate, "--field F --localizer fuzzy --seed N: simulated walk")       \
     X(localize, "SEQUENCE.txt: localize a frame sequence")                    \
+    X(replay, "--stream FILE [--localizer NAME]: a localizer on an input stream") \
     X(reliability, "reliability diagram and calibration check (held-out walks)") \
     X(demo, "the bundled walk, with pictures")                                \
     X(bench, "[--out FILE.tsv]: benchmarks")

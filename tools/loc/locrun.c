@@ -13,6 +13,7 @@
  * one lr_seq_frame_t (about 1 KiB) per frame.
  */
 #include "loc/locrun.h"
+#include "loc/stream.h"
 #include "eval/picture.h"
 #include "io/textfile.h"
 
@@ -94,6 +95,21 @@ static double lr_odo_max(const lr_t *r)
     return (double)v;
 }
 
+/* Every localizer call of the engine goes through these (the stream). */
+static void lr_call_predict(lr_t *r, int32_t dx, int32_t dy, fl_angle_t dth)
+{
+    if (r->stream != NULL)
+        ls_write_predict(r->stream, dx, dy, dth);
+    r->loc->predict(r->state, dx, dy, dth);
+}
+
+static uint16_t lr_call_update(lr_t *r, const fl_obs_list_t *obs, const fl_obs_view_t *view)
+{
+    if (r->stream != NULL)
+        ls_write_update(r->stream, obs, view);
+    return r->loc->update(r->state, obs, view);
+}
+
 void lr_predict(lr_t *r, double dx_mm, double dy_mm, double dtheta_rad)
 {
     double x = dx_mm + r->carry_x, y = dy_mm + r->carry_y;
@@ -111,13 +127,13 @@ void lr_predict(lr_t *r, double dx_mm, double dy_mm, double dtheta_rad)
     ra = fmod(ra, 65536.0);
     if (fabs(rx) > 2e6 || fabs(ry) > 2e6) {
         /* absurd: one call, which the grid rejects and counts */
-        r->loc->predict(r->state, rx > 0 ? 2000000 : -2000000, 0, 0);
+        lr_call_predict(r, rx > 0 ? 2000000 : -2000000, 0, 0);
         return;
     }
     m = fabs(rx) > fabs(ry) ? fabs(rx) : fabs(ry);
     parts = m > lim ? (int)ceil(m / lim) : 1;
     if (parts == 1) {
-        r->loc->predict(r->state, (int32_t)rx, (int32_t)ry, fl_angle_wrap((int32_t)ra));
+        lr_call_predict(r, (int32_t)rx, (int32_t)ry, fl_angle_wrap((int32_t)ra));
         return;
     }
     {
@@ -126,8 +142,8 @@ void lr_predict(lr_t *r, double dx_mm, double dy_mm, double dtheta_rad)
         for (k = 1; k <= parts; k++) {
             int32_t tx = (int32_t)floor(rx * k / parts + 0.5);
             int32_t ty = (int32_t)floor(ry * k / parts + 0.5);
-            r->loc->predict(r->state, tx - done_x, ty - done_y,
-                             k == parts ? fl_angle_wrap((int32_t)ra) : 0);
+            lr_call_predict(r, tx - done_x, ty - done_y,
+                            k == parts ? fl_angle_wrap((int32_t)ra) : 0);
             done_x = tx;
             done_y = ty;
         }
@@ -167,7 +183,7 @@ int lr_frame(lr_t *r, const fl_image_t *img, const fl_camera_pose_t *pose)
     r->frames++;
     lr_filter(r);
     fl_vision_view(&r->cam, &r->view);
-    r->obs_used = r->loc->update(r->state, &r->obs, &r->view);
+    r->obs_used = lr_call_update(r, &r->obs, &r->view);
     return r->obs_used;
 }
 
@@ -181,7 +197,7 @@ int lr_frame_obs(lr_t *r, const fl_camera_pose_t *pose, const fl_obs_list_t *obs
     r->frames++;
     lr_filter(r);
     fl_vision_view(&r->cam, &r->view);
-    r->obs_used = r->loc->update(r->state, &r->obs, &r->view);
+    r->obs_used = lr_call_update(r, &r->obs, &r->view);
     return r->obs_used;
 }
 
@@ -600,7 +616,7 @@ int lr_seq_run(const lr_seq_t *seq, const lr_seq_opts_t *o, lr_frame_result_t *r
 #define LR_GOOD_DEG 15.0
 #define LR_HOLD_S 1.0
 
-typedef struct {
+typedef struct lr_rec {
     double t, pos_err, head_err;
     int good, flip, excluded;
 } lr_rec_t;
@@ -737,14 +753,229 @@ static void lr_record(lr_rec_t *r, double t, int sym, int half_known, double ex,
     r->excluded = 0;
 }
 
-/* One vision step of a batch (frames mode). */
+/* ---- metrics ------------------------------------------------------------------ */
+
+int lr_metrics_init(lr_metrics_t *m, int symmetric)
+{
+    memset(m, 0, sizeof *m);
+    m->sym = symmetric;
+    m->half_known = 1;
+    m->i_penalty = -1;
+    m->cap = 1024;
+    m->rec = malloc((size_t)m->cap * sizeof *m->rec);
+    return m->rec != NULL ? 0 : -1;
+}
+
+void lr_metrics_free(lr_metrics_t *m)
+{
+    free(m->rec);
+    m->rec = NULL;
+    m->n = m->cap = 0;
+}
+
+/* The open kidnap windows close at record m->n (the next one). */
+static void lr_metrics_close(lr_metrics_t *m, lr_kidnap_end_t why, double t_s)
+{
+    int k;
+    for (k = 0; k < m->n_kid; k++) {
+        if (m->kid_end[k] >= 0)
+            continue;
+        m->kid_end[k] = m->n;
+        m->kid_why[k] = why;
+        m->kid_end_t[k] = t_s;
+    }
+}
+
+void lr_metrics_event(lr_metrics_t *m, unsigned events, double t_s)
+{
+    if (events & SIM_EV_KIDNAP) {
+        lr_metrics_close(m, LR_KIDNAP_NEXT, t_s);
+        if (m->n_kid < LR_MAX_KIDNAPS) {
+            m->kid_rec[m->n_kid] = m->n;
+            m->kid_t[m->n_kid] = t_s;
+            m->kid_end[m->n_kid] = -1;
+            m->n_kid++;
+        }
+        m->half_known = 0;
+    }
+    if (events & SIM_EV_PENALIZED) {
+        /* told: from here on the robot's belief is the reset's, not its own */
+        lr_metrics_close(m, LR_KIDNAP_TOLD, t_s);
+        if (m->i_penalty < 0)
+            m->i_penalty = m->n;
+        m->half_known = 1;
+    }
+}
+
+long lr_metrics_record(lr_metrics_t *m, double t_s, const fl_loc_estimate_t *est,
+                       int32_t truth_x_mm, int32_t truth_y_mm, fl_angle_t truth_heading,
+                       double *pos_err_mm, double *head_err_deg)
+{
+    lr_rec_t *r;
+    if (m->n == m->cap) {
+        lr_rec_t *g = realloc(m->rec, (size_t)m->cap * 2 * sizeof *g);
+        if (g == NULL)
+            return -1;
+        m->rec = g;
+        m->cap *= 2;
+    }
+    r = &m->rec[m->n];
+    lr_record(r, t_s, m->sym, m->half_known, est->x_mm, est->y_mm, lr_deg(est->heading),
+              truth_x_mm, truth_y_mm, lr_deg(truth_heading));
+    m->last_pos_err = r->pos_err;
+    m->last_head_err = r->head_err;
+    if (pos_err_mm != NULL)
+        *pos_err_mm = r->pos_err;
+    if (head_err_deg != NULL)
+        *head_err_deg = r->head_err;
+    return m->n++;
+}
+
+static int lr_cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+void lr_metrics_finish(lr_metrics_t *m, lr_walk_result_t *res)
+{
+    lr_rec_t *rec = m->rec;
+    long n = m->n, i, ic = lr_first_hold(rec, n, 0, LR_HOLD_S);
+    double se_p = 0, se_h = 0, se_pa = 0, se_ha = 0, sorted[LR_MAX_KIDNAPS];
+    long used_all = 0;
+    int k;
+    res->records = n;
+    res->used = 0;
+    res->flips = 0;
+    res->final_pos_err_mm = m->last_pos_err;
+    res->final_head_err_deg = m->last_head_err;
+    res->converge_s = ic >= 0 ? rec[ic].t : INFINITY;
+    /* each kidnap: recovered by itself before its window closes (the
+     * next told reset, the next kidnap, the end), the whole 1 s hold
+     * inside the window; the window is excluded from the RMSE */
+    res->n_kidnaps = 0;
+    for (k = 0; k < m->n_kid; k++) {
+        long from = m->kid_rec[k], end = m->kid_end[k] >= 0 ? m->kid_end[k] : n, ik;
+        lr_kidnap_t *kd;
+        if (from >= n)
+            continue; /* after the last record */
+        if (end > n)
+            end = n;
+        kd = &res->kidnap[res->n_kidnaps++];
+        kd->t_s = m->kid_t[k];
+        ik = lr_first_hold(rec, end, from, LR_HOLD_S);
+        kd->recover_s = ik >= 0 ? rec[ik].t - m->kid_t[k] : INFINITY;
+        kd->end = ik >= 0 ? LR_KIDNAP_RECOVERED : m->kid_end[k] >= 0 ? m->kid_why[k]
+                                                                    : LR_KIDNAP_END;
+        kd->end_s = ik >= 0 ? rec[ik].t : m->kid_end[k] >= 0 ? m->kid_end_t[k] : rec[n - 1].t;
+        for (i = from; i < (ik >= 0 ? ik : end); i++)
+            rec[i].excluded = 1;
+    }
+    res->kidnap_recover_s = NAN;
+    res->kidnap_recover_worst_s = NAN;
+    if (res->n_kidnaps > 0) {
+        int nk = res->n_kidnaps;
+        for (k = 0; k < nk; k++)
+            sorted[k] = res->kidnap[k].recover_s;
+        qsort(sorted, (size_t)nk, sizeof sorted[0], lr_cmp_double);
+        res->kidnap_recover_s =
+            nk % 2 ? sorted[nk / 2] : 0.5 * (sorted[nk / 2 - 1] + sorted[nk / 2]);
+        res->kidnap_recover_worst_s = sorted[nk - 1];
+    }
+    res->penalty_recover_s = NAN;
+    if (m->i_penalty >= 0 && m->i_penalty < n) {
+        long ip = lr_first_hold(rec, n, m->i_penalty, LR_HOLD_S);
+        res->penalty_recover_s = ip >= 0 ? rec[ip].t - rec[m->i_penalty].t : INFINITY;
+        for (i = m->i_penalty; i < n && (ip < 0 || i < ip); i++)
+            rec[i].excluded = 1;
+    }
+    for (i = 0; i < n; i++) {
+        if (rec[i].flip && (i == 0 || !rec[i - 1].flip))
+            res->flips++;
+        if (ic < 0 || i < ic)
+            continue;
+        se_pa += rec[i].pos_err * rec[i].pos_err;
+        se_ha += rec[i].head_err * rec[i].head_err;
+        used_all++;
+        if (rec[i].excluded)
+            continue;
+        se_p += rec[i].pos_err * rec[i].pos_err;
+        se_h += rec[i].head_err * rec[i].head_err;
+        res->used++;
+    }
+    res->pos_rmse_mm = res->used > 0 ? sqrt(se_p / (double)res->used) : NAN;
+    res->heading_rmse_deg = res->used > 0 ? sqrt(se_h / (double)res->used) : NAN;
+    res->pos_rmse_all_mm = used_all > 0 ? sqrt(se_pa / (double)used_all) : NAN;
+    res->heading_rmse_all_deg = used_all > 0 ? sqrt(se_ha / (double)used_all) : NAN;
+}
+
+void lr_print_step(FILE *f, uint32_t step, double t_s, const fl_loc_estimate_t *est,
+                   int32_t truth_x_mm, int32_t truth_y_mm, fl_angle_t truth_heading,
+                   double pos_err_mm, double head_err_deg)
+{
+    fprintf(f, "step %ld %.3f est %d %d %.1f %.3f truth %d %d %.1f err %.0f %.1f", (long)step,
+            t_s, (int)est->x_mm, (int)est->y_mm, lr_deg(est->heading),
+            est->reliability_q16 / 65536.0, (int)truth_x_mm, (int)truth_y_mm,
+            lr_deg(truth_heading), pos_err_mm, head_err_deg);
+    lr_print_conf(f, est);
+    fputc('\n', f);
+}
+
+void lr_print_obs(FILE *f, const fl_obs_list_t *ol)
+{
+    static const char kc[] = "LTXPCGOB";
+    int q;
+    for (q = 0; q < ol->n; q++) {
+        const fl_obs_t *ob = &ol->obs[q];
+        fprintf(f, "#  obs %c range %d bearing %.1f orient %s%.1f side %d conf %d\n",
+                (int)ob->kind < FL_LM_KIND_COUNT ? kc[ob->kind] : '?', (int)ob->range_mm,
+                lr_deg(ob->bearing), ob->has_orientation ? "" : "-", lr_deg(ob->orientation),
+                (int)ob->side, (int)ob->confidence);
+    }
+}
+
+/* ---- the walk ------------------------------------------------------------------ */
+
+/* The told and untold events of one simulator step (slips left out). */
+typedef struct {
+    unsigned bits;
+    uint32_t step;
+    int32_t t_ms, x_mm, y_mm;
+    fl_angle_t heading;
+} lr_ev_t;
+
+/* every SIM_EVENT of a scenario and every end of a penalty: the most a
+ * record can collect */
+#define LR_EV_MAX (2 * SIM_MAX_EVENTS + 2)
+#define LR_EV_BITS (SIM_EV_KIDNAP | SIM_EV_PENALIZED | SIM_EV_UNPENALIZED)
+
+typedef struct {
+    lr_ev_t ev[LR_EV_MAX];
+    int n;
+} lr_evlist_t;
+
+static void lr_ev_add(lr_evlist_t *l, const sim_step_t *st)
+{
+    lr_ev_t *e;
+    if ((st->events & LR_EV_BITS) == 0 || l->n >= LR_EV_MAX)
+        return;
+    e = &l->ev[l->n++];
+    e->bits = st->events & LR_EV_BITS;
+    e->step = st->index;
+    e->t_ms = st->t_ms;
+    e->x_mm = st->x_mm;
+    e->y_mm = st->y_mm;
+    e->heading = st->heading;
+}
+
+/* One record of a batch (frames mode: a vision step). */
 typedef struct {
     sim_step_t st;
     double ax, ay, aa;            /* odometry since the previous vision step
                                      (after the placement, if any) */
     int placed;                   /* penalty placement since then */
     unsigned events;              /* events of the steps since then */
-    int half_known;
+    lr_evlist_t ev;               /* the same, one entry per step */
     render_scene_t scene;
     render_frame_t fr;
     int rc;
@@ -805,30 +1036,61 @@ int lr_threads_default(void)
     return (int)n;
 }
 
+/* The placement the rules tell: one of the two touchline spots at
+ * penalty_x_mm, 300 mm and about 15 degrees of uncertainty. */
+static void lr_place(lr_t *lr, const sim_scenario_t *sc)
+{
+    if (lr->stream != NULL)
+        ls_write_reset_penalty(lr->stream, (int32_t)sc->penalty_x_mm, 300, 2730);
+    lr->loc->reset_penalty(lr->state, (int32_t)sc->penalty_x_mm, 300, 2730);
+}
+
+/* The observation cache (frames mode, lr_walk_opts_t.obs_cache): returns
+ * the open file, *reading 1 when it holds this walk's observations. */
+static FILE *lr_cache_open(const sim_scenario_t *sc, const char *path, int every, int *reading)
+{
+    char want[128], have[128];
+    FILE *cache;
+    *reading = 0;
+    snprintf(want, sizeof want, "fieldloc-obs-cache 1 %s %s %llu %d %u %d\n", sc->name,
+             sc->field->name, (unsigned long long)sc->seed, every,
+             (unsigned)sizeof(fl_obs_list_t), (int)(sc->duration_s * 1000));
+    cache = fopen(path, "rb");
+    if (cache != NULL && fgets(have, sizeof have, cache) != NULL && !strcmp(have, want)) {
+        *reading = 1;
+        return cache;
+    }
+    if (cache != NULL)
+        fclose(cache);
+    cache = fopen(path, "wb");
+    if (cache != NULL)
+        fputs(want, cache);
+    return cache;
+}
+
 int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
                 lr_walk_result_t *res, char *err, int err_len)
 {
     sim_t *sim;
     sim_step_t *st;
     lr_t lr;
-    lr_rec_t *rec;
+    lr_metrics_t met;
     lr_job_t *job = NULL;
     lr_odo_t acc = {0, 0, 0};
-    long n = 0, cap, i, i_kidnap = -1, i_penalty = -1;
-    int half_known = 1, sym, every = o->every < 1 ? 1 : o->every, placed = 0, done = 0;
+    lr_evlist_t pend;
+    int every = o->every < 1 ? 1 : o->every, placed = 0, done = 0, prior_half;
     unsigned events = 0;
     int nthreads = o->threads > 0 ? o->threads : lr_threads_default();
     FILE *cache = NULL;
     int cache_read = 0;
-    double t_kidnap = -1;
     fl_loc_estimate_t est;
 
     memset(res, 0, sizeof *res);
+    pend.n = 0;
     sim = malloc(sizeof *sim);
     st = malloc(sizeof *st);
-    if (o->frames)
-        job = calloc(LR_BATCH, sizeof *job);
-    if (sim == NULL || st == NULL || (o->frames && job == NULL)) {
+    job = calloc(o->frames ? LR_BATCH : 1, sizeof *job);
+    if (sim == NULL || st == NULL || job == NULL) {
         free(sim);
         free(st);
         free(job);
@@ -846,65 +1108,38 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
         free(job);
         return -1;
     }
-    lr.loc->set_prior_half(lr.state, sc->start_x_mm < 0 ? -1 : 1);
-    lr.ignore_post_sides = o->ignore_post_sides;
-    sym = sc->field->symmetric;
-    cap = (long)sim_step_count(sim) + 1;
-    rec = calloc((size_t)cap, sizeof *rec);
-    if (rec == NULL) {
+    if (lr_metrics_init(&met, sc->field->symmetric) != 0) {
         lr_free(&lr);
         free(sim);
         free(st);
         free(job);
         return lr_fail(err, err_len, 0, "out of memory");
     }
+    prior_half = sc->start_x_mm < 0 ? -1 : 1;
+    lr.loc->set_prior_half(lr.state, prior_half);
+    lr.ignore_post_sides = o->ignore_post_sides;
+    lr.stream = o->stream;
+    if (o->stream != NULL)
+        ls_write_header(o->stream, sc, o->frames, o->frames ? every : 1, !o->ignore_post_sides,
+                        prior_half);
     res->dt_s = (o->frames ? every : 1) / sc->frame_hz;
-    if (o->frames && o->obs_cache != NULL) {
-        char want[128], have[128];
-        snprintf(want, sizeof want, "fieldloc-obs-cache 1 %s %s %llu %d %u %d\n", sc->name,
-                 sc->field->name, (unsigned long long)sc->seed, every,
-                 (unsigned)sizeof(fl_obs_list_t), (int)(sc->duration_s * 1000));
-        cache = fopen(o->obs_cache, "rb");
-        if (cache != NULL && fgets(have, sizeof have, cache) != NULL && !strcmp(have, want)) {
-            cache_read = 1;
-        } else {
-            if (cache != NULL)
-                fclose(cache);
-            cache = fopen(o->obs_cache, "wb");
-            if (cache != NULL)
-                fputs(want, cache);
-        }
-    }
+    if (o->frames && o->obs_cache != NULL)
+        cache = lr_cache_open(sc, o->obs_cache, every, &cache_read);
     while (!done) {
         int nb = 0, b;
         double t0;
         /* 1. advance the simulator: one step (features) or up to a batch of
          *    vision steps (frames) */
         while (!done) {
-            double t;
-            if (n + nb >= cap || (o->max_steps >= 0 && res->steps >= o->max_steps) ||
-                !sim_step(sim, st)) {
+            if ((o->max_steps >= 0 && res->steps >= o->max_steps) || !sim_step(sim, st)) {
                 done = 1;
                 break;
             }
             res->steps++;
-            t = st->t_ms / 1000.0;
-            if ((st->events & SIM_EV_KIDNAP) && t_kidnap < 0) {
-                t_kidnap = t;
-                i_kidnap = n + nb;
-            }
-            if (st->events & SIM_EV_KIDNAP)
-                half_known = 0;
+            lr_ev_add(&pend, st);
             if (!o->frames) {
-                /* feature mode: predict, placement, update every step */
-                lr.loc->predict(lr.state, st->odo_dx_mm, st->odo_dy_mm, st->odo_dtheta);
-                if (st->events & SIM_EV_PENALIZED) {
-                    lr.loc->reset_penalty(lr.state, (int32_t)sc->penalty_x_mm, 300, 2730);
-                    half_known = 1;
-                    if (i_penalty < 0)
-                        i_penalty = n;
-                }
-                lr.loc->update(lr.state, &st->obs, NULL);
+                job[0].ev = pend;
+                pend.n = 0;
                 nb = 1;
                 break;
             }
@@ -914,7 +1149,6 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
                 /* the placement replaces the belief: motion before it is moot */
                 acc.x = acc.y = acc.a = 0;
                 placed = 1;
-                half_known = 1;
             }
             if (st->index % (uint32_t)every != 0)
                 continue;
@@ -923,10 +1157,9 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
             job[nb].ay = acc.y;
             job[nb].aa = acc.a;
             job[nb].placed = placed;
-            if (placed && i_penalty < 0)
-                i_penalty = n + nb;
-            job[nb].half_known = half_known;
             job[nb].events = events;
+            job[nb].ev = pend;
+            pend.n = 0;
             events = 0;
             sim_render_scene(sc, st, &job[nb].scene);
             acc.x = acc.y = acc.a = 0;
@@ -942,25 +1175,43 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
         /* 2. localize each record of the batch in order */
         for (b = 0; b < nb; b++) {
             const sim_step_t *sp = o->frames ? &job[b].st : st;
-            int hk = o->frames ? job[b].half_known : half_known;
-            double t = sp->t_ms / 1000.0;
+            double t = sp->t_ms / 1000.0, pe = 0, he = 0;
             lr_walk_step_t ws;
-            if (o->frames) {
-                if (job[b].rc != 0) {
-                    unsigned long idx = (unsigned long)sp->index;
-                    for (; b < nb; b++)
-                        render_frame_free(&job[b].fr);
-                    free(rec);
-                    lr_free(&lr);
-                    free(sim);
-                    free(st);
-                    free(job);
-                    if (cache != NULL)
-                        fclose(cache);
-                    return lr_fail(err, err_len, 0, "render failed at step %lu", idx);
+            long n = met.n;
+            int q;
+            if (o->frames && job[b].rc != 0) {
+                unsigned long idx = (unsigned long)sp->index;
+                for (; b < nb; b++)
+                    render_frame_free(&job[b].fr);
+                lr_metrics_free(&met);
+                lr_free(&lr);
+                free(sim);
+                free(st);
+                free(job);
+                if (cache != NULL)
+                    fclose(cache);
+                return lr_fail(err, err_len, 0, "render failed at step %lu", idx);
+            }
+            for (q = 0; q < job[b].ev.n; q++)
+                lr_metrics_event(&met, job[b].ev.ev[q].bits, job[b].ev.ev[q].t_ms / 1000.0);
+            if (o->stream != NULL) {
+                ls_write_record(o->stream, n, sp->index, sp->t_ms, sp->x_mm, sp->y_mm,
+                                sp->heading);
+                for (q = 0; q < job[b].ev.n; q++) {
+                    const lr_ev_t *e = &job[b].ev.ev[q];
+                    ls_write_events(o->stream, e->bits, e->step, e->t_ms, e->x_mm, e->y_mm,
+                                    e->heading);
                 }
+            }
+            if (!o->frames) {
+                /* feature mode: predict, placement, update every step */
+                lr_call_predict(&lr, sp->odo_dx_mm, sp->odo_dy_mm, sp->odo_dtheta);
+                if (sp->events & SIM_EV_PENALIZED)
+                    lr_place(&lr, sc);
+                lr_call_update(&lr, &sp->obs, NULL);
+            } else {
                 if (job[b].placed)
-                    lr.loc->reset_penalty(lr.state, (int32_t)sc->penalty_x_mm, 300, 2730);
+                    lr_place(&lr, sc);
                 t0 = lr_now_s();
                 lr_predict(&lr, job[b].ax, job[b].ay, job[b].aa);
                 if (cache_read) {
@@ -988,31 +1239,25 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
                 lr_vdiag_frame(res->vdiag, sc, &lr.cam, sp, &lr.obs);
             }
             lr.loc->estimate(lr.state, &est);
-            lr_record(&rec[n], t, sym, hk, est.x_mm, est.y_mm, lr_deg(est.heading), sp->x_mm,
-                      sp->y_mm, lr_deg(sp->heading));
-            if (o->steps != NULL)
-                fprintf(o->steps,
-                        "step %ld %.3f est %d %d %.1f %.3f truth %d %d %.1f err %.0f %.1f",
-                        (long)sp->index, t, (int)est.x_mm, (int)est.y_mm, lr_deg(est.heading),
-                        est.reliability_q16 / 65536.0, (int)sp->x_mm, (int)sp->y_mm,
-                        lr_deg(sp->heading), rec[n].pos_err, rec[n].head_err);
-            if (o->steps != NULL) {
-                lr_print_conf(o->steps, &est);
-                fputc('\n', o->steps);
+            if (lr_metrics_record(&met, t, &est, sp->x_mm, sp->y_mm, sp->heading, &pe, &he) <
+                0) {
+                for (; b < nb; b++)
+                    if (o->frames && !cache_read)
+                        render_frame_free(&job[b].fr);
+                lr_metrics_free(&met);
+                lr_free(&lr);
+                free(sim);
+                free(st);
+                free(job);
+                if (cache != NULL)
+                    fclose(cache);
+                return lr_fail(err, err_len, 0, "out of memory");
             }
-            if (o->steps != NULL && o->print_obs) {
-                static const char kc[] = "LTXPCGOB";
-                const fl_obs_list_t *ol = o->frames ? &lr.obs : &sp->obs;
-                int q;
-                for (q = 0; q < ol->n; q++) {
-                    const fl_obs_t *ob = &ol->obs[q];
-                    fprintf(o->steps, "#  obs %c range %d bearing %.1f orient %s%.1f side %d "
-                                      "conf %d\n",
-                            (int)ob->kind < FL_LM_KIND_COUNT ? kc[ob->kind] : '?',
-                            (int)ob->range_mm, lr_deg(ob->bearing),
-                            ob->has_orientation ? "" : "-", lr_deg(ob->orientation),
-                            (int)ob->side, (int)ob->confidence);
-                }
+            if (o->steps != NULL) {
+                lr_print_step(o->steps, sp->index, t, &est, sp->x_mm, sp->y_mm, sp->heading, pe,
+                              he);
+                if (o->print_obs)
+                    lr_print_obs(o->steps, o->frames ? &lr.obs : &sp->obs);
             }
             if (o->hook != NULL) {
                 ws.sc = sc;
@@ -1022,62 +1267,23 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
                 ws.frame = o->frames && !cache_read ? &job[b].fr : NULL;
                 ws.record = n;
                 ws.t_s = t;
-                ws.pos_err_mm = rec[n].pos_err;
-                ws.head_err_deg = rec[n].head_err;
-                ws.half_known = hk;
+                ws.pos_err_mm = pe;
+                ws.head_err_deg = he;
+                ws.half_known = met.half_known;
                 ws.events = o->frames ? job[b].events : sp->events;
                 o->hook(o->user, &ws);
             }
             if (o->frames && !cache_read)
                 render_frame_free(&job[b].fr);
-            res->final_pos_err_mm = rec[n].pos_err;
-            res->final_head_err_deg = rec[n].head_err;
-            n++;
         }
     }
-    res->records = n;
-    {
-        long ic = lr_first_hold(rec, n, 0, LR_HOLD_S), ik;
-        double se_p = 0, se_h = 0, se_pa = 0, se_ha = 0;
-        long used_all = 0;
-        res->converge_s = ic >= 0 ? rec[ic].t : INFINITY;
-        res->kidnap_recover_s = NAN;
-        if (i_kidnap >= 0 && i_kidnap < n) {
-            ik = lr_first_hold(rec, n, i_kidnap, LR_HOLD_S);
-            res->kidnap_recover_s = ik >= 0 ? rec[ik].t - t_kidnap : INFINITY;
-            for (i = i_kidnap; i < n && (ik < 0 || i < ik); i++)
-                rec[i].excluded = 1;
-        }
-        res->penalty_recover_s = NAN;
-        if (i_penalty >= 0 && i_penalty < n) {
-            long ip = lr_first_hold(rec, n, i_penalty, LR_HOLD_S);
-            res->penalty_recover_s = ip >= 0 ? rec[ip].t - rec[i_penalty].t : INFINITY;
-            for (i = i_penalty; i < n && (ip < 0 || i < ip); i++)
-                rec[i].excluded = 1;
-        }
-        for (i = 0; i < n; i++) {
-            if (rec[i].flip && (i == 0 || !rec[i - 1].flip))
-                res->flips++;
-            if (ic < 0 || i < ic)
-                continue;
-            se_pa += rec[i].pos_err * rec[i].pos_err;
-            se_ha += rec[i].head_err * rec[i].head_err;
-            used_all++;
-            if (rec[i].excluded)
-                continue;
-            se_p += rec[i].pos_err * rec[i].pos_err;
-            se_h += rec[i].head_err * rec[i].head_err;
-            res->used++;
-        }
-        res->pos_rmse_mm = res->used > 0 ? sqrt(se_p / (double)res->used) : NAN;
-        res->heading_rmse_deg = res->used > 0 ? sqrt(se_h / (double)res->used) : NAN;
-        res->pos_rmse_all_mm = used_all > 0 ? sqrt(se_pa / (double)used_all) : NAN;
-        res->heading_rmse_all_deg = used_all > 0 ? sqrt(se_ha / (double)used_all) : NAN;
-    }
+    lr_metrics_finish(&met, res);
+    if (o->stream != NULL)
+        ls_write_end(o->stream, res->records);
     lr.loc->stats(lr.state, &res->stats);
     if (cache != NULL)
         fclose(cache);
-    free(rec);
+    lr_metrics_free(&met);
     lr_free(&lr);
     free(sim);
     free(st);
@@ -1095,8 +1301,34 @@ static void lr_print_val(FILE *f, const char *name, double v, int decimals)
         fprintf(f, "%s %.*f\n", name, decimals, v);
 }
 
+void lr_walk_print_stats(FILE *f, const lr_walk_result_t *res)
+{
+    fprintf(f, "# localizer: %u kidnaps detected, %u empty resets, %u mode switches, "
+               "%u obs used, %u deferred (contradicting the tracked mode), %u ignored, "
+               "%u odometry rejected\n",
+            res->stats.kidnaps, res->stats.empty_resets, res->stats.mode_switches,
+            res->stats.obs_used, res->stats.obs_gated, res->stats.obs_ignored,
+            res->stats.odo_rejected);
+}
+
 void lr_walk_print_summary(FILE *f, const lr_walk_result_t *res)
 {
+    static const char *const why[] = {"", "before the penalty placement at",
+                                      "before the next kidnap at", "before the run ended at"};
+    int k;
+    for (k = 0; k < res->n_kidnaps; k++) {
+        const lr_kidnap_t *kd = &res->kidnap[k];
+        if (kd->end == LR_KIDNAP_RECOVERED)
+            fprintf(f, "# kidnap %d at %.2f recovered after %.2f s\n", k + 1, kd->t_s,
+                    kd->recover_s);
+        else
+            fprintf(f, "# kidnap %d at %.2f never recovered %s %.2f\n", k + 1, kd->t_s,
+                    why[kd->end], kd->end_s);
+    }
+    if (res->n_kidnaps > 0) {
+        fprintf(f, "# ");
+        lr_print_val(f, "kidnap_recover_worst_s", res->kidnap_recover_worst_s, 2);
+    }
     fprintf(f, "# penalty_recover_s %.2f (its window is excluded like the kidnap's)\n",
             res->penalty_recover_s);
     fprintf(f, "# every record after convergence, nothing excluded: pos_rmse_mm %.1f "

@@ -63,6 +63,10 @@ typedef struct {
                                    obs.h fl_vision_view) */
     double carry_x, carry_y, carry_a;   /* predict rounding remainders */
     uint32_t frames;            /* lr_frame calls that ran vision */
+    FILE *stream;               /* when set, every predict and update call
+                                   lr_predict / lr_frame / lr_frame_obs make
+                                   is written to it (tools/loc/stream.h
+                                   format, docs/STREAM.md); NULL: off */
 } lr_t;
 
 /* loc NULL: "fuzzy".  params (loc->params_size bytes) NULL: the
@@ -242,6 +246,9 @@ typedef struct {
     const fl_localizer_t *loc;    /* NULL: "fuzzy" */
     const void *params;           /* NULL: defaults */
     FILE *steps;                  /* per-record "step ..." lines; NULL: none */
+    FILE *stream;                 /* the localizer's inputs and the truth
+                                     per record (docs/STREAM.md, written by
+                                     tools/loc/stream.h); NULL: none */
     int print_obs;                /* 1: after each step line, one "#  obs"
                                      line per observation of the record */
     /* called after every record (frames mode: every vision step) */
@@ -262,13 +269,38 @@ typedef struct lr_walk_step {
                                      previous record (this one included) */
 } lr_walk_step_t;
 
+/* One kidnap of a walk and its recovery (lr_walk_result_t.kidnap). */
+#define LR_MAX_KIDNAPS 64
+
+typedef enum {
+    LR_KIDNAP_RECOVERED = 0,      /* recovered by itself */
+    LR_KIDNAP_TOLD = 1,           /* not before the next penalty placement
+                                     (a told reset) */
+    LR_KIDNAP_NEXT = 2,           /* not before the next kidnap */
+    LR_KIDNAP_END = 3             /* not before the end of the run */
+} lr_kidnap_end_t;
+
+typedef struct {
+    double t_s;                   /* time of the kidnap (its simulator step) */
+    double recover_s;             /* INFINITY: never (by itself) */
+    lr_kidnap_end_t end;          /* why the window closed */
+    double end_s;                 /* time of the record that closed it */
+} lr_kidnap_t;
+
 typedef struct {
     long steps, records, used;    /* simulator steps, records, records in
                                      the RMSE */
     double dt_s;                  /* seconds per record */
     double pos_rmse_mm, heading_rmse_deg;   /* NAN when used == 0 */
     double converge_s;            /* INFINITY if never */
-    double kidnap_recover_s;      /* NAN: no kidnap, INFINITY: never */
+    double kidnap_recover_s;      /* median over the kidnaps of
+                                     kidnap[].recover_s (two middle values:
+                                     their mean); NAN: no kidnap, INFINITY:
+                                     never */
+    double kidnap_recover_worst_s;    /* the largest; NAN: no kidnap */
+    int n_kidnaps;                /* kidnaps that fall in a record (at most
+                                     LR_MAX_KIDNAPS; later ones ignored) */
+    lr_kidnap_t kidnap[LR_MAX_KIDNAPS];
     double penalty_recover_s;     /* the same from the first penalty
                                      placement (excluded like the kidnap's
                                      window: the two touchline spots are
@@ -292,8 +324,55 @@ int lr_threads_default(void);
  * success, -1 with a message. */
 int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
                 lr_walk_result_t *res, char *err, int err_len);
-/* The summary lines pos_rmse_mm ... flips (exact format). */
+/* The summary: "# kidnap ..." lines (one per kidnap), "#
+ * kidnap_recover_worst_s", "# penalty_recover_s", "# every record", then
+ * the lines pos_rmse_mm ... flips (exact format). */
 void lr_walk_print_summary(FILE *f, const lr_walk_result_t *res);
+/* "# localizer: N kidnaps detected, ..." (the localizer's counters). */
+void lr_walk_print_stats(FILE *f, const lr_walk_result_t *res);
+
+/* ---- the metrics of a walk, record by record (simulate and replay) ------ */
+
+/* Feed, per record: the events of the simulator steps since the previous
+ * record, in step order (lr_metrics_event), then the record
+ * (lr_metrics_record); finally lr_metrics_finish fills the metrics of
+ * lr_walk_result_t (records, used, RMSEs, convergence, kidnaps, penalty,
+ * flips, final errors).  Definitions: tools/cli/cmd_simulate.c. */
+struct lr_rec;
+
+typedef struct {
+    int sym;                      /* the field is symmetric */
+    int half_known;               /* after the events fed so far */
+    struct lr_rec *rec;           /* malloc'd, grows */
+    long n, cap;
+    int n_kid;
+    long kid_rec[LR_MAX_KIDNAPS], kid_end[LR_MAX_KIDNAPS];   /* -1: open */
+    double kid_t[LR_MAX_KIDNAPS], kid_end_t[LR_MAX_KIDNAPS];
+    lr_kidnap_end_t kid_why[LR_MAX_KIDNAPS];
+    long i_penalty;               /* first record with a placement, -1 */
+    double last_pos_err, last_head_err;
+} lr_metrics_t;
+
+int lr_metrics_init(lr_metrics_t *m, int symmetric);
+void lr_metrics_free(lr_metrics_t *m);
+/* One simulator step's events (SIM_EV_* bits; slips ignored) at t_s, taken
+ * in the order unpenalized, kidnap, penalized; they belong to the next
+ * record. */
+void lr_metrics_event(lr_metrics_t *m, unsigned events, double t_s);
+/* One record: the estimate against the truth (integers as the simulator
+ * gives them).  Errors in *pos_err_mm / *head_err_deg (may be NULL);
+ * -1 when out of memory, else the record's index. */
+long lr_metrics_record(lr_metrics_t *m, double t_s, const fl_loc_estimate_t *est,
+                       int32_t truth_x_mm, int32_t truth_y_mm, fl_angle_t truth_heading,
+                       double *pos_err_mm, double *head_err_deg);
+void lr_metrics_finish(lr_metrics_t *m, lr_walk_result_t *res);
+
+/* The per-record line of simulate and replay ("step K T_S est ...", with
+ * the newline) and the "#  obs ..." lines (--print-obs). */
+void lr_print_step(FILE *f, uint32_t step, double t_s, const fl_loc_estimate_t *est,
+                   int32_t truth_x_mm, int32_t truth_y_mm, fl_angle_t truth_heading,
+                   double pos_err_mm, double head_err_deg);
+void lr_print_obs(FILE *f, const fl_obs_list_t *ol);
 /* "# vision ..." lines of the per-kind diagnosis. */
 void lr_walk_print_vdiag(FILE *f, const lr_walk_result_t *res);
 

@@ -1364,3 +1364,85 @@ int sim_write_sequence(const sim_scenario_t *sc, const char *seq_path,
     free(s);
     return status;
 }
+
+/* ---- kidnaps added to a scenario ------------------------------------------- */
+
+/* Distance (s) from t to the nearest busy time: the start, the end, a
+ * kidnap, a penalty (from its start to its end). */
+static double sim_kidnap_room(const sim_scenario_t *sc, double t)
+{
+    double d = t < sc->duration_s - t ? t : sc->duration_s - t, e;
+    int j;
+    for (j = 0; j < sc->n_events; j++) {
+        const sim_event_t *ev = &sc->event[j];
+        double end = ev->kind == SIM_EVENT_PENALTY ? ev->t_s + ev->duration_s : ev->t_s;
+        e = t < ev->t_s ? ev->t_s - t : t > end ? t - end : 0;
+        if (e < d)
+            d = e;
+    }
+    return d;
+}
+
+int sim_scenario_set_kidnaps(sim_scenario_t *sc, int n)
+{
+    uint64_t rng;
+    int own = 0, j, k, add;
+    size_t len;
+    if (sc == NULL || sc->field == NULL || n < 0)
+        return -1;
+    for (j = 0; j < sc->n_events; j++)
+        own += sc->event[j].kind == SIM_EVENT_KIDNAP;
+    if (n == own)
+        return 0;
+    if (n > own && sc->n_events + (n - own) > SIM_MAX_EVENTS)
+        return -1;
+    if (n < own) {
+        /* keep the first n kidnaps (time order) and every penalty */
+        int kept = 0, m = 0;
+        for (j = 0; j < sc->n_events; j++) {
+            if (sc->event[j].kind == SIM_EVENT_KIDNAP && kept++ >= n)
+                continue;
+            sc->event[m++] = sc->event[j];
+        }
+        sc->n_events = m;
+    }
+    /* the targets' own stream: the walk's PRNG is not touched, so the walk
+     * is identical up to the first added kidnap */
+    rng = sim_seed_state(sc->seed * 0x9E3779B97F4A7C15ULL + 0x6B69646E61707321ULL);
+    for (add = own; add < n; add++) {
+        double best_t = -1, best = -1, t, hx, hy;
+        sim_event_t e;
+        /* the time farthest from every busy time, on a 0.1 s grid (the
+         * first of equals): added one by one, so kidnap k is the same for
+         * every n >= k */
+        for (k = 1; k * 0.1 < sc->duration_s; k++) {
+            double r;
+            t = k * 0.1;
+            r = sim_kidnap_room(sc, t);
+            if (r > best + 1e-9) {
+                best = r;
+                best_t = t;
+            }
+        }
+        if (best < 2.0)
+            return -1; /* no room left: kidnaps closer than 2 s */
+        memset(&e, 0, sizeof e);
+        e.kind = SIM_EVENT_KIDNAP;
+        e.t_s = best_t;
+        hx = sc->field->length_mm / 2.0 + sc->field->border_mm / 2.0;
+        hy = sc->field->width_mm / 2.0 + sc->field->border_mm / 2.0;
+        e.x_mm = sim_round(sim_uniform(&rng, -hx, hx));
+        e.y_mm = sim_round(sim_uniform(&rng, -hy, hy));
+        e.heading_deg = sim_round(sim_uniform(&rng, -180.0, 180.0));
+        for (j = sc->n_events; j > 0 && sc->event[j - 1].t_s > e.t_s; j--)
+            sc->event[j] = sc->event[j - 1];
+        sc->event[j] = e;
+        sc->n_events++;
+    }
+    /* another walk: its name says so (observation caches are keyed on it) */
+    len = strlen(sc->name);
+    if (len > SIM_NAME_LEN - 6)
+        len = SIM_NAME_LEN - 6;
+    snprintf(sc->name + len, SIM_NAME_LEN - len, "+k%d", n);
+    return 0;
+}

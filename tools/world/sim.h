@@ -197,6 +197,20 @@ int sim_scenario_load(sim_scenario_t *sc, const char *path, char *err,
 /* Write the text form (all keys; parse(write(sc)) == sc). */
 int sim_scenario_write(FILE *f, const sim_scenario_t *sc);
 
+/* Make the walk have n kidnaps (`fieldloc simulate --kidnaps N`): n equal
+ * to the scenario's own count changes nothing; fewer keeps the first n;
+ * more adds kidnaps one by one, each at the time (0.1 s grid) farthest
+ * from the start, the end, every kidnap and every penalty (start to end),
+ * to a target drawn uniformly over the field plus half its border, heading
+ * uniform, from a PRNG stream of its own derived from sc->seed (set the
+ * seed first).  The walk's noise stream is not touched: the walk is
+ * identical up to the first added kidnap; after it the robot is elsewhere,
+ * so the observations (how many are drawn) and with them the rest of the
+ * stream differ.  Kidnap k is the same for every n >= k.  A changed walk
+ * gets "+kN" appended to its name.  0, or -1 when the events do not fit
+ * SIM_MAX_EVENTS or two kidnaps would come closer than 2 s. */
+int sim_scenario_set_kidnaps(sim_scenario_t *sc, int n);
+
 /* The built-in scenarios behind the committed fixtures: "spl2013",
  * "uva2013", "aibo2004".  Text of one (NULL if unknown), and parsed. */
 const char *sim_builtin_text(const char *name);

@@ -1,0 +1,517 @@
+/*
+ * src/loc/mcl.c - the Monte Carlo localizer (mcl.h): parameters, init,
+ * the random generator and the Gaussian sampler, resets, priors, check.
+ */
+#include "mcl_int.h"
+
+#include <string.h>
+
+/* ---- random numbers ------------------------------------------------------- */
+
+/* xorshift32, shifts 13, 17, 5 (Marsaglia, "Xorshift RNGs", J. Stat.
+ * Softw. 8(14), 2003): period 2^32 - 1 over the non-zero states. */
+uint32_t fl_mcl_rand(uint32_t *rng)
+{
+    uint32_t x = *rng != 0u ? *rng : 2463534242u;
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    *rng = x;
+    return x;
+}
+
+/*
+ * The half-normal quantile z(p) = Phi^-1((1 + p) / 2) in Q12, tabulated
+ * (generated with Python's statistics.NormalDist().inv_cdf).  A deviate
+ * takes 16 bits m for p = (m + 1/2) / 65536 and one bit for the sign.
+ * gauss_main: knots at p = 256 k / 65536, k = 0..252 (p up to 0.984375);
+ * the tail v = 65535 - m < 1024: gauss_tail knots at p = 1 - v / 65536 for
+ * v = 32, 64, ..., 1024, and below v = 32 (where z bends fastest) each
+ * gauss_tail0[v] is z((65535.5 - v) / 65536) exactly.  Between knots: linear
+ * interpolation at the bin's centre.  Largest |z| 4.475; the variance and
+ * the 4th moment of the table's distribution are 0.99997 and 3.0011
+ * (exact over the 2^16 magnitudes; test mcl.gauss_moments samples them).
+ */
+static const int16_t gauss_main[253] = {
+    0, 20, 40, 60, 80, 100, 120, 140, 160, 181, 201, 221,
+    241, 261, 281, 301, 321, 341, 361, 382, 402, 422, 442, 462,
+    482, 503, 523, 543, 563, 584, 604, 624, 644, 665, 685, 705,
+    726, 746, 766, 787, 807, 828, 848, 869, 889, 910, 930, 951,
+    972, 992, 1013, 1034, 1054, 1075, 1096, 1117, 1137, 1158, 1179, 1200,
+    1221, 1242, 1263, 1284, 1305, 1326, 1347, 1369, 1390, 1411, 1432, 1454,
+    1475, 1497, 1518, 1539, 1561, 1583, 1604, 1626, 1648, 1669, 1691, 1713,
+    1735, 1757, 1779, 1801, 1823, 1845, 1868, 1890, 1912, 1935, 1957, 1979,
+    2002, 2025, 2047, 2070, 2093, 2116, 2139, 2162, 2185, 2208, 2231, 2255,
+    2278, 2301, 2325, 2348, 2372, 2396, 2420, 2444, 2468, 2492, 2516, 2540,
+    2565, 2589, 2613, 2638, 2663, 2688, 2713, 2738, 2763, 2788, 2813, 2839,
+    2864, 2890, 2916, 2942, 2968, 2994, 3020, 3046, 3073, 3100, 3126, 3153,
+    3180, 3207, 3235, 3262, 3290, 3318, 3345, 3374, 3402, 3430, 3459, 3487,
+    3516, 3545, 3575, 3604, 3634, 3664, 3694, 3724, 3754, 3785, 3816, 3847,
+    3878, 3910, 3941, 3973, 4005, 4038, 4071, 4104, 4137, 4170, 4204, 4238,
+    4273, 4307, 4342, 4378, 4414, 4450, 4486, 4523, 4560, 4597, 4635, 4673,
+    4712, 4751, 4790, 4830, 4871, 4912, 4953, 4995, 5038, 5080, 5124, 5168,
+    5213, 5258, 5304, 5351, 5399, 5447, 5496, 5545, 5596, 5647, 5700, 5753,
+    5807, 5863, 5919, 5977, 6035, 6095, 6157, 6219, 6284, 6350, 6417, 6486,
+    6558, 6631, 6706, 6784, 6865, 6948, 7034, 7123, 7216, 7312, 7413, 7519,
+    7630, 7746, 7870, 8001, 8141, 8290, 8452, 8628, 8822, 9038, 9282, 9565,
+    9902,
+};
+static const int16_t gauss_tail0[32] = {
+    18331, 17345, 16869, 16549, 16306, 16109, 15944, 15801, 15676, 15563, 15461, 15368,
+    15282, 15203, 15128, 15059, 14993, 14931, 14873, 14817, 14764, 14713, 14665, 14618,
+    14573, 14530, 14488, 14448, 14410, 14372, 14336, 14300,
+};
+static const int16_t gauss_tail[32] = {
+    14283, 13505, 13032, 12686, 12413, 12186, 11991, 11820, 11667, 11529, 11403, 11287,
+    11179, 11079, 10984, 10896, 10812, 10732, 10656, 10584, 10515, 10449, 10385, 10324,
+    10265, 10208, 10153, 10100, 10048, 9998, 9950, 9902,
+};
+
+int32_t fl_mcl_gauss_q12(uint32_t *rng)
+{
+    uint32_t r = fl_mcl_rand(rng);
+    uint32_t m = r & 0xffffu;
+    int32_t z;
+    if (m < 252u * 256u) {
+        uint32_t k = m >> 8, f = m & 255u;
+        int32_t a = gauss_main[k], b = gauss_main[k + 1];
+        z = a + (int32_t)(((b - a) * (int32_t)(2u * f + 1u)) >> 9);   /* b >= a */
+    } else {
+        uint32_t v = 65535u - m;
+        if (v < 32u) {
+            z = gauss_tail0[v];
+        } else {
+            uint32_t k = (v - 32u) >> 5, f = (v - 32u) & 31u;
+            int32_t a = gauss_tail[k], b = gauss_tail[k + 1];
+            z = a - (int32_t)(((a - b) * (int32_t)(2u * f + 1u)) >> 6);   /* a >= b */
+        }
+    }
+    return (r & 0x80000000u) ? -z : z;
+}
+
+/* ---- parameters ------------------------------------------------------------ */
+
+/*
+ * Defaults (feature-level observations of the simulator, tools/world/sim.c
+ * sim_scenario_defaults: NAO range noise 10 % of the range, bearing 2 deg,
+ * odometry 12 % random per step plus 8-15 % systematic scale and 3-4 deg/m
+ * drift, 5-8 % L/T confusions, false positives).
+ *  - motion: 15 % of a 1 m step in x and y, 15 % of a 1 rad turn and 5 deg
+ *    per metre walked (the simulator's random and systematic odometry
+ *    errors together; Thrun et al., Probabilistic Robotics, table 5.6 has
+ *    the same form with alphas set from the robot's odometry);
+ *  - sensor: the simulator's range and bearing noise, 30 mm base; the
+ *    floor 0.02 (a uniform term of a twentieth of a typical observation's
+ *    peak likelihood: confusions and false positives are a few %);
+ *  - augmentation: alpha_slow 0.001 and alpha_fast 0.1 per 10 Hz vision
+ *    frame (Probabilistic Robotics section 8.3.5 and nav2 AMCL's
+ *    recovery_alpha_slow / recovery_alpha_fast defaults), a third of that
+ *    per update here (feature-level observations arrive at 30 Hz: the
+ *    same time constants; 0.1 per update measured 17 flips in 18 spl2013
+ *    feature walks, the injection bursting on noise); a kidnap called at
+ *    an injection probability of 0.3; injection capped at 1/2, no minimum
+ *    (a minimum seeds mirror modes that later win: measured more flips);
+ *  - estimate: cluster radius 500 mm (the FL_LOC_GOOD_MM tolerance), a
+ *    tracked cluster kept while it has 1/4 of the heaviest one's weight.
+ */
+void fl_mcl_params_default(fl_mcl_params_t *p)
+{
+    if (p == NULL)
+        return;
+    memset(p, 0, sizeof *p);
+    p->seed = 1;
+    p->n_particles = FL_MCL_MAX_PARTICLES < 256 ? FL_MCL_MAX_PARTICLES : 256;
+    p->odo_trans_pct = 15;
+    p->odo_rot_pct = 15;
+    p->odo_rot_mdeg_per_m = 5000;
+    p->odo_max_mm = 1000;
+    p->jitter_mm = 10;
+    p->jitter_mdeg = 500;
+    p->margin_mm = 100;
+    p->range_pct = 10;
+    p->range_base_mm = 30;
+    p->bearing_mdeg = 2000;
+    p->orient_mdeg = 0;
+    p->assoc_q8 = 0;
+    p->outlier_q16 = 1311;
+    p->max_range_mm = FL_OBS_MAX_RANGE_MM;
+    p->cross_max_mm = 0;
+    p->alpha_slow_q16 = 22;
+    p->alpha_fast_q16 = 2185;
+    p->inject_max_q16 = 32768;
+    p->inject_min_q16 = 0;
+    p->kidnap_q16 = 19661;
+    p->cluster_mm = 500;
+    p->switch_q8 = 64;
+}
+
+/* Vision (fl_vision_frame's observations): ranges from a NAO camera are
+ * more precise than the simulator's 10 % (below 1 % mean error in the
+ * vision diagnostics of `fieldloc simulate --frames`; 6 % leaves room for
+ * the pose's own error), with L/T kind errors of 10-22 %: a floor of 0.05.
+ * The crossings' orientation, sd 10 deg, measured on the frames walks of
+ * seeds 1-6 x 5 generator seeds: spl2013 kidnap recovery worst 6.9 ->
+ * 3.7 s, heading RMSE 0.78 -> 0.69 deg (20 deg: less; the association
+ * certainty term, sd 0.5 or 1: no gain). */
+void fl_mcl_params_vision(fl_mcl_params_t *p, bool lowres)
+{
+    if (p == NULL)
+        return;
+    fl_mcl_params_default(p);
+    p->range_pct = 6;
+    p->bearing_mdeg = 1500;
+    p->outlier_q16 = 3277;
+    p->orient_mdeg = 10000;
+    p->alpha_slow_q16 = 66;
+    p->alpha_fast_q16 = 6554;
+    if (lowres)
+        fl_mcl_params_lowres(p);
+}
+
+/* The AIBO's 208 x 160 camera: ranges several times less precise, far
+ * crossings short and often of the wrong kind. */
+void fl_mcl_params_lowres(fl_mcl_params_t *p)
+{
+    if (p == NULL)
+        return;
+    p->range_pct = 15;
+    p->bearing_mdeg = 3000;
+    if (p->cross_max_mm == 0)
+        p->cross_max_mm = 2500;
+}
+
+fl_status_t fl_mcl_params_check(const fl_mcl_params_t *p)
+{
+    if (p == NULL)
+        return FL_ERR_NULL;
+    if (p->seed < 0 || p->n_particles < 1 || p->n_particles > FL_MCL_MAX_PARTICLES ||
+        p->odo_trans_pct > 1000 || p->odo_rot_pct > 1000 || p->odo_rot_mdeg_per_m > 60000 ||
+        p->odo_max_mm < 1 || p->odo_max_mm > 100000 || p->jitter_mm > 1000 ||
+        p->jitter_mdeg > 30000 || p->margin_mm < 0 || p->margin_mm > 2000 ||
+        p->range_pct > 100 || p->range_base_mm < 1 || p->range_base_mm > 5000 ||
+        p->bearing_mdeg < 10 || p->bearing_mdeg > 45000 ||
+        p->assoc_q8 > 4096 || p->outlier_q16 < 1 || p->max_range_mm < 1 ||
+        p->max_range_mm > FL_OBS_MAX_RANGE_MM || p->cross_max_mm < 0 ||
+        p->alpha_slow_q16 > p->alpha_fast_q16 ||
+        p->inject_min_q16 > p->inject_max_q16 || p->cluster_mm < 100 || p->cluster_mm > 5000)
+        return FL_ERR_RANGE;
+    return FL_OK;
+}
+
+/* ---- init ------------------------------------------------------------------ */
+
+void fl_mcl_clear(fl_mcl_t *s)
+{
+    if (s != NULL)
+        memset(s, 0, sizeof *s);
+}
+
+/* Landmark ids by kind, and the orientations of those that have one. */
+static void index_landmarks(fl_mcl_t *s, const fl_field_t *f)
+{
+    uint16_t i, n = 0;
+    int k;
+    for (k = 0; k < FL_LM_KIND_COUNT; k++) {
+        s->kind_start[k] = (uint8_t)n;
+        for (i = 0; i < f->n_landmarks; i++)
+            if ((int)f->landmarks[i].kind == k)
+                s->lm_index[n++] = (uint8_t)i;
+    }
+    s->kind_start[FL_LM_KIND_COUNT] = (uint8_t)n;
+    for (i = 0; i < f->n_landmarks; i++) {
+        const fl_landmark_t *lm = &f->landmarks[i];
+        fl_angle_t o;
+        if (!fl_landmark_orientation(lm, &o))
+            continue;
+        s->lm_orient[i] = o;
+        s->lm_orient_mod[i] = lm->kind == FL_LM_L || lm->kind == FL_LM_T        ? 1
+                              : lm->kind == FL_LM_CENTRE_CIRCLE ? 2 : 4;
+    }
+}
+
+fl_status_t fl_mcl_init(fl_mcl_t *s, const fl_field_t *field, const fl_mcl_params_t *params)
+{
+    fl_mcl_params_t p;
+    fl_status_t st;
+    if (s == NULL)
+        return FL_ERR_NULL;
+    fl_mcl_clear(s);
+    if (field == NULL || field->landmarks == NULL)
+        return FL_ERR_NULL;
+    if (params != NULL)
+        p = *params;
+    else
+        fl_mcl_params_default(&p);
+    st = fl_mcl_params_check(&p);
+    if (st != FL_OK)
+        return st;
+    if (field->n_landmarks > FL_MCL_MAX_LANDMARKS)
+        return FL_ERR_SIZE;
+    if (fl_field_carpet_half_x_mm(field) + p.margin_mm > 30000 ||
+        fl_field_carpet_half_y_mm(field) + p.margin_mm > 30000 ||
+        fl_field_carpet_half_x_mm(field) < 100 || fl_field_carpet_half_y_mm(field) < 100)
+        return FL_ERR_RANGE;
+    s->params = p;
+    s->half_x_mm = fl_field_carpet_half_x_mm(field);
+    s->half_y_mm = fl_field_carpet_half_y_mm(field);
+    s->box_x_mm = s->half_x_mm + p.margin_mm;
+    s->box_y_mm = s->half_y_mm + p.margin_mm;
+    s->rng = (uint32_t)p.seed * 2654435761u ^ 0x9e3779b9u;
+    if (s->rng == 0u)
+        s->rng = 1u;
+    index_landmarks(s, field);
+    s->field = field;
+    s->n = p.n_particles;
+    fl_mcl_reset_ignorance(s);
+    s->stats.resets = 0;
+    return FL_OK;
+}
+
+/* ---- regions ---------------------------------------------------------------- */
+
+void fl_mcl_internal_clamp(const fl_mcl_t *s, int32_t *x, int32_t *y)
+{
+    *x = mcl_clamp(*x, -s->box_x_mm, s->box_x_mm);
+    *y = mcl_clamp(*y, -s->box_y_mm, s->box_y_mm);
+}
+
+/* Whether a pose is on the carpet and inside the prior's region.  A half
+ * prior decides between the mirror modes of a symmetric field (always) and
+ * between modes of an asymmetric one until a mode is tracked (then the
+ * map decides, and a kidnap into the other half recovers by injection). */
+bool fl_mcl_internal_allowed(const fl_mcl_t *s, int32_t x, int32_t y, fl_angle_t h)
+{
+    if (x < -s->half_x_mm || x > s->half_x_mm || y < -s->half_y_mm || y > s->half_y_mm)
+        return false;
+    if (s->prior == FL_MCL_PRIOR_HALF && !s->field->symmetric && s->track_valid)
+        return true;
+    if (s->prior == FL_MCL_PRIOR_HALF)
+        return s->prior_half < 0 ? x <= 0 : x >= 0;
+    if (s->prior == FL_MCL_PRIOR_POSE) {
+        int64_t dx = (int64_t)x - s->prior_x_mm, dy = (int64_t)y - s->prior_y_mm;
+        return dx * dx + dy * dy <= (int64_t)s->prior_radius_mm * s->prior_radius_mm &&
+               mcl_absang(fl_angle_sub(h, s->prior_heading)) <= FL_ANGLE_90;
+    }
+    return true;
+}
+
+/* A pose drawn uniformly from the prior's region (the carpet, the own
+ * half, or a pose's disc and heading within 90 deg), any heading. */
+void fl_mcl_internal_uniform(fl_mcl_t *s, fl_mcl_particle_t *p)
+{
+    int32_t x0 = -s->half_x_mm, x1 = s->half_x_mm, y0 = -s->half_y_mm, y1 = s->half_y_mm;
+    int32_t x, y, tries;
+    fl_angle_t h = (fl_angle_t)(int32_t)(fl_mcl_rand(&s->rng) >> 16) ;
+    if (s->prior == FL_MCL_PRIOR_HALF && (s->field->symmetric || !s->track_valid)) {
+        if (s->prior_half < 0)
+            x1 = 0;
+        else
+            x0 = 0;
+    } else if (s->prior == FL_MCL_PRIOR_POSE) {
+        int32_t r = s->prior_radius_mm;
+        x0 = mcl_clamp(s->prior_x_mm - r, x0, x1);
+        x1 = mcl_clamp(s->prior_x_mm + r, x0, x1);
+        y0 = mcl_clamp(s->prior_y_mm - r, y0, y1);
+        y1 = mcl_clamp(s->prior_y_mm + r, y0, y1);
+        h = fl_angle_add(s->prior_heading,
+                         fl_angle_wrap((int32_t)mcl_below(&s->rng, 32769u) - 16384));
+    }
+    x = x0;
+    y = y0;
+    for (tries = 0; tries < 8; tries++) {
+        x = x0 + (int32_t)mcl_below(&s->rng, (uint32_t)(x1 - x0 + 1));
+        y = y0 + (int32_t)mcl_below(&s->rng, (uint32_t)(y1 - y0 + 1));
+        if (fl_mcl_internal_allowed(s, x, y, h))
+            break;
+    }
+    if (tries == 8 && s->prior == FL_MCL_PRIOR_POSE) {
+        x = mcl_clamp(s->prior_x_mm, -s->half_x_mm, s->half_x_mm);
+        y = mcl_clamp(s->prior_y_mm, -s->half_y_mm, s->half_y_mm);
+    }
+    p->x_mm = (int16_t)x;
+    p->y_mm = (int16_t)y;
+    p->heading = h;
+    p->weight = 65535u;
+}
+
+/* A detected kidnap or an explicit reset: the game's half no longer
+ * holds unless told again. */
+void fl_mcl_internal_drop_prior(fl_mcl_t *s)
+{
+    s->prior = FL_MCL_PRIOR_NONE;
+    s->half_known = false;
+    s->track_valid = false;
+}
+
+/* ---- resets -------------------------------------------------------------------- */
+
+/* Fresh particles: the averages start again from the next update. */
+static void fresh(fl_mcl_t *s)
+{
+    s->n = s->params.n_particles;
+    if (s->n < 1 || s->n > FL_MCL_MAX_PARTICLES)
+        s->n = FL_MCL_MAX_PARTICLES < 256 ? FL_MCL_MAX_PARTICLES : 256;
+    s->weighted = false;
+    s->w_slow_q24 = 0;
+    s->w_fast_q24 = 0;
+    s->inject_q16 = 0;
+    s->n_reset = 0;
+    s->est_density = 0;
+}
+
+void fl_mcl_reset_ignorance(fl_mcl_t *s)
+{
+    uint16_t i;
+    fl_mcl_particle_t *p;
+    if (!mcl_ready(s))
+        return;
+    fresh(s);
+    p = mcl_live(s);
+    for (i = 0; i < s->n; i++)
+        fl_mcl_internal_uniform(s, &p[i]);
+    s->ignorance = true;
+    s->track_valid = false;
+    s->half_known = s->prior != FL_MCL_PRIOR_NONE;
+    s->stats.resets = mcl_sat_inc(s->stats.resets);
+}
+
+/* Particles around one pose: Gaussian, sd pos_unc / 2 and heading_unc / 2
+ * (most within the uncertainty; the fuzzy grid's cone falls to 1/2 there). */
+static void paint_pose(fl_mcl_t *s, fl_mcl_particle_t *p, int32_t x, int32_t y,
+                       fl_angle_t h, int32_t pos_unc, fl_angle_t heading_unc)
+{
+    int32_t sd = mcl_clamp(pos_unc, 1, 20000) / 2;
+    int32_t sh = mcl_absang(heading_unc) / 2;
+    int32_t px = mcl_clamp(x, -s->half_x_mm, s->half_x_mm) + mcl_noise(&s->rng, sd);
+    int32_t py = mcl_clamp(y, -s->half_y_mm, s->half_y_mm) + mcl_noise(&s->rng, sd);
+    fl_mcl_internal_clamp(s, &px, &py);
+    p->x_mm = (int16_t)px;
+    p->y_mm = (int16_t)py;
+    p->heading = fl_angle_add(h, fl_angle_wrap(mcl_noise(&s->rng, sh)));
+    p->weight = 65535u;
+}
+
+void fl_mcl_reset_pose(fl_mcl_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t heading,
+                       int32_t pos_unc_mm, fl_angle_t heading_unc)
+{
+    uint16_t i;
+    fl_mcl_particle_t *p;
+    if (!mcl_ready(s))
+        return;
+    fresh(s);
+    p = mcl_live(s);
+    for (i = 0; i < s->n; i++)
+        paint_pose(s, &p[i], x_mm, y_mm, heading, pos_unc_mm, heading_unc);
+    s->ignorance = false;
+    s->half_known = true;
+    s->track_valid = true;
+    s->track_x_mm = mcl_clamp(x_mm, -s->half_x_mm, s->half_x_mm);
+    s->track_y_mm = mcl_clamp(y_mm, -s->half_y_mm, s->half_y_mm);
+    s->track_heading = heading;
+    s->stats.resets = mcl_sat_inc(s->stats.resets);
+}
+
+void fl_mcl_reset_penalty(fl_mcl_t *s, int32_t x_mm, int32_t pos_unc_mm,
+                          fl_angle_t heading_unc)
+{
+    uint16_t i;
+    int32_t hw;
+    fl_mcl_particle_t *p;
+    if (!mcl_ready(s))
+        return;
+    fresh(s);
+    p = mcl_live(s);
+    hw = s->field->width_mm / 2;
+    for (i = 0; i < s->n; i++) {
+        bool left = (i & 1u) == 0u;
+        paint_pose(s, &p[i], x_mm, left ? hw : -hw,
+                   (fl_angle_t)(left ? -FL_ANGLE_90 : FL_ANGLE_90), pos_unc_mm, heading_unc);
+    }
+    s->ignorance = false;
+    s->track_valid = false;
+    /* the placement tells the half (unless the spots are on the halfway
+     * line, where they are each other's mirror) */
+    if (x_mm != 0)
+        fl_mcl_set_prior_half(s, x_mm < 0 ? -1 : 1);
+    s->half_known = s->prior != FL_MCL_PRIOR_NONE;
+    s->stats.resets = mcl_sat_inc(s->stats.resets);
+}
+
+/* ---- priors ------------------------------------------------------------------- */
+
+/* The prior changed: under ignorance the particles are drawn again from
+ * its region; otherwise, on a symmetric field, particles outside the own
+ * half move to their mirror pose (which explains the same observations). */
+static void apply_prior(fl_mcl_t *s)
+{
+    uint16_t i;
+    fl_mcl_particle_t *p = mcl_live(s);
+    if (s->ignorance) {
+        for (i = 0; i < s->n; i++)
+            fl_mcl_internal_uniform(s, &p[i]);
+        return;
+    }
+    if (s->prior != FL_MCL_PRIOR_HALF || !s->field->symmetric)
+        return;
+    for (i = 0; i < s->n; i++)
+        if (s->prior_half < 0 ? p[i].x_mm > 0 : p[i].x_mm < 0) {
+            p[i].x_mm = (int16_t)-p[i].x_mm;
+            p[i].y_mm = (int16_t)-p[i].y_mm;
+            p[i].heading = fl_angle_add(p[i].heading, FL_ANGLE_180);
+        }
+}
+
+void fl_mcl_set_prior_half(fl_mcl_t *s, int half)
+{
+    if (!mcl_ready(s))
+        return;
+    s->prior = half == 0 ? FL_MCL_PRIOR_NONE : FL_MCL_PRIOR_HALF;
+    s->prior_half = (int8_t)(half < 0 ? -1 : 1);
+    /* no half: a tracked mode still carries the half it was told */
+    s->half_known = half != 0 || (s->half_known && s->track_valid);
+    apply_prior(s);
+}
+
+void fl_mcl_set_prior_pose(fl_mcl_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t heading,
+                           int32_t radius_mm)
+{
+    if (!mcl_ready(s))
+        return;
+    s->prior = FL_MCL_PRIOR_POSE;
+    s->prior_x_mm = mcl_clamp(x_mm, -100000, 100000);
+    s->prior_y_mm = mcl_clamp(y_mm, -100000, 100000);
+    s->prior_heading = heading;
+    s->prior_radius_mm = mcl_clamp(radius_mm, 100, 20000);
+    s->half_known = true;
+    apply_prior(s);
+}
+
+void fl_mcl_clear_prior(fl_mcl_t *s)
+{
+    if (!mcl_ready(s))
+        return;
+    s->prior = FL_MCL_PRIOR_NONE;
+    s->half_known = s->half_known && s->track_valid;
+}
+
+/* ---- check ----------------------------------------------------------------------- */
+
+bool fl_mcl_check(const fl_mcl_t *s)
+{
+    const fl_mcl_particle_t *p;
+    uint16_t i;
+    int k;
+    if (!mcl_ready(s) || s->rng == 0u || s->n < 1 || s->n > FL_MCL_MAX_PARTICLES ||
+        s->cur > 1u || s->n_reset > FL_MCL_RESET_OBS || s->box_x_mm > 32767 ||
+        s->box_y_mm > 32767 || s->kind_start[FL_LM_KIND_COUNT] > FL_MCL_MAX_LANDMARKS)
+        return false;
+    for (k = 0; k < FL_LM_KIND_COUNT; k++)
+        if (s->kind_start[k] > s->kind_start[k + 1])
+            return false;
+    p = mcl_live_c(s);
+    for (i = 0; i < s->n; i++)
+        if (p[i].x_mm < -s->box_x_mm || p[i].x_mm > s->box_x_mm || p[i].y_mm < -s->box_y_mm ||
+            p[i].y_mm > s->box_y_mm)
+            return false;
+    return true;
+}
