@@ -254,9 +254,12 @@ FUZZ_NAMES   := $(patsubst host_tests/fuzz/fuzz_%.c,%,$(wildcard host_tests/fuzz
 FUZZ_LIB_SRC := $(FW_SRC) $(TOOL_LIB_SRC)
 fuzz-build:
 	@mkdir -p $(BUILD)/fuzz/obj
-	@for f in $(FUZZ_LIB_SRC); do \
+	@# an object is rebuilt when its source or any header is newer (a
+	@# config.h change alters the fingerprint every init checks)
+	@hdr=$$(ls -t include/fieldloc/*.h src/*/*.h tools/*/*.h | head -n 1); \
+	for f in $(FUZZ_LIB_SRC); do \
 	  o=$(BUILD)/fuzz/obj/$$(echo $$f | tr / _ | sed 's/\.c$$/.o/'); \
-	  [ $$o -nt $$f ] || $(FUZZ_CC) $(FUZZ_FLAGS) -c $$f -o $$o || exit 1; \
+	  { [ $$o -nt $$f ] && [ $$o -nt $$hdr ]; } || $(FUZZ_CC) $(FUZZ_FLAGS) -c $$f -o $$o || exit 1; \
 	done
 	@for n in $(FUZZ_NAMES); do \
 	  $(FUZZ_CC) $(FUZZ_FLAGS) -fsanitize=fuzzer host_tests/fuzz/fuzz_$$n.c $(BUILD)/fuzz/obj/*.o -lm \

@@ -19,6 +19,7 @@
 #include "fieldloc/fieldloc.h"
 
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -101,8 +102,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (fl_localizer_param_find(loc, "seed") != NULL &&
         fl_localizer_param_set(loc, params.b, "seed", data[1]) != FL_OK)
         abort();
-    if (fl_loc_init(loc, state.b, field, params.b) != FL_OK)
-        abort();
+    {
+        fl_status_t st = fl_loc_init(loc, state.b, field, params.b);
+        if (st != FL_OK) {
+            fprintf(stderr, "init %s %s preset %d: %d\n", loc->name, field->name, data[1] % 3, (int)st);
+            abort();
+        }
+    }
     for (k = 2; k + 16 <= size; k += 16) {
         const uint8_t *r = data + k;
         fl_obs_t o;
