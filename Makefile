@@ -123,6 +123,18 @@ $(BUILD)/host_tests/test_config.o: HOST_CFLAGS += -DFL_TEST_CC='"$(CC)"' \
   -DFL_TEST_FLAGS='"$(ARCHFLAGS) $(CONFIG_DEFS)"' -DFL_TEST_ARCHFLAGS='"$(ARCHFLAGS)"' \
   -DFL_TEST_BUILD='"$(BUILD)"' -DFL_TEST_EXEC='"$(TEST_EXEC)"'
 
+# The README example with its one localizer line changed to "mcl"
+# (host_tests/test_example_swap.c): the rule fails unless exactly that one
+# line differs, so the README's claim is what is tested.
+SWAP_INC := $(BUILD)/gen/readme_example_mcl.inc
+$(SWAP_INC): host_tests/readme_example.inc
+	@mkdir -p $(dir $@)
+	sed 's/^#define LOCALIZER "fuzzy" /#define LOCALIZER "mcl"   /' $< > $@.tmp
+	@[ "$$(diff $< $@.tmp | grep -c '^>')" = 1 ] || { echo "$@: the LOCALIZER line was not found"; exit 1; }
+	mv $@.tmp $@
+$(BUILD)/host_tests/test_example_swap.o: $(SWAP_INC)
+$(BUILD)/host_tests/test_example_swap.o: HOST_CFLAGS += -I$(BUILD)/gen
+
 $(BUILD)/tools/%.o: tools/%.c $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
@@ -248,9 +260,12 @@ FUZZ_NAMES   := $(patsubst host_tests/fuzz/fuzz_%.c,%,$(wildcard host_tests/fuzz
 FUZZ_LIB_SRC := $(FW_SRC) $(TOOL_LIB_SRC)
 fuzz-build:
 	@mkdir -p $(BUILD)/fuzz/obj
-	@for f in $(FUZZ_LIB_SRC); do \
+	@# an object is rebuilt when its source or any header is newer (a
+	@# config.h change alters the fingerprint every init checks)
+	@hdr=$$(ls -t include/fieldloc/*.h src/*/*.h tools/*/*.h | head -n 1); \
+	for f in $(FUZZ_LIB_SRC); do \
 	  o=$(BUILD)/fuzz/obj/$$(echo $$f | tr / _ | sed 's/\.c$$/.o/'); \
-	  [ $$o -nt $$f ] || $(FUZZ_CC) $(FUZZ_FLAGS) -c $$f -o $$o || exit 1; \
+	  { [ $$o -nt $$f ] && [ $$o -nt $$hdr ]; } || $(FUZZ_CC) $(FUZZ_FLAGS) -c $$f -o $$o || exit 1; \
 	done
 	@for n in $(FUZZ_NAMES); do \
 	  $(FUZZ_CC) $(FUZZ_FLAGS) -fsanitize=fuzzer host_tests/fuzz/fuzz_$$n.c $(BUILD)/fuzz/obj/*.o -lm \

@@ -25,6 +25,7 @@ T_SUITE(adversarial);
 T_SUITE(walks);
 T_SUITE(stream);
 T_SUITE(example);
+T_SUITE(example_swap);
 T_SUITE(config);
 T_SUITE(fuzz_regress);
 T_SUITE(cli);
