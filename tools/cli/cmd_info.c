@@ -186,12 +186,12 @@ int cmd_project(int argc, char **argv)
 }
 
 
-/* `fieldloc sizes`: what one full instance costs (all caller-owned). */
+/* `fieldloc sizes`: what one full instance costs (all caller-owned): the
+ * vision path's structs, then every localizer of the catalogue (its state
+ * through the interface, localizer.h), then an instance with the largest
+ * localizer. */
 int cmd_sizes(int argc, char **argv)
 {
-    /* the localizer's state through the interface (localizer.h) */
-    const fl_localizer_t *loc = fl_localizer_find("fuzzy");
-    char loc_type[64];
     struct { const char *name; size_t size; const char *what; } t[] = {
         {"fl_color_table_t", sizeof(fl_color_table_t), "colour class tables (built once, read-only per frame)"},
         {"fl_vision_t", sizeof(fl_vision_t), "whole vision path: scanner, lines, circle, crossings, posts, beacons"},
@@ -201,19 +201,27 @@ int cmd_sizes(int argc, char **argv)
         {"  fl_crossings_t", sizeof(fl_crossings_t), "L/T/X crossings and marks"},
         {"  fl_posts_t", sizeof(fl_posts_t), "goal posts"},
         {"  fl_beacon_t", sizeof(fl_beacon_t), "coloured goals and beacons (AIBO fields)"},
-        {loc_type, loc->state_size, "fuzzy position grid (SPL 2013 capacity)"},
         {"fl_camera_t", sizeof(fl_camera_t), "camera model with its pose"},
         {"fl_obs_list_t", sizeof(fl_obs_list_t), "one frame's observations"},
         {"fl_image_t", sizeof(fl_image_t), "image view"},
     };
-    size_t i, total = sizeof(fl_color_table_t) + sizeof(fl_vision_t) + loc->state_size +
-                      sizeof(fl_camera_t) + sizeof(fl_obs_list_t) + sizeof(fl_image_t);
+    size_t i, largest = 0, total = sizeof(fl_color_table_t) + sizeof(fl_vision_t) +
+                                   sizeof(fl_camera_t) + sizeof(fl_obs_list_t) + sizeof(fl_image_t);
+    uint16_t k;
     if (argc > 0)
         return no_options("sizes", argv[0]);
-    snprintf(loc_type, sizeof loc_type, "fl_%s_t", loc->name);
     for (i = 0; i < sizeof t / sizeof t[0]; i++)
         printf("%-18s %8lu B  %s\n", t[i].name, (unsigned long)t[i].size, t[i].what);
-    printf("%-18s %8lu B  one full instance (colour tables + vision + grid + camera + obs + view)\n",
-           "total", (unsigned long)total);
+    for (k = 0; k < fl_localizer_count(); k++) {
+        const fl_localizer_t *loc = fl_localizer_get(k);
+        char loc_type[64];
+        snprintf(loc_type, sizeof loc_type, "fl_%s_t", loc->name);
+        printf("%-18s %8lu B  localizer \"%s\": %s\n", loc_type, (unsigned long)loc->state_size,
+               loc->name, loc->summary);
+        if (loc->state_size > largest)
+            largest = loc->state_size;
+    }
+    printf("%-18s %8lu B  one full instance (colour tables + vision + camera + obs + view + the "
+           "largest localizer)\n", "total", (unsigned long)(total + largest));
     return 0;
 }
