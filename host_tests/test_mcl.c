@@ -334,6 +334,29 @@ static void test_params_config(void)
 }
 
 /* Priors and resets: the particles go where the game says. */
+/* A turn in place larger than 90 deg between two estimates (the UvA
+ * spots: frames 135 deg apart, odometry the turn): the estimate turns with
+ * the particles, it does not stay with the heading it tracked before. */
+static void test_turn_in_place(void)
+{
+    const fl_field_t *f = fl_field_find("uva2013");
+    fl_mcl_t *s = malloc(sizeof *s);
+    fl_mcl_estimate_t e;
+    fl_angle_t turn = fl_angle_from_mdeg(135000);
+    if (s == NULL)
+        return;
+    CHECK_EQ(fl_mcl_init(s, f, NULL), FL_OK);
+    fl_mcl_reset_pose(s, 1000, 500, 0, 100, fl_angle_from_mdeg(5000));
+    CHECK(fl_mcl_estimate(s, &e));
+    CHECK(e.tracking);
+    CHECK_LE(abs(e.heading), fl_angle_from_mdeg(3000));
+    fl_mcl_predict(s, 0, 0, turn);
+    CHECK(fl_mcl_estimate(s, &e));
+    CHECK_LE(abs(fl_angle_sub(e.heading, turn)), fl_angle_from_mdeg(8000));
+    CHECK_LE(abs(e.x_mm - 1000) + abs(e.y_mm - 500), 300);
+    free(s);
+}
+
 static void test_priors(void)
 {
     const fl_field_t *f = fl_field_find("spl2013");
@@ -440,5 +463,6 @@ void suite_mcl(void)
     t_run("mcl.hostile", test_hostile);
     t_run("mcl.params_config", test_params_config);
     t_run("mcl.priors", test_priors);
+    t_run("mcl.turn_in_place", test_turn_in_place);
     t_run("mcl.walk_seeds", test_walk_seeds);
 }

@@ -75,6 +75,18 @@ void fl_mcl_predict(fl_mcl_t *s, int32_t dx_mm, int32_t dy_mm, fl_angle_t dtheta
         p[i].heading = fl_angle_add(p[i].heading,
                                     fl_angle_wrap((int32_t)dtheta + mcl_noise(&s->rng, sd_h)));
     }
+    /* the tracked mode follows the odometry: the estimate's cluster is
+     * gathered within 90 deg of its heading, so a turn in place of more
+     * than that between two estimates would otherwise leave the cluster
+     * behind (a NAO turning 135 deg between two frames) */
+    if (s->track_valid) {
+        int32_t c = fl_cos_q15(s->track_heading), sn = fl_sin_q15(s->track_heading);
+        s->track_x_mm = mcl_clamp(s->track_x_mm + mcl_asr((int64_t)dx_mm * c - (int64_t)dy_mm * sn + 16384, 15),
+                                  -s->half_x_mm, s->half_x_mm);
+        s->track_y_mm = mcl_clamp(s->track_y_mm + mcl_asr((int64_t)dx_mm * sn + (int64_t)dy_mm * c + 16384, 15),
+                                  -s->half_y_mm, s->half_y_mm);
+        s->track_heading = fl_angle_add(s->track_heading, dtheta);
+    }
 }
 
 /* ---- resampling ------------------------------------------------------------- */
