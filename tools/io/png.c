@@ -9,6 +9,7 @@
  * areas, where runs become long matches at distance 3 or one row. */
 #include "io/ppm.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,8 +38,13 @@ static void buf_reserve(png_buf_t *b, size_t extra)
     if (b->fail || b->len + extra <= b->cap)
         return;
     cap = b->cap ? b->cap : 4096;
-    while (cap < b->len + extra)
+    while (cap < b->len + extra) {
+        if (cap > SIZE_MAX / 2) {
+            b->fail = 1;
+            return;
+        }
         cap *= 2;
+    }
     p = (uint8_t *)realloc(b->data, cap);
     if (!p) {
         b->fail = 1;
@@ -326,7 +332,11 @@ int png_write(const char *path, const uint8_t *rgb, int width, int height)
 
     if (!path || !rgb || width <= 0 || height <= 0 || width > (1 << 24) || height > (1 << 24))
         return -1;
+    if ((size_t)width * 3u + 1u > SIZE_MAX / (size_t)height)
+        return -1;      /* the filtered scanlines would not fit in size_t */
     rawlen = ((size_t)width * 3u + 1u) * (size_t)height;
+    if (rawlen > 0x7FFFFFFFu)
+        return -1;      /* the LZ77 chains hold int32_t positions */
     raw = (uint8_t *)malloc(rawlen);
     if (!raw)
         return -1;
