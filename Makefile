@@ -61,7 +61,7 @@ HOST_CFLAGS = $(WARN) -Wno-address $(OPT) -g -Iinclude -Ihost_tests -Itools $(HO
 HOST_LIBS   = -lm
 
 # OpenCV is optional and host-only: the tools' C++ files (tools/*/*.cpp: the
-# OpenCV peers of the benchmarks, PNG output) are built only when
+# OpenCV peers of the benchmarks; PNG output is tools/io/png.c, no library) are built only when
 # pkg-config finds opencv4 and the build is native (not cross, not
 # sanitize).  WITH_OPENCV=0 turns it off.
 WITH_OPENCV ?= $(if $(ARCHFLAGS),0,1)
@@ -72,7 +72,7 @@ ifeq ($(HAVE_OPENCV),1)
 CXX      ?= g++
 CV_DEFS   = -DFL_HAVE_OPENCV
 CV_CFLAGS := $(shell pkg-config --cflags opencv4)
-CV_LIBS   := $(filter-out -lopencv_%,$(shell pkg-config --libs opencv4)) -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
+CV_LIBS   := $(filter-out -lopencv_%,$(shell pkg-config --libs opencv4)) -lopencv_imgproc -lopencv_core
 TOOL_CXX_SRC := $(sort $(wildcard tools/*/*.cpp))
 endif
 TOOL_CXX_OBJ := $(TOOL_CXX_SRC:%.cpp=$(BUILD)/%.o)
@@ -202,7 +202,7 @@ bench: $(CLI)
 # The main job: a bundled simulated walk (spl2013, 130 s, head scanning, a
 # kidnap and a penalty) rendered frame by frame, run through the vision path
 # into the fuzzy grid; progress, the final error, and pictures in
-# build/demo/ (PPM, and PNG when OpenCV is present).  DEMO_ARGS="--seconds 70"
+# build/demo/ (PPM and PNG).  DEMO_ARGS="--seconds 70"
 # gives a shorter run.
 DEMO_ARGS ?=
 demo: all

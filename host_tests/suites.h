@@ -1,6 +1,7 @@
 /* Every suite, in run order.  Add one line per host_tests/test_<stage>.c. */
 T_SUITE(fixed);
 T_SUITE(image);
+T_SUITE(png);
 T_SUITE(camera);
 T_SUITE(calib);
 T_SUITE(field);

@@ -38,7 +38,7 @@
  *                         first's after a "# compare: B" line
  *   steps.txt             the per-record lines of `simulate`
  *   summary.txt           the summary lines
- * PNG next to every PPM when the tools were built with OpenCV.
+ * PNG next to every PPM (unless --no-png).
  */
 #include "loc/locrun.h"
 #include "cli/args.h"
@@ -548,7 +548,7 @@ int cmd_demo(int argc, char **argv)
     }
     printf("pictures: %d PPM%s in %s (demo_final, demo_kidnap, demo_tNNN, belief_final, "
            "frame_final%s), steps.txt, summary.txt\n",
-           d.pictures, d.pngs ? " + PNG" : (png ? " (no PNG: built without OpenCV)" : ""), out,
+           d.pictures, d.pngs ? " + PNG" : (png ? " (PNG not written)" : ""), out,
            loc_b != NULL ? ", compare_*" : "");
     return k == 0 ? 0 : 1;
 }

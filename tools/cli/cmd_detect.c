@@ -113,7 +113,7 @@ static int detect_picture(const det_ctx_t *ctx, const render_frame_t *fr, const 
     free(img.rgb);
     if (len > 4 && !strcmp(picture + len - 4, ".png")) {
         if (png_write(picture, out.rgb, out.width, out.height) != 0) {
-            fprintf(stderr, "detect: cannot write %s (PNG needs OpenCV)\n", picture);
+            fprintf(stderr, "detect: cannot write %s\n", picture);
             rc = 1;
         }
     } else if (ppm_write(picture, out.rgb, out.width, out.height) != 0) {

@@ -40,7 +40,7 @@
  * frame's vision; one that does not parse: "fieldloc localize: FILE:LINE:
  * reason", exit status 2.
  *
- * --pictures DIR writes DIR/frame_NNNNN.ppm (+ .png with OpenCV): the frame
+ * --pictures DIR writes DIR/frame_NNNNN.ppm (+ .png): the frame
  * with the detected features and the field model seen from the estimate,
  * next to the belief (the grid's cells, or a particle filter's particles:
  * tools/eval/picture.h); every frame, or every Nth with --picture-every N.

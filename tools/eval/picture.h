@@ -146,9 +146,8 @@ void pic_belief_caption(char *buf, size_t n, double t_s, long frame,
 void pic_scan_overlay(const fl_scan_t *s, uint8_t *rgb, int w, int h, int classes,
                       int border);
 
-/* Write base.ppm, and base.png when png is 1 and the tools were built with
- * OpenCV.  Returns 0 when the PPM was written; *png_written (may be NULL)
- * tells about the PNG. */
+/* Write base.ppm, and base.png when png is 1 (tools/io/png.c).  Returns 0
+ * when the PPM was written; *png_written (may be NULL) tells about the PNG. */
 int pic_save(const host_image_t *img, const char *base, int png, int *png_written);
 
 #endif

@@ -115,10 +115,3 @@ void host_image_free(host_image_t *img)
     img->width = img->height = 0;
 }
 
-#ifndef FL_HAVE_OPENCV
-int png_write(const char *path, const uint8_t *rgb, int width, int height)
-{
-    (void)path; (void)rgb; (void)width; (void)height;
-    return -1;
-}
-#endif

@@ -1,6 +1,6 @@
 /*
  * tools/io/ppm.h - host-only image files: binary PPM (P6, maxval 255) read and
- * write, plus PNG output when the tools were built with OpenCV.
+ * write, plus PNG output (tools/io/png.c, no library).
  */
 #ifndef FL_TOOLS_PPM_H
 #define FL_TOOLS_PPM_H
@@ -24,7 +24,7 @@ int ppm_write(const char *path, const uint8_t *rgb, int width, int height);
 /* Allocate a width x height image filled with one color (NULL rgb on failure). */
 host_image_t host_image_new(int width, int height, uint8_t r, uint8_t g, uint8_t b);
 void host_image_free(host_image_t *img);
-/* Write PNG through OpenCV when available; returns -1 when built without it. */
+/* Write PNG (8-bit RGB; tools/io/png.c, no library).  0 on success. */
 int png_write(const char *path, const uint8_t *rgb, int width, int height);
 
 #endif
