@@ -259,7 +259,7 @@ static int ls_body_line(ls_parser_t *p, char **tok, int nt)
     long v[12];
     if (!strcmp(tok[0], "record")) {
         static const long lo[6] = {0, 0, LS_I_MIN, LS_I_MIN, LS_I_MIN, LS_A_MIN};
-        static const long hi[6] = {LONG_MAX, UINT32_MAX, LS_I_MAX, LS_I_MAX, LS_I_MAX, LS_A_MAX};
+        static const long hi[6] = {LONG_MAX, LONG_MAX, LS_I_MAX, LS_I_MAX, LS_I_MAX, LS_A_MAX};
         double d;
         if (nt != 7 && nt != 8)
             return ls_bad(p, "%srecord K STEP T_MS X_MM Y_MM HEADING [DEG]", "");
@@ -296,7 +296,7 @@ static int ls_body_line(ls_parser_t *p, char **tok, int nt)
     if (!strcmp(tok[0], "kidnap") || !strcmp(tok[0], "penalized") ||
         !strcmp(tok[0], "unpenalized")) {
         static const long lo[5] = {0, LS_I_MIN, LS_I_MIN, LS_I_MIN, LS_A_MIN};
-        static const long hi[5] = {UINT32_MAX, LS_I_MAX, LS_I_MAX, LS_I_MAX, LS_A_MAX};
+        static const long hi[5] = {LONG_MAX, LS_I_MAX, LS_I_MAX, LS_I_MAX, LS_A_MAX};
         int un = !strcmp(tok[0], "unpenalized");
         ls_event_t *e;
         if (nt != (un ? 3 : 6))
