@@ -377,17 +377,24 @@ void fl_mcl_reset_ignorance(fl_mcl_t *s)
 
 /* Particles around one pose: Gaussian, sd pos_unc / 2 and heading_unc / 2
  * (most within the uncertainty; the fuzzy grid's cone falls to 1/2 there). */
-static void paint_pose(fl_mcl_t *s, fl_mcl_particle_t *p, int32_t x, int32_t y,
-                       fl_angle_t h, int32_t pos_unc, fl_angle_t heading_unc)
+/* A pose with its uncertainty, to draw particles around (passed by
+ * pointer: six arguments at most, so no call pushes arguments on the stack
+ * and every frame stays static for `make stack`). */
+typedef struct {
+    int32_t x, y, pos_unc;
+    fl_angle_t h, heading_unc;
+} mcl_paint_t;
+
+static void paint_pose(fl_mcl_t *s, fl_mcl_particle_t *p, const mcl_paint_t *c)
 {
-    int32_t sd = mcl_clamp(pos_unc, 1, 20000) / 2;
-    int32_t sh = mcl_absang(heading_unc) / 2;
-    int32_t px = mcl_clamp(x, -s->half_x_mm, s->half_x_mm) + mcl_noise(&s->rng, sd);
-    int32_t py = mcl_clamp(y, -s->half_y_mm, s->half_y_mm) + mcl_noise(&s->rng, sd);
+    int32_t sd = mcl_clamp(c->pos_unc, 1, 20000) / 2;
+    int32_t sh = mcl_absang(c->heading_unc) / 2;
+    int32_t px = mcl_clamp(c->x, -s->half_x_mm, s->half_x_mm) + mcl_noise(&s->rng, sd);
+    int32_t py = mcl_clamp(c->y, -s->half_y_mm, s->half_y_mm) + mcl_noise(&s->rng, sd);
     fl_mcl_internal_clamp(s, &px, &py);
     p->x_mm = (int16_t)px;
     p->y_mm = (int16_t)py;
-    p->heading = fl_angle_add(h, fl_angle_wrap(mcl_noise(&s->rng, sh)));
+    p->heading = fl_angle_add(c->h, fl_angle_wrap(mcl_noise(&s->rng, sh)));
     p->weight = 65535u;
 }
 
@@ -396,12 +403,18 @@ void fl_mcl_reset_pose(fl_mcl_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t headi
 {
     uint16_t i;
     fl_mcl_particle_t *p;
+    mcl_paint_t c;
     if (!mcl_ready(s))
         return;
     fresh(s);
     p = mcl_live(s);
+    c.x = x_mm;
+    c.y = y_mm;
+    c.pos_unc = pos_unc_mm;
+    c.h = heading;
+    c.heading_unc = heading_unc;
     for (i = 0; i < s->n; i++)
-        paint_pose(s, &p[i], x_mm, y_mm, heading, pos_unc_mm, heading_unc);
+        paint_pose(s, &p[i], &c);
     s->ignorance = false;
     s->half_known = true;
     s->track_valid = true;
@@ -417,15 +430,20 @@ void fl_mcl_reset_penalty(fl_mcl_t *s, int32_t x_mm, int32_t pos_unc_mm,
     uint16_t i;
     int32_t hw;
     fl_mcl_particle_t *p;
+    mcl_paint_t c;
     if (!mcl_ready(s))
         return;
     fresh(s);
     p = mcl_live(s);
     hw = s->field->width_mm / 2;
+    c.x = x_mm;
+    c.pos_unc = pos_unc_mm;
+    c.heading_unc = heading_unc;
     for (i = 0; i < s->n; i++) {
         bool left = (i & 1u) == 0u;
-        paint_pose(s, &p[i], x_mm, left ? hw : -hw,
-                   (fl_angle_t)(left ? -FL_ANGLE_90 : FL_ANGLE_90), pos_unc_mm, heading_unc);
+        c.y = left ? hw : -hw;
+        c.h = (fl_angle_t)(left ? -FL_ANGLE_90 : FL_ANGLE_90);
+        paint_pose(s, &p[i], &c);
     }
     s->ignorance = false;
     s->track_valid = false;
