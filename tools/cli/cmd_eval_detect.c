@@ -18,6 +18,18 @@
  * occluded) is neither a hit nor a false positive; an unmatched detection
  * whose own range is beyond max-range is ignored.  Range errors of matched
  * crossings and feet by distance bin (|r - r_true| / r_true).
+ *   (3) on the other real frames of ../shared/realdata (physar, HTWK,
+ *       NaoTH, dbloisi, scarrix) against the project's own labels
+ *       tools/eval/realdata_modern.csv (rd_modern_csv(): found from the
+ *       working directory or the executable; --modern FILE overrides):
+ *       field spl2020 (white goals), each row's camera and head angles
+ *       (0 when not labelled); crossings and post feet as in (2), plus the
+ *       field border: the fraction of labelled columns (B) whose scanner
+ *       border lies within 3 px of the labelled topmost carpet row, the
+ *       mean and the worst.
+ * --colors default|FILE: the colour classes of the vision path for every
+ * block (default: the 2013 UvA boxes; FILE: a colour file, see `fieldloc
+ * colors`).
  * The scoring is in tools/eval/eval_detect.c.  --pictures DIR writes one
  * picture per frame (stages, truth rings, legend strip).
  * Numbers are checked (tools/cli/args.h; the ranges of the vision
@@ -37,6 +49,7 @@ static int evd_usage(int rc)
     fprintf(stderr,
             "usage: fieldloc eval-detect [--fixtures DIR] [--realdata DIR] [--max-range MM]\n"
             "         [--only PREFIX] [--verbose] [--pictures DIR] [--no-real] [--no-fixtures]\n"
+            "         [--modern FILE] [--no-modern] [--colors default|FILE]\n"
             "  tuning: --run 1..255 px  --grid 1..16 px  --step 1..64 px  --err BASE POINT\n"
             "          (0..65535 each)  --white 0..100 %%  --white-s 0..254  --tol 1..45 deg\n"
             "          --minconf 0..255;  --max-range 100..20000 mm\n");
@@ -45,11 +58,12 @@ static int evd_usage(int rc)
 
 int cmd_eval_detect(int argc, char **argv)
 {
-    const char *fix = "fixtures", *real = NULL, *only = NULL;
+    const char *fix = "fixtures", *real = NULL, *only = NULL, *modern = NULL, *colors = NULL;
     double max_range = 6000;
-    int i, verbose = 0, n, skip_real = 0, skip_fix = 0;
+    int i, verbose = 0, n, skip_real = 0, skip_fix = 0, skip_modern = 0;
     det_ctx_t ctx;
     evd_stats_t s;
+    evd_border_t bs;
     fl_vision_params_t vp;
     static const char C[] = "eval-detect";
     fl_vision_params_default(&vp);
@@ -73,6 +87,12 @@ int cmd_eval_detect(int argc, char **argv)
             skip_real = 1;
         else if (!strcmp(argv[i], "--no-fixtures"))
             skip_fix = 1;
+        else if (!strcmp(argv[i], "--modern") && i + 1 < argc)
+            modern = argv[++i];
+        else if (!strcmp(argv[i], "--no-modern"))
+            skip_modern = 1;
+        else if (!strcmp(argv[i], "--colors") && i + 1 < argc)
+            colors = argv[++i];
         /* tuning knobs (defaults: fl_vision_params_default) */
         else if (!strcmp(argv[i], "--run") && i + 1 < argc) {
             if (arg_int32(C, "--run", argv[++i], 1, 255, "px", &vp.scan.border_run_px))
@@ -109,11 +129,25 @@ int cmd_eval_detect(int argc, char **argv)
             return arg_unknown(C, argv[i],
                                "--fixtures=1 --realdata=1 --max-range=1 --only=1 --pictures=1 "
                                "--run=1 --grid=1 --step=1 --err=2 --white=1 --white-s=1 --tol=1 "
-                               "--minconf=1");
+                               "--minconf=1 --modern=1 --colors=1");
     }
     if (det_ctx_init_params(&ctx, &vp) != 0) {
         fprintf(stderr, "eval-detect: bad parameters\n");
         return 1;
+    }
+    if (colors && strcmp(colors, "default") != 0) {
+        fl_color_params_t cp;
+        char err[256];
+        if (det_colors_load(colors, &cp, err, sizeof err) != 0) {
+            fprintf(stderr, "eval-detect: %s\n", err);
+            det_ctx_free(&ctx);
+            return 2;
+        }
+        if (det_ctx_set_colors(&ctx, &cp) != 0) {
+            fprintf(stderr, "eval-detect: %s: colour classes refused\n", colors);
+            det_ctx_free(&ctx);
+            return 2;
+        }
     }
     evd_stats_clear(&s);
     n = skip_fix ? -2 : evd_fixtures(&ctx, fix, max_range, verbose, &s, only);
@@ -137,6 +171,22 @@ int cmd_eval_detect(int argc, char **argv)
         printf("UvA 2013 frames: cannot read %s/%s\n", real, RD_UVA_CSV);
     else
         evd_print("UvA 2013 real frames (hand labels)", &s, 0);
+    evd_stats_clear(&s);
+    evd_border_clear(&bs);
+    if (!modern)
+        modern = rd_modern_csv();
+    if (skip_real || skip_modern)
+        ;
+    else if (!real)
+        printf("modern real frames: %s\n", rd_skip_message());
+    else if (!modern)
+        printf("modern real frames: tools/eval/%s not found\n", RD_MODERN_CSV);
+    else if (evd_modern(&ctx, real, modern, verbose, &s, &bs) < 0)
+        printf("modern real frames: cannot read %s\n", modern);
+    else {
+        evd_print("modern real frames (hand labels)", &s, 0);
+        evd_border_print(&bs);
+    }
     det_ctx_free(&ctx);
     return 0;
 }

@@ -102,6 +102,27 @@ int evd_fixtures(det_ctx_t *ctx, const char *dir, double max_range, int verbose,
  * scored, -1 when the labels cannot be read. */
 int evd_uva(det_ctx_t *ctx, const char *dir, int verbose, evd_stats_t *s);
 void evd_print(const char *title, const evd_stats_t *s, int ranges);
+
+/* Field-border score of the modern frames' B labels: the scanner's border
+ * (fl_scan_t.border_v, linear between grid columns) against the labelled
+ * topmost carpet row. */
+#define EVD_BORDER_TOL_PX 3.0
+typedef struct {
+    int n;              /* labelled columns scored */
+    int within;         /* |found - label| <= EVD_BORDER_TOL_PX */
+    int none;           /* columns where the scanner found no border */
+    double sum, worst;  /* px */
+    char worst_at[128]; /* "index u U" of the worst column */
+} evd_border_t;
+void evd_border_clear(evd_border_t *b);
+/* Score the modern frames (tools/eval/realdata_modern.csv at csv, images
+ * in the real-data folder dir) as evd_uva scores the UvA set, on field
+ * spl2020 with each row's camera and head angles (0 when not labelled);
+ * B labels go to b.  Returns frames scored, -1 when the labels cannot be
+ * read. */
+int evd_modern(det_ctx_t *ctx, const char *dir, const char *csv, int verbose, evd_stats_t *s,
+               evd_border_t *b);
+void evd_border_print(const evd_border_t *b);
 /* Folder for a picture of every scored frame (NULL: none). */
 void evd_set_pictures(const char *dir);
 

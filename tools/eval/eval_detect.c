@@ -380,6 +380,154 @@ int evd_uva(det_ctx_t *ctx, const char *dir, int verbose, evd_stats_t *s)
     return frames;
 }
 
+/* ---- modern real frames (hand labels in the repository) ----------------------- */
+
+void evd_border_clear(evd_border_t *b)
+{
+    memset(b, 0, sizeof *b);
+}
+
+/* The scanner's border at pixel column u of the last frame: linear between
+ * the two grid columns around u (the nearer one when only it has a border),
+ * the image height when neither has one (the scanner's "none"). */
+static double evd_border_at(const fl_scan_t *sc, double u)
+{
+    int32_t step = sc->params.col_step > 0 ? sc->params.col_step : 1;
+    double g = u / step, t;
+    int i0 = (int)floor(g), i1 = i0 + 1;
+    int ok0, ok1;
+    if (sc->cols <= 0)
+        return sc->height;
+    if (i0 < 0)
+        i0 = 0;
+    if (i0 > sc->cols - 1)
+        i0 = sc->cols - 1;
+    if (i1 > sc->cols - 1)
+        i1 = sc->cols - 1;
+    t = g - i0;
+    if (t < 0)
+        t = 0;
+    if (t > 1)
+        t = 1;
+    ok0 = sc->border_v[i0] < sc->height;
+    ok1 = sc->border_v[i1] < sc->height;
+    if (ok0 && ok1)
+        return (1 - t) * sc->border_v[i0] + t * sc->border_v[i1];
+    if (ok0 && (t < 0.5 || !ok1))
+        return sc->border_v[i0];
+    if (ok1)
+        return sc->border_v[i1];
+    return sc->height;
+}
+
+/* Score the B labels of one frame against the scanner's border. */
+static void evd_border_score(evd_border_t *b, const fl_scan_t *sc, const rd_modern_record_t *rec,
+                             int verbose)
+{
+    int i, n = 0, ok = 0;
+    for (i = 0; i < rec->n_features; i++) {
+        const rd_feature_t *f = &rec->feat[i];
+        double bv, e;
+        if (f->type != 'B')
+            continue;
+        bv = evd_border_at(sc, f->u);
+        e = fabs(bv - f->v);
+        n++;
+        b->n++;
+        b->sum += e;
+        if (e <= EVD_BORDER_TOL_PX) {
+            ok++;
+            b->within++;
+        }
+        if (bv >= sc->height)
+            b->none++;
+        if (e > b->worst) {
+            b->worst = e;
+            snprintf(b->worst_at, sizeof b->worst_at, "%s u %.0f", rec->index, f->u);
+        }
+        if (verbose && e > EVD_BORDER_TOL_PX)
+            printf("    border %s u %.0f: label %.0f, found %s%.1f\n", rec->index, f->u, f->v,
+                   bv >= sc->height ? "none " : "", bv);
+    }
+    if (verbose && n)
+        printf("    border %s: %d/%d columns within %.0f px\n", rec->index, ok, n,
+               EVD_BORDER_TOL_PX);
+}
+
+int evd_modern(det_ctx_t *ctx, const char *dir, const char *csv, int verbose, evd_stats_t *s,
+               evd_border_t *b)
+{
+    char err[256];
+    rd_modern_set_t set;
+    const fl_field_t *field = fl_field_find("spl2020");
+    int r, frames = 0;
+    if (!dir || !csv || !field || rd_modern_load(csv, &set, err, sizeof err) != 0)
+        return -1;
+    for (r = 0; r < set.n; r++) {
+        const rd_modern_record_t *rec = &set.rec[r];
+        const fl_camera_model_t *m = fl_camera_model_find(rec->camera);
+        host_image_t img;
+        fl_image_t view;
+        fl_camera_pose_t pose;
+        fl_camera_t cam;
+        det_feature_t feat[DET_MAX_FEATURES];
+        evd_item_t det[DET_MAX_FEATURES], tru[RD_MODERN_MAX_FEATURES];
+        int nd, nt = 0, i;
+        if (!m || !rec->in_realdata || rd_read_ppm(dir, rec->file, &img, err, sizeof err) != 0)
+            continue;
+        if ((int32_t)img.width != m->width_px || (int32_t)img.height != m->height_px ||
+            rd_image_view(&img, &view) != FL_OK) {
+            host_image_free(&img);
+            continue;
+        }
+        rd_modern_camera_pose(rec, m, &pose);
+        if (fl_camera_init(&cam, m, &pose) != FL_OK) {
+            host_image_free(&img);
+            continue;
+        }
+        nd = det_run(ctx, &view, &cam, field, NULL, feat, DET_MAX_FEATURES);
+        nd = evd_det_items(feat, nd, det);
+        for (i = 0; i < rec->n_features; i++) {
+            if (rec->feat[i].type == 'B')
+                continue;
+            tru[nt].kind = rec->feat[i].type;
+            tru[nt].u = rec->feat[i].u;
+            tru[nt].v = rec->feat[i].v;
+            tru[nt].range_mm = 0;
+            tru[nt].required = 1;
+            nt++;
+        }
+        evd_score(s, det, nd, tru, nt, 1e9, 1);
+        {
+            char nm[128];
+            snprintf(nm, sizeof nm, "modern_%s_%s", rec->set, rec->index);
+            evd_picture(ctx, &view, &cam, field, tru, nt, nm);
+        }
+        if (verbose) {
+            char nm[128];
+            snprintf(nm, sizeof nm, "%s %s", rec->set, rec->index);
+            evd_verbose_frame(nm, det, nd, tru, nt);
+        }
+        evd_border_score(b, &ctx->vis->scan, rec, verbose);
+        host_image_free(&img);
+        frames++;
+    }
+    rd_modern_free(&set);
+    return frames;
+}
+
+void evd_border_print(const evd_border_t *b)
+{
+    if (b->n == 0) {
+        printf("  field border  no labelled columns\n");
+        return;
+    }
+    printf("  field border  %.3f of %d labelled columns within %.0f px  (mean %.1f px, worst "
+           "%.1f px at %s; no border in %d)\n",
+           (double)b->within / b->n, b->n, EVD_BORDER_TOL_PX, b->sum / b->n, b->worst,
+           b->worst_at, b->none);
+}
+
 /* ---- report ------------------------------------------------------------------- */
 
 static double evd_ratio(int a, int b) { return b > 0 ? (double)a / b : 0.0; }

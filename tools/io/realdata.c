@@ -261,8 +261,10 @@ static char *rd_read_text(const char *path, char *err, int err_len)
 
 /* ---- UvA 2013 ------------------------------------------------------------- */
 
-/* "X:162,156 L:36,98 ..." -> features, 1-based -> 0-based.  Count or -1. */
-static int rd_uva_features(const char *s, rd_feature_t *feat, int cap)
+/* "X:162,156 L:36,98 ..." -> features (type one of types, u - off,
+ * v - off).  Count or -1. */
+static int rd_features(const char *s, rd_feature_t *feat, int cap, const char *types,
+                       double off)
 {
     int n = 0;
     for (;;) {
@@ -274,7 +276,7 @@ static int rd_uva_features(const char *s, rd_feature_t *feat, int cap)
         if (!*s)
             return n;
         type = *s++;
-        if (!strchr("XLTGU", type) || *s++ != ':')
+        if (!type || !strchr(types, type) || *s++ != ':')
             return -1;
         errno = 0;
         u = strtod(s, &end);
@@ -288,10 +290,16 @@ static int rd_uva_features(const char *s, rd_feature_t *feat, int cap)
         if (n >= cap)
             return -1;
         feat[n].type = type;
-        feat[n].u = u - 1.0;
-        feat[n].v = v - 1.0;
+        feat[n].u = u - off;
+        feat[n].v = v - off;
         n++;
     }
+}
+
+/* UvA: 1-based MATLAB pixels -> 0-based. */
+static int rd_uva_features(const char *s, rd_feature_t *feat, int cap)
+{
+    return rd_features(s, feat, cap, "XLTGU", 1.0);
 }
 
 int rd_uva_parse(const char *text, rd_uva_set_t *out, char *err, int err_len)
@@ -592,4 +600,280 @@ void rd_physar_free(rd_physar_set_t *set)
     free(set->rec);
     set->rec = NULL;
     set->n = 0;
+}
+
+/* ---- modern frames ---------------------------------------------------------- */
+
+static int rd_is_file(const char *p)
+{
+    struct stat st;
+    return p && stat(p, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+const char *rd_modern_csv(void)
+{
+    static char buf[4096];
+    static const char *cands[] = {"tools/eval/" RD_MODERN_CSV, "../tools/eval/" RD_MODERN_CSV};
+    const char *env = getenv("FIELDLOC_MODERN_CSV");
+    size_t i;
+    ssize_t n;
+
+    if (env && *env) {
+        if (!rd_is_file(env) || strlen(env) >= sizeof buf)
+            return NULL;
+        strcpy(buf, env);
+        return buf;
+    }
+    for (i = 0; i < sizeof cands / sizeof cands[0]; i++)
+        if (rd_is_file(cands[i])) {
+            strcpy(buf, cands[i]);
+            return buf;
+        }
+    /* <ancestor of the executable's folder>/tools/eval/: the executable
+     * sits in <repo>/build/ or deeper, as in rd_dir */
+    n = readlink("/proc/self/exe", buf, sizeof buf - 64);
+    if (n > 0) {
+        int up;
+        buf[n] = '\0';
+        for (up = 0; up < 4; up++) {
+            char *slash = strrchr(buf, '/');
+            size_t len;
+            if (!slash || slash == buf)
+                break;
+            *slash = '\0';
+            len = strlen(buf);
+            strcat(buf, "/tools/eval/" RD_MODERN_CSV);
+            if (up > 0 && rd_is_file(buf))
+                return buf;
+            buf[len] = '\0';
+        }
+    }
+    return NULL;
+}
+
+static int rd_blank(const char *s)
+{
+    while (*s == ' ' || *s == '\t')
+        s++;
+    return *s == '\0';
+}
+
+/* Columns first..last (inclusive, indices into names/ci) all blank -> 0,
+ * all numbers -> 1 (into v), a mix or a bad number -> -1 (err set). */
+static int rd_optional_group(const rd_row_t *row, const int *ci, const char *const *names,
+                             int first, int last, double *v, int line, char *err, int err_len)
+{
+    int k, blanks = 0;
+    for (k = first; k <= last; k++)
+        blanks += rd_blank(row->col[ci[k]]);
+    if (blanks == last - first + 1)
+        return 0;
+    if (blanks) {
+        tf_err(err, err_len, "line %d: columns %s..%s must be all blank or all numbers", line,
+               names[first], names[last]);
+        return -1;
+    }
+    for (k = first; k <= last; k++)
+        if (rd_num(row->col[ci[k]], &v[k]) != 0) {
+            tf_err(err, err_len, "line %d: bad number in column %s: '%s'", line, names[k],
+                   row->col[ci[k]]);
+            return -1;
+        }
+    return 1;
+}
+
+/* One data row into rec; 0, or -1 with err set. */
+static int rd_modern_row(const rd_row_t *row, const int *ci, const char *const *names,
+                         rd_modern_record_t *rec, int line, char *err, int err_len)
+{
+    enum { C_FILE, C_IN, C_SET, C_INDEX, C_X, C_Y, C_TH, C_HP, C_HY, C_NF, C_FEAT, C_CAM };
+    double v[C_CAM + 1];
+    const fl_camera_model_t *m;
+    int nf, i, g;
+
+    memset(rec, 0, sizeof *rec);
+    if (rd_copy(rec->file, sizeof rec->file, row->col[ci[C_FILE]]) ||
+        rd_copy(rec->set, sizeof rec->set, row->col[ci[C_SET]]) ||
+        rd_copy(rec->index, sizeof rec->index, row->col[ci[C_INDEX]]) ||
+        rd_copy(rec->camera, sizeof rec->camera, row->col[ci[C_CAM]]) || !rec->file[0] ||
+        !rec->set[0] || !rec->index[0]) {
+        tf_err(err, err_len, "line %d: empty or too long name", line);
+        return -1;
+    }
+    if (rd_num(row->col[ci[C_IN]], &v[C_IN]) != 0 || (v[C_IN] != 0 && v[C_IN] != 1)) {
+        tf_err(err, err_len, "line %d: in_realdata must be 0 or 1: '%s'", line,
+               row->col[ci[C_IN]]);
+        return -1;
+    }
+    rec->in_realdata = (int)v[C_IN];
+    if ((g = rd_optional_group(row, ci, names, C_X, C_TH, v, line, err, err_len)) < 0)
+        return -1;
+    rec->has_pose = g;
+    if (g) {
+        rec->x_cm = v[C_X];
+        rec->y_cm = v[C_Y];
+        rec->theta_deg = v[C_TH];
+    }
+    if ((g = rd_optional_group(row, ci, names, C_HP, C_HY, v, line, err, err_len)) < 0)
+        return -1;
+    rec->has_head = g;
+    if (g) {
+        if (fabs(v[C_HP]) > 1.6 || fabs(v[C_HY]) > 3.2) {
+            tf_err(err, err_len, "line %d: head angles out of range (|pitch| <= 1.6, |yaw| <= 3.2 rad)",
+                   line);
+            return -1;
+        }
+        rec->head_pitch_rad = v[C_HP];
+        rec->head_yaw_rad = v[C_HY];
+    }
+    m = fl_camera_model_find(rec->camera);
+    if (!m) {
+        tf_err(err, err_len, "line %d: unknown camera '%s'", line, rec->camera);
+        return -1;
+    }
+    if (rd_num(row->col[ci[C_NF]], &v[C_NF]) != 0) {
+        tf_err(err, err_len, "line %d: bad number in column n_features: '%s'", line,
+               row->col[ci[C_NF]]);
+        return -1;
+    }
+    nf = rd_features(row->col[ci[C_FEAT]], rec->feat, RD_MODERN_MAX_FEATURES, "XLTGUB", 0.0);
+    if (nf < 0) {
+        tf_err(err, err_len, "line %d: bad feature list '%s'", line, row->col[ci[C_FEAT]]);
+        return -1;
+    }
+    if (v[C_NF] != (double)nf) {
+        tf_err(err, err_len, "line %d: n_features %g but %d features listed", line, v[C_NF], nf);
+        return -1;
+    }
+    for (i = 0; i < nf; i++) {
+        const rd_feature_t *f = &rec->feat[i];
+        /* pixel centres: -0.5 .. size - 0.5 covers the image */
+        if (!(f->u >= -0.5 && f->v >= -0.5 && f->u <= m->width_px - 0.5 &&
+              f->v <= m->height_px - 0.5)) {
+            tf_err(err, err_len, "line %d: feature %c:%g,%g outside the %dx%d image of %s", line,
+                   f->type, f->u, f->v, (int)m->width_px, (int)m->height_px, m->name);
+            return -1;
+        }
+    }
+    rec->n_features = nf;
+    return 0;
+}
+
+int rd_modern_parse(const char *text, rd_modern_set_t *out, char *err, int err_len)
+{
+    static const char *const names[] = {"file", "in_realdata", "set", "index", "x_cm", "y_cm",
+                                        "theta_deg", "head_pitch_rad", "head_yaw_rad",
+                                        "n_features", "features", "camera"};
+    enum { C_N = 12 };
+    rd_row_t *row, hdr;
+    int ci[C_N], i, line = 0, r, cap = 0;
+    const char *p = text;
+
+    if (!out)
+        return -1;
+    out->rec = NULL;
+    out->n = 0;
+    if (!text) {
+        tf_err(err, err_len, "NULL text");
+        return -1;
+    }
+    r = rd_next_row(&p, &hdr, &line);
+    if (r <= 0) {
+        tf_err(err, err_len, "line %d: no header", line);
+        return -1;
+    }
+    for (i = 0; i < C_N; i++) {
+        ci[i] = rd_col_index(&hdr, names[i]);
+        if (ci[i] < 0) {
+            tf_err(err, err_len, "header lacks column %s", names[i]);
+            return -1;
+        }
+    }
+    row = malloc(sizeof *row);
+    if (!row) {
+        tf_err(err, err_len, "out of memory");
+        return -1;
+    }
+    while ((r = rd_next_row(&p, row, &line)) == 1) {
+        if (row->n != hdr.n) {
+            tf_err(err, err_len, "line %d: %d fields, header has %d", line, row->n, hdr.n);
+            goto fail;
+        }
+        if (out->n == cap) {
+            int nc = cap ? 2 * cap : 32;
+            rd_modern_record_t *nr = realloc(out->rec, (size_t)nc * sizeof *nr);
+            if (!nr) {
+                tf_err(err, err_len, "out of memory");
+                goto fail;
+            }
+            out->rec = nr;
+            cap = nc;
+        }
+        if (rd_modern_row(row, ci, names, &out->rec[out->n], line, err, err_len) != 0)
+            goto fail;
+        for (i = 0; i < out->n; i++)
+            if (strcmp(out->rec[i].file, out->rec[out->n].file) == 0) {
+                tf_err(err, err_len, "line %d: file %s listed twice", line,
+                       out->rec[out->n].file);
+                goto fail;
+            }
+        out->n++;
+    }
+    if (r < 0) {
+        tf_err(err, err_len, "line %d: malformed CSV line", line);
+        goto fail;
+    }
+    free(row);
+    return 0;
+fail:
+    free(row);
+    rd_modern_free(out);
+    return -1;
+}
+
+int rd_modern_load(const char *path, rd_modern_set_t *out, char *err, int err_len)
+{
+    char *t;
+    int r;
+    if (!out)
+        return -1;
+    out->rec = NULL;
+    out->n = 0;
+    t = rd_read_text(path, err, err_len);
+    if (!t)
+        return -1;
+    r = rd_modern_parse(t, out, err, err_len);
+    free(t);
+    return r;
+}
+
+void rd_modern_free(rd_modern_set_t *set)
+{
+    if (!set)
+        return;
+    free(set->rec);
+    set->rec = NULL;
+    set->n = 0;
+}
+
+int rd_modern_count(const rd_modern_record_t *r, char type)
+{
+    int i, n = 0;
+    if (!r)
+        return 0;
+    for (i = 0; i < r->n_features; i++)
+        n += !type || r->feat[i].type == type;
+    return n;
+}
+
+void rd_modern_camera_pose(const rd_modern_record_t *r, const fl_camera_model_t *m,
+                           fl_camera_pose_t *pose)
+{
+    if (!r || !m || !pose)
+        return;
+    memset(pose, 0, sizeof *pose);
+    pose->neck_height_mm = m->default_neck_height_mm;
+    pose->head_pitch = rd_angle_from_rad(r->head_pitch_rad);
+    pose->head_yaw = rd_angle_from_rad(r->head_yaw_rad);
+    pose->pitch_offset = m->default_pitch_offset;
 }

@@ -39,6 +39,23 @@
  * README's nominal point and heading (heading approximate, see SOURCES.md),
  * head joint angles and IMU angles in rad.
  *
+ * Modern frames (rd_modern_*): the project's own hand labels of the
+ * non-UvA frames of the folder (physar, HTWK, NaoTH, dbloisi, scarrix), kept
+ * in the repository as tools/eval/realdata_modern.csv (the images stay in
+ * ../shared/realdata).  The UvA columns plus `camera` (a camera model name
+ * of fl_camera_model_find: it fixes the resolution).  Differences to the
+ * UvA file: features are 0-based pixel centres in the image's own
+ * resolution (stored as written); the extra type B:u,v is the field border
+ * (v = topmost carpet row of column u); the pose columns x_cm, y_cm,
+ * theta_deg are all blank (no pose) or all numbers; head_pitch_rad and
+ * head_yaw_rad likewise (blank: not known).  Checked: the camera exists,
+ * every feature lies inside its image, n_features matches.  The file's
+ * own comment lines give the labelling conventions.
+ * Locating it (rd_modern_csv): $FIELDLOC_MODERN_CSV when set and non-empty,
+ * else the first existing file of tools/eval/realdata_modern.csv,
+ * ../tools/eval/realdata_modern.csv and <P>/tools/eval/realdata_modern.csv
+ * for P = the 1st..3rd parent folder of the executable's folder.
+ *
  * Errors: loaders return 0 on success and -1 with a one-line message in
  * err (may be NULL) otherwise; a malformed row is an error naming the line
  * (the files are small and curated: better loud than half-loaded).
@@ -59,6 +76,8 @@
 #define RD_PHYSAR_CSV "physar_poses.csv"
 #define RD_NAME_MAX 160     /* longest file name stored (longer: error) */
 #define RD_MAX_FEATURES 48  /* features per UvA row (more: error) */
+#define RD_MODERN_CSV "realdata_modern.csv"   /* in tools/eval/ of the repository */
+#define RD_MODERN_MAX_FEATURES 64             /* features per modern row (more: error) */
 
 /* ---- the folder ---------------------------------------------------------- */
 
@@ -84,8 +103,8 @@ fl_status_t rd_image_view(const host_image_t *img, fl_image_t *view);
 /* ---- UvA 2013 labels ----------------------------------------------------- */
 
 typedef struct {
-    char type;      /* 'X', 'L', 'T', 'G' or 'U' */
-    double u, v;    /* pixel, 0-based (label - 1), 320x240 frame */
+    char type;      /* 'X', 'L', 'T', 'G' or 'U'; modern rows also 'B' */
+    double u, v;    /* pixel, 0-based (UvA: label - 1, 320x240 frame) */
 } rd_feature_t;
 
 typedef struct {
@@ -151,5 +170,42 @@ typedef struct {
 int rd_physar_parse(const char *text, rd_physar_set_t *out, char *err, int err_len);
 int rd_physar_load(const char *path, rd_physar_set_t *out, char *err, int err_len);
 void rd_physar_free(rd_physar_set_t *set);
+
+/* ---- modern frames (hand labels in the repository) ---------------------- */
+
+typedef struct {
+    char file[RD_NAME_MAX];  /* PPM file name in the real-data folder */
+    int in_realdata;         /* 1 when the PPM is in that folder */
+    char set[32];            /* source: "physar", "htwk", "naoth", "dbloisi", "scarrix" */
+    char index[64];          /* short id, unique within the set */
+    int has_pose;            /* 1: x_cm, y_cm, theta_deg given (else 0s) */
+    double x_cm, y_cm, theta_deg;
+    int has_head;            /* 1: head_pitch_rad, head_yaw_rad given (else 0s) */
+    double head_pitch_rad, head_yaw_rad;   /* NAOqi signs (pitch > 0 = down) */
+    char camera[32];         /* camera model name (fl_camera_model_find) */
+    int n_features;
+    rd_feature_t feat[RD_MODERN_MAX_FEATURES];   /* 0-based pixel centres */
+} rd_modern_record_t;
+
+typedef struct {
+    rd_modern_record_t *rec;  /* malloc'd, n entries */
+    int n;
+} rd_modern_set_t;
+
+/* Path of tools/eval/realdata_modern.csv (see above), or NULL.  Static
+ * string valid until the next call. */
+const char *rd_modern_csv(void);
+
+int rd_modern_parse(const char *text, rd_modern_set_t *out, char *err, int err_len);
+int rd_modern_load(const char *path, rd_modern_set_t *out, char *err, int err_len);
+void rd_modern_free(rd_modern_set_t *set);
+
+/* Labels of one type in a record (type 0: all). */
+int rd_modern_count(const rd_modern_record_t *r, char type);
+
+/* Camera pose of a modern record: its head angles (0 when not known), the
+ * model's default neck height and pitch offset. */
+void rd_modern_camera_pose(const rd_modern_record_t *r, const fl_camera_model_t *m,
+                           fl_camera_pose_t *pose);
 
 #endif
