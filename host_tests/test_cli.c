@@ -296,6 +296,8 @@ static void t_numbers(void)
     expect_error("demo --every 0", "fieldloc demo: --every: 0 is out of range 1..1000");
     expect_error("demo --seconds -1", "fieldloc demo: --seconds: -1 is out of range 0..86400 s");
     expect_error("eval-detect --tol 46", "fieldloc eval-detect: --tol: 46 is out of range 1..45 deg");
+    expect_error("eval-detect --colors build/no_such.colors",
+                 "fieldloc eval-detect: build/no_such.colors: cannot open");
     expect_error("fields --all", "fieldloc fields: unknown option --all (fieldloc fields --help)");
     /* good values still work */
     CHECK_EQ(cli_run("project --camera uva2013 --head -0.54 0 160 200", out, sizeof out, err,
@@ -310,6 +312,12 @@ static void t_numbers(void)
     CHECK(strstr(out, "pos_rmse_mm") != NULL);
     CHECK_EQ(cli_run("detect --help", NULL, 0, err, sizeof err), 0);
     CHECK(strncmp(err, "usage: fieldloc detect", 22) == 0);
+    /* the modern real frames: labels from tools/eval/, images from ../shared */
+    if (t_realdata_dir()) {
+        CHECK_EQ(cli_run("eval-detect --no-fixtures", out, sizeof out, err, sizeof err), 0);
+        CHECK(strstr(out, "modern real frames (hand labels): 19 frames") != NULL);
+        CHECK(strstr(out, "field border") != NULL);
+    }
     /* reliability: its counts and seed lists are checked like every number
      * (refused before any walk runs) */
     expect_error("reliability --steps \"\"",

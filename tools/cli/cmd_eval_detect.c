@@ -139,12 +139,12 @@ int cmd_eval_detect(int argc, char **argv)
         fl_color_params_t cp;
         char err[256];
         if (det_colors_load(colors, &cp, err, sizeof err) != 0) {
-            fprintf(stderr, "eval-detect: %s\n", err);
+            fprintf(stderr, "fieldloc eval-detect: %s\n", err);
             det_ctx_free(&ctx);
             return 2;
         }
         if (det_ctx_set_colors(&ctx, &cp) != 0) {
-            fprintf(stderr, "eval-detect: %s: colour classes refused\n", colors);
+            fprintf(stderr, "fieldloc eval-detect: %s: colour classes refused\n", colors);
             det_ctx_free(&ctx);
             return 2;
         }
