@@ -25,9 +25,6 @@
  * `fieldloc colors` writes the defaults): keys it leaves out keep their
  * defaults; a file that does not parse: "fieldloc detect: FILE:LINE:
  * reason", exit status 2.
- * --imu ANGLEX ANGLEY gives the torso roll and pitch (rad, a NAO inertial
- * unit's AngleX / AngleY: fieldloc/camera.h), applied after --calib and
- * --neck; |angle| <= 45 deg (0.7854 rad).
  * --stats prints the stage counters to stderr; --repeat N runs the path N
  * times (for callgrind: instructions per frame).
  * --picture OUT.ppm|.png draws the stages over the frame (det_draw) with a
@@ -37,6 +34,9 @@
  * Numbers are checked (tools/cli/args.h): --head within the NAO head joints
  * (the camera's limit for a non-NAO camera), --neck 50..2000 mm, --repeat
  * 1..1000000; a bad value or option exits with status 2.
+ * --imu ANGLEX ANGLEY gives the torso roll and pitch (rad, a NAO inertial
+ * unit's AngleX / AngleY: fieldloc/camera.h), applied after --calib and
+ * --neck; |angle| <= 45 deg (0.7854 rad).
  */
 #include "cli/args.h"
 #include "eval/detect.h"
@@ -56,10 +56,10 @@ static int detect_usage(void)
     fprintf(stderr,
             "usage: fieldloc detect [--field NAME] [--camera NAME] [--head PITCH_RAD YAW_RAD]\n"
             "                       [--neck MM] [--calib CALIB] [--colors FILE] [--picture OUT.ppm]\n"
-            "                       [--show border,classes] [--stats] [--repeat N]\n"
-            "                       [--imu ANGLEX ANGLEY] IMAGE.ppm\n"
+            "                       [--show border,classes] [--stats] [--repeat N] IMAGE.ppm\n"
             "  --head: NAO HeadPitch -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad\n"
             "  --neck 50..2000 mm, --repeat 1..1000000\n"
+            "  --imu ANGLEX ANGLEY: torso roll and pitch, rad (NAO AngleX / AngleY)\n"
             "  --calib: a calibration file from `fieldloc calibrate --out`\n"
             "  --colors: a colour file, see `fieldloc colors`\n"
             "  prints: kind<TAB>u<TAB>v<TAB>confidence<TAB>range_mm<TAB>bearing_deg\n"
@@ -135,11 +135,12 @@ int cmd_detect(int argc, char **argv)
                *picture = NULL, *calib_path = NULL, *colors_path = NULL;
     fl_calib_t calib;
     fl_color_params_t colors;
-    double pitch = 0, yaw = 0, imu[2] = {0, 0};
-    int imu_given = 0;
+    double pitch = 0, yaw = 0;
     const char *head_text[2] = {NULL, NULL};
     int i, n, stats = 0, rc = 0, repeat = 1, head_given = 0, show_border = 0, show_classes = 0;
     int32_t neck = 0;
+    double imu[2] = {0, 0};
+    int imu_given = 0;
     const fl_field_t *field;
     const fl_camera_model_t *m;
     fl_camera_t cam;
