@@ -370,7 +370,8 @@ int cmd_localize(int argc, char **argv)
             else if (!strcmp(v, "off"))
                 imu = PH_IMU_OFF;
             else {
-                fprintf(stderr, "localize: --imu %s: expected angles, accel or off\n", v);
+                fprintf(stderr, "fieldloc localize: --imu: \"%s\" is not angles, accel or off\n",
+                        v);
                 return 2;
             }
         }
