@@ -16,6 +16,7 @@
 #include "eval/picture.h"
 #include "io/font.h"
 #include "io/ppm.h"
+#include "io/realdata.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -692,6 +693,45 @@ static void t_calib_files(void)
     CHECK(strncmp(out, "pose ", 5) == 0);
 }
 
+/* `localize --physar` (tools/loc/physar.h) and `detect --imu`: the option
+ * errors, and a short run (2 frames per point, one localizer): one line
+ * per point and the summary with the real-data folder, one skip line
+ * without it. */
+static void t_physar_cli(void)
+{
+    char out[8192], err[2048];
+    const char *p;
+    int rc, n_point = 0;
+    if (t_quick)
+        return;
+    if (cli_find() != 0) {
+        t_info("skipped: %s not built", t_cli);
+        return;
+    }
+    expect_error("localize --physar --imu gyro",
+                 "fieldloc localize: --imu: \"gyro\" is not angles, accel or off");
+    expect_error("localize --physar --repeat 0",
+                 "fieldloc localize: --repeat: 0 is out of range 1..1000");
+    expect_error("detect " CAM_FAR " --imu 0 0.9 " FRAME_FAR,
+                 "fieldloc detect: --imu angley: 0.9 is out of range -0.7854..0.7854 rad");
+    /* --repeat and --imu belong to --physar; --param needs --localizer there */
+    CHECK_EQ(cli_run("localize --repeat 3 --uva-spots", NULL, 0, NULL, 0), 2);
+    CHECK_EQ(cli_run("localize --physar --param seed=2", NULL, 0, NULL, 0), 2);
+    CHECK_EQ(cli_run("detect " CAM_FAR " --imu 0.01 -0.02 " FRAME_FAR, NULL, 0, NULL, 0), 0);
+    rc = cli_run("localize --physar --localizer fuzzy --repeat 2 --imu off", out, sizeof out, err,
+                 sizeof err);
+    CHECK_EQ(rc, 0);
+    if (strncmp(out, "physar: skipped", 15) == 0) {
+        t_info("%s", rd_skip_message());
+        return;
+    }
+    for (p = out; (p = strstr(p, "\nphysar fuzzy  black1_point")) != NULL; p++)
+        n_point++;
+    CHECK_EQ(n_point, 5);
+    CHECK(strstr(out, "\nphysar_summary fuzzy  points 5 goal_met ") != NULL);
+    CHECK(strstr(out, "physar mcl") == NULL);
+}
+
 void suite_cli(void)
 {
     t_run("cli.font", t_font);
@@ -703,4 +743,5 @@ void suite_cli(void)
     t_run("cli.demo_compare", t_demo_compare);
     t_run("cli.calib_files", t_calib_files);
     t_run("cli.stream", t_stream);
+    t_run("cli.physar", t_physar_cli);
 }

@@ -9,6 +9,8 @@
  * slower) they return at once, printing the same "ok" line.
  */
 #include "loc/locrun.h"
+#include "loc/physar.h"
+#include "io/realdata.h"
 #include "eval/picture.h"
 #include "io/ppm.h"
 #include "world/sim.h"
@@ -382,6 +384,73 @@ static void t_picture(void)
     CHECK(img.rgb == NULL);
 }
 
+/* The physar black1 evaluation (tools/loc/physar.h) on the real frames:
+ * structure (5 points, every frame used, finite errors, the symmetric error
+ * never above the plain one, the truth pose seeing map landmarks) and
+ * floors on the points that meet the goal (<= 300 mm modulo symmetry where
+ * vision reports two or more features), set at what the vision path and
+ * the localizers give today, for each source of the torso angles (the
+ * records' AngleX / AngleY, the accelerometer's tilt, none).  Skipped without ../shared/realdata and
+ * under --quick (ten 640x480 frames per point and localizer). */
+static void t_physar(void)
+{
+    static const struct {
+        const char *loc;
+        ph_imu_t imu;
+        int floor;
+    } runs[] = {{"fuzzy", PH_IMU_ANGLES, 0}, {"mcl", PH_IMU_ANGLES, 0},
+                  {"fuzzy", PH_IMU_ACCEL, 2}, {"mcl", PH_IMU_ACCEL, 2},
+                  {"fuzzy", PH_IMU_OFF, 0},    {"mcl", PH_IMU_OFF, 2}};
+    ph_result_t *res;
+    size_t r;
+    if (t_quick)
+        return;
+    if (t_realdata_dir() == NULL) {
+        t_info("%s", rd_skip_message());
+        return;
+    }
+    res = malloc(sizeof *res);
+    CHECK(res != NULL);
+    if (res == NULL)
+        return;
+    for (r = 0; r < sizeof runs / sizeof runs[0]; r++) {
+        ph_opts_t o;
+        char err[256] = "";
+        int k, rc;
+        memset(&o, 0, sizeof o);
+        o.repeat = PH_REPEAT_DEFAULT;
+        o.imu = runs[r].imu;
+        rc = ph_run(fl_localizer_find(runs[r].loc), &o, res, err, (int)sizeof err);
+        CHECK_EQ(rc, 0);
+        if (rc != 0) {
+            t_info("physar %s: %s", runs[r].loc, err);
+            continue;
+        }
+        CHECK_EQ(res->n, 5);
+        for (k = 0; k < res->n; k++) {
+            const ph_point_t *p = &res->pt[k];
+            CHECK(p->ok);
+            CHECK(isfinite(p->pos_err_mm) && isfinite(p->sym_pos_err_mm));
+            CHECK(isfinite(p->head_err_deg) && isfinite(p->sym_head_err_deg));
+            CHECK_LE(p->sym_pos_err_mm, p->pos_err_mm);
+            CHECK(p->sym_head_err_deg >= 0 && p->sym_head_err_deg <= 180);
+            CHECK(p->n_map >= 2);
+            CHECK(p->used >= 0 && p->used <= p->n_seen);
+            CHECK_EQ(p->goal_applies, p->n_seen >= 2);
+        }
+        t_info("physar %s%s: goal met at %d of %d points, symmetric position rmse %.0f mm, "
+               "max %.0f mm",
+               res->localizer,
+               o.imu == PH_IMU_OFF     ? " (head angles only)"
+               : o.imu == PH_IMU_ACCEL ? " (accelerometer tilt)"
+                                       : " (IMU angles)",
+               res->n_met, res->n_goal, res->sym_rmse_mm, res->sym_max_mm);
+        CHECK(res->n_met >= runs[r].floor);
+        CHECK(res->n_met <= res->n_goal && res->n_goal <= res->n);
+    }
+    free(res);
+}
+
 void suite_localize(void)
 {
     t_run("localize.seq_parse_good", t_seq_parse_good);
@@ -391,4 +460,5 @@ void suite_localize(void)
     t_run("localize.frames_walk", t_frames_walk);
     t_run("localize.sequence_run", t_sequence_run);
     t_run("localize.picture", t_picture);
+    t_run("localize.physar", t_physar);
 }

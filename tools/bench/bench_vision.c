@@ -8,13 +8,19 @@
  * Frames: every rendered fixture of fixtures/frames/index.txt in its own
  * format (RGB888, YUYV422 or planar; the peer gets the YUYV bytes and
  * converts them itself, and an RGB copy of planar frames), the UvA 2013
- * labelled frames when ../shared/realdata is there, and noise frames at
+ * labelled frames and the modern 640x480 real frames when
+ * ../shared/realdata is there (physar top frames with their records' head
+ * angles and IMU; HTWK 2015, the NaoTH referee frame and the scarrix upper
+ * frames with the head level: field spl2020, camera nao6-top-640), and
+ * noise frames at
  * 320x240 and 640x480: uniform random RGB ("noise") and random carpet /
  * line / post / clutter colors per pixel ("classnoise"), the worst cases
  * for runs, line points and segment growth.
  * Rows (ns per frame, best of 5 runs per frame, 1 with --quick):
  *   vision_fix_<W>x<H>     mean over the fixtures of that size
  *   vision_uva_320x240     mean over the real UvA frames
+ *   vision_physar_640x480, vision_htwk_640x480, vision_naoth_640x480,
+ *   vision_scarrix_640x480 mean over the modern real frames of each source
  *   vision_noise_<W>       uniform noise, vision_classnoise_<W> class noise
  *   vision_worst           worst frame of all of the above (peer: its
  *                          worst frame, named in the description)
@@ -24,6 +30,8 @@
  *     build/fieldloc detect --field spl2013 --camera nao4-top-640 \
  *     --repeat 10 fixtures/frames/spl2013_640_goal.ppm
  *   (Ir / 10 = instructions per 640x480 frame).
+ * Without ../shared/realdata the real-frame rows are left out and the
+ * section says so.
  */
 #include "eval/detect.h"
 #include "io/ppm.h"
@@ -226,6 +234,74 @@ static void bv_time(bench_ctx_t *ctx, det_ctx_t *dc, void *cv, const bv_frame_t 
     }
 }
 
+/* A real frame of the folder with this camera pose (RGB888). */
+static int bv_load_real(bv_frame_t *f, const char *dir, const char *file, const char *name,
+                        const char *fieldn, const char *camn, const fl_camera_pose_t *pose)
+{
+    host_image_t img;
+    char err[256];
+    const fl_camera_model_t *m = fl_camera_model_find(camn);
+    memset(f, 0, sizeof *f);
+    f->field = fl_field_find(fieldn);
+    if (!m || !f->field || rd_read_ppm(dir, file, &img, err, sizeof err) != 0)
+        return -1;
+    snprintf(f->name, sizeof f->name, "%.60s", name);
+    f->w = img.width;
+    f->h = img.height;
+    f->data = img.rgb;
+    if (rd_image_view(&img, &f->view) != FL_OK || fl_camera_init(&f->cam, m, pose) != FL_OK) {
+        bv_free(f);
+        return -1;
+    }
+    return 0;
+}
+
+/* The modern 640x480 real frames: physar (its records' poses), HTWK,
+ * NaoTH and scarrix (head level: their poses are not recorded). */
+static void bv_modern(bench_ctx_t *ctx, det_ctx_t *dc, void *cv, const char *dir,
+                      bv_acc_t *acc)
+{
+    static const char *const other[][2] = {
+        {"htwk_49806", "NaoHTWK_HTWKVision_ChinaTest2015GAB03B_AnyBallTest3_00049806_U.ppm"},
+        {"htwk_51659", "NaoHTWK_HTWKVision_ChinaTest2015GAB03B_AnyBallTest3_00051659_U.ppm"},
+        {"naoth_referee", "BerlinUnited_NaoTH-Deeplearning_referee_pose_test_image.ppm"},
+        {"scarrix_9500", "scarrix_Detect_Foot_danu_fallen_robot_9500_upper.ppm"},
+        {"scarrix_2002", "scarrix_Detect_Foot_danu_gaolie_shots_on_goal_2002_upper.ppm"},
+        {"scarrix_3141", "scarrix_Detect_Foot_danu_moving_ball_across_vision_3141_upper.ppm"}};
+    const fl_camera_model_t *m = fl_camera_model_find("nao6-top-640");
+    rd_physar_set_t set;
+    char path[1024], err[256];
+    bv_frame_t f;
+    fl_camera_pose_t pose;
+    size_t k;
+    if (m == NULL)
+        return;
+    if (rd_path(path, sizeof path, dir, RD_PHYSAR_CSV) == 0 &&
+        rd_physar_load(path, &set, err, sizeof err) == 0) {
+        for (k = 0; k < (size_t)set.n; k++) {
+            char name[64];
+            if (!set.rec[k].image_top[0])
+                continue;
+            snprintf(name, sizeof name, "physar_%.40s", set.rec[k].point);
+            rd_physar_camera_pose(&set.rec[k], m, &pose);
+            if (bv_load_real(&f, dir, set.rec[k].image_top, name, "spl2020", m->name, &pose) == 0)
+                bv_time(ctx, dc, cv, &f, &acc[0]);
+            bv_free(&f);
+        }
+        rd_physar_free(&set);
+    }
+    memset(&pose, 0, sizeof pose);
+    pose.neck_height_mm = m->default_neck_height_mm;
+    pose.pitch_offset = m->default_pitch_offset;
+    for (k = 0; k < sizeof other / sizeof other[0]; k++) {
+        /* accumulators: 1 HTWK, 2 NaoTH, 3 scarrix */
+        int a = k < 2 ? 1 : k == 2 ? 2 : 3;
+        if (bv_load_real(&f, dir, other[k][1], other[k][0], "spl2020", m->name, &pose) == 0)
+            bv_time(ctx, dc, cv, &f, &acc[a]);
+        bv_free(&f);
+    }
+}
+
 static void bv_row(bench_ctx_t *ctx, const char *name, const bv_acc_t *a, const char *what)
 {
     char desc[160];
@@ -247,6 +323,7 @@ void bench_vision(bench_ctx_t *ctx)
     char line[1024];
     FILE *idx;
     bv_acc_t a320 = {0, 0, 0}, a640 = {0, 0, 0}, aaibo = {0, 0, 0}, auva = {0, 0, 0};
+    bv_acc_t amod[4] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     bv_frame_t f;
     int k;
     if (det_ctx_init(&dc) != 0)
@@ -299,11 +376,19 @@ void bench_vision(bench_ctx_t *ctx)
         } else {
             printf("vision: UvA frames %s\n", rd_skip_message());
         }
+        if (dir)
+            bv_modern(ctx, &dc, cv, dir, amod);
+        else
+            printf("vision: modern 640x480 real frames %s\n", rd_skip_message());
     }
     bv_row(ctx, "vision_fix_320x240", &a320, "rendered fixtures");
     bv_row(ctx, "vision_fix_640x480", &a640, "rendered fixtures");
     bv_row(ctx, "vision_fix_208x160", &aaibo, "rendered AIBO fixtures");
     bv_row(ctx, "vision_uva_320x240", &auva, "real UvA 2013 frames");
+    bv_row(ctx, "vision_physar_640x480", &amod[0], "real physar 2024 top frames (record poses)");
+    bv_row(ctx, "vision_htwk_640x480", &amod[1], "real HTWK 2015 upper frames (head level)");
+    bv_row(ctx, "vision_naoth_640x480", &amod[2], "real NaoTH referee frame (head level)");
+    bv_row(ctx, "vision_scarrix_640x480", &amod[3], "real scarrix upper frames (head level)");
     for (k = 0; k < 4; k++) {
         static const char *names[4] = {"vision_noise_320", "vision_classnoise_320",
                                        "vision_noise_640", "vision_classnoise_640"};

@@ -375,7 +375,9 @@ def cmd_run(a):
             if n not in cli_of:
                 if accepts(a.cli, loc, n):
                     cli_of[n] = a.cli
-                elif a.cli_big and accepts(a.cli_big, loc, n):
+                elif a.cli_big and ((a.dry_run and not os.path.exists(a.cli_big)) or
+                                    accepts(a.cli_big, loc, n)):
+                    # a dry run builds nothing: the second CLI is taken as built
                     cli_of[n] = a.cli_big
                 else:
                     sys.exit('loc_table: no CLI accepts --param n_particles=%d for %s (--cli-big %s)'

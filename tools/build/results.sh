@@ -1,6 +1,8 @@
 #!/bin/sh
 # Generate docs/RESULTS.md: machine, test-runner notes, bench table,
-# callgrind rows, simulated walks, every localizer of the catalogue side by
+# callgrind rows (the scanner, the localizers, the whole vision path on
+# rendered, noise and real 640x480 frames: tools/bench/callgrind_vision.sh),
+# simulated walks, every localizer of the catalogue side by
 # side (tools/build/loc_table.py), the reliability diagram of each
 # (fieldloc reliability over the frames walks' observations, kept with
 # --obs-cache) and detection scoring.  Run through
@@ -38,7 +40,8 @@
 #                      the walks (simulate reads them instead of rendering;
 #                      it re-renders one that holds another walk); DIR is
 #                      never written.  The document names DIR.
-#   SKIP_BENCH=1       no `make bench` (the document says so)
+#   SKIP_BENCH=1       no `make bench` and no callgrind_vision.sh (the
+#                      document says so)
 #   DRY_RUN=1          print the commands, run none, write nothing
 #   LOCALIZERS="a b"   those localizers only (default: the catalogue)
 set -u
@@ -93,7 +96,7 @@ rm -rf "$WORK" && mkdir -p "$WORK" || die "cannot create $WORK"
 if [ -d "$RD" ]; then
     realdata="present ($(ls "$RD" | wc -l) files)"
 else
-    realdata="ABSENT: the real-frame rows (callgrind \`*_real320\`, eval-detect's UvA 2013 frames) are skipped"
+    realdata="ABSENT: the real-frame rows (callgrind \`*_real320\` and \`*_real640\`, bench \`vision_uva_*\` and the modern \`vision_*_640x480\`, eval-detect's UvA 2013 frames, the physar points) are skipped"
     echo "results: $RD is absent: the real-frame rows are skipped" >&2
 fi
 
@@ -108,6 +111,13 @@ else
             grep 'failed\|not built' "$WORK/bench.log" >&2
             die "make bench: a callgrind row failed"
         fi
+    fi
+    # the whole vision path under callgrind (not part of make bench: it
+    # runs valgrind on 640x480 frames)
+    run "$WORK/callgrind_vision.log" sh tools/bench/callgrind_vision.sh "$B"
+    if [ "$DRY_RUN" != 1 ] && grep -q 'failed\|not built' "$WORK/callgrind_vision.log"; then
+        grep 'failed\|not built' "$WORK/callgrind_vision.log" >&2
+        die "tools/bench/callgrind_vision.sh: a row failed"
     fi
 fi
 bench_s=$(( $(date +%s) - start ))
@@ -208,6 +218,11 @@ if [ -n "$rel_failed" ] && [ "${RELIABILITY_FAILS_OK:-0}" != 1 ]; then
 fi
 rel_s=$(( $(date +%s) - start - bench_s - walk_s - loc_s ))
 
+# the physar black1 points, every localizer side by side, per source of the
+# torso angles: the records' AngleX / AngleY, the accelerometer, none
+for imu in angles accel off; do
+    run "$WORK/physar.$imu.out" "$CLI" localize --physar --imu $imu
+done
 run "$WORK/eval.out" "$CLI" eval-detect
 if [ "$DRY_RUN" = 1 ]; then
     echo "results: DRY_RUN=1: nothing run, $OUT unchanged" >&2
@@ -265,6 +280,17 @@ echo "start-up cancels; independent of the machine's load."
 echo
 echo '```'
 grep '^callgrind' "$WORK/bench.log"
+echo '```'
+echo
+echo "Callgrind, the whole vision path (\`tools/bench/callgrind_vision.sh\`): instructions per frame inside"
+echo "\`fl_vision_frame\` (\`fieldloc detect --repeat\`, two run lengths), on the bench's noise frames, the"
+echo "rendered 2013 fixture and modern real 640x480 frames (physar point 2 with its record's head angles and"
+echo "IMU angles, or its accelerometer's tilt; scarrix and NaoTH with the head level). Budget: 3 M"
+echo "instructions per 640x480 frame."
+echo
+echo '```'
+grep '^callgrind' "$WORK/callgrind_vision.log"
+grep 'skipped' "$WORK/callgrind_vision.log"
 echo '```'
 fi
 echo
@@ -340,6 +366,27 @@ for l in $LOCALIZERS; do
     echo '```'
     echo
 done
+echo "## Real frames: the physar black1 points"
+echo
+echo "Command per block: \`$CLI localize --physar --imu angles|accel|off\`"
+echo
+echo "Each black1 point of ../shared/realdata/physar_poses.csv (NAO v6 top frame, 640x480, field spl2020)"
+echo "repeated 10 times with zero odometry through each localizer from total ignorance, with the record's"
+echo "head angles and, as torso roll / pitch, the record's IMU AngleX / AngleY (\`angles\`), the tilt of"
+echo "its accelerometer (\`accel\`; AngleY is about 0.087 rad below it at every point) or none (\`off\`)."
+echo "Truth: the OptiTrack position and the README's nominal heading, which is approximate (heading errors"
+echo "are approximate; at point 5 the frame contradicts it). Errors modulo the field's 180-degree symmetry"
+echo "(\`sym_err\`), the plain errors after them; \`seen\`: vision's observations by kind, \`map\`: map"
+echo "landmarks in view from the truth pose; goal: <= 300 mm wherever vision reports two or more features"
+echo "(method: tools/loc/physar.h)."
+echo
+echo '```'
+for imu in angles accel off; do
+    cat "$WORK/physar.$imu.out"
+    echo
+done
+echo '```'
+echo
 echo "## Detection scoring"
 echo
 echo "Command: \`$CLI eval-detect\`"

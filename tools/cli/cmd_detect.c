@@ -34,6 +34,9 @@
  * Numbers are checked (tools/cli/args.h): --head within the NAO head joints
  * (the camera's limit for a non-NAO camera), --neck 50..2000 mm, --repeat
  * 1..1000000; a bad value or option exits with status 2.
+ * --imu ANGLEX ANGLEY gives the torso roll and pitch (rad, a NAO inertial
+ * unit's AngleX / AngleY: fieldloc/camera.h), applied after --calib and
+ * --neck; |angle| <= 45 deg (0.7854 rad).
  */
 #include "cli/args.h"
 #include "eval/detect.h"
@@ -43,6 +46,7 @@
 #include "cli/registry.h"
 #include "world/render.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -55,6 +59,7 @@ static int detect_usage(void)
             "                       [--show border,classes] [--stats] [--repeat N] IMAGE.ppm\n"
             "  --head: NAO HeadPitch -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad\n"
             "  --neck 50..2000 mm, --repeat 1..1000000\n"
+            "  --imu ANGLEX ANGLEY: torso roll and pitch, rad (NAO AngleX / AngleY)\n"
             "  --calib: a calibration file from `fieldloc calibrate --out`\n"
             "  --colors: a colour file, see `fieldloc colors`\n"
             "  prints: kind<TAB>u<TAB>v<TAB>confidence<TAB>range_mm<TAB>bearing_deg\n"
@@ -134,6 +139,8 @@ int cmd_detect(int argc, char **argv)
     const char *head_text[2] = {NULL, NULL};
     int i, n, stats = 0, rc = 0, repeat = 1, head_given = 0, show_border = 0, show_classes = 0;
     int32_t neck = 0;
+    double imu[2] = {0, 0};
+    int imu_given = 0;
     const fl_field_t *field;
     const fl_camera_model_t *m;
     fl_camera_t cam;
@@ -156,6 +163,14 @@ int cmd_detect(int argc, char **argv)
                 arg_double("detect", "--head yaw", head_text[1], -1e9, 1e9, NULL, &yaw))
                 return 2;
             head_given = 1;
+        } else if (!strcmp(argv[i], "--imu") && i + 2 < argc) {
+            if (arg_double("detect", "--imu anglex", argv[i + 1], -0.7854, 0.7854, "rad",
+                           &imu[0]) ||
+                arg_double("detect", "--imu angley", argv[i + 2], -0.7854, 0.7854, "rad",
+                           &imu[1]))
+                return 2;
+            i += 2;
+            imu_given = 1;
         } else if (!strcmp(argv[i], "--calib") && i + 1 < argc)
             calib_path = argv[++i];
         else if (!strcmp(argv[i], "--colors") && i + 1 < argc)
@@ -180,7 +195,7 @@ int cmd_detect(int argc, char **argv)
         } else if (argv[i][0] == '-' && argv[i][1] != '\0')
             return arg_unknown("detect", argv[i],
                                "--field=1 --camera=1 --head=2 --picture=1 --repeat=1 --neck=1 "
-                               "--show=1 --calib=1 --colors=1");
+                               "--show=1 --calib=1 --colors=1 --imu=2");
         else if (!path)
             path = argv[i];
         else
@@ -252,6 +267,16 @@ int cmd_detect(int argc, char **argv)
         fprintf(stderr, "detect: invalid head pose\n");
         render_frame_free(&fr);
         return 2;
+    }
+    if (imu_given) {  /* --imu: torso roll and pitch from the inertial unit */
+        fl_camera_pose_t pose = cam.pose;
+        pose.torso_roll = fl_angle_from_urad((int32_t)lround(imu[0] * 1e6));
+        pose.torso_pitch = fl_angle_from_urad((int32_t)lround(imu[1] * 1e6));
+        if (fl_camera_init(&cam, m, &pose) != FL_OK) {
+            fprintf(stderr, "detect: invalid head pose with --imu\n");
+            render_frame_free(&fr);
+            return 2;
+        }
     }
     if (det_ctx_init(&ctx) != 0) {
         fprintf(stderr, "detect: out of memory\n");

@@ -6,6 +6,8 @@
  *   fieldloc localize SEQUENCE.txt [--pictures DIR] [--picture-every N]
  *                     [--param NAME=VALUE]...
  *   fieldloc localize --uva-spots [--pictures DIR] [--write-seq DIR]
+ *   fieldloc localize --physar [--localizer NAME] [--repeat N] [--imu angles|accel|off]
+ *                     [--colors default|FILE] [--pictures DIR]
  *
  * Per frame, in file order: predict(odometry of the line, split and rounded
  * by lr_predict) ; read the image ; vision (fl_vision_frame, default color
@@ -58,8 +60,35 @@
  * positions are the same, the heading decides.  --write-seq DIR also writes each
  * spot as a sequence file DIR/uva_spot_X_Y.txt (absolute image paths), so
  * `fieldloc localize DIR/uva_spot_X_Y.txt` reproduces its pose lines.
+ *
+ * --physar: the physar black1 points of the real-data folder (NAO v6 top
+ * frames, 640x480, field spl2020, OptiTrack truth; tools/loc/physar.h has
+ * the method): each frame --repeat N times (default 10) with zero
+ * odometry from total ignorance, camera pose from the record's head angles
+ * and IMU torso roll/pitch; every localizer of the catalogue side by side
+ * (--localizer NAME: that one only; --param needs --localizer).  Prints a
+ * "# ..." header, per point one line per localizer
+ *     physar LOC POINT truth X Y H est X Y H rel R STATE sym_err MM mm DEG deg
+ *            [(mirror)] plain MM mm DEG deg seen N [KINDS] used N map N [KINDS]
+ *            goal met|MISSED|n/a
+ * and per localizer
+ *     physar_summary LOC points N goal_met K of M sym_pos_rmse_mm E
+ *            sym_pos_max_mm E sym_heading_rmse_deg D (...)
+ * (truth heading: the README's nominal one, approximate; sym = modulo the
+ * 180-degree symmetry, the plain errors after them; seen = vision's
+ * observations by kind, map = map landmarks in view from the truth pose;
+ * goal: sym error <= 300 mm where seen >= 2).  --pictures DIR writes
+ * DIR/physar_LOC_POINT.ppm (+ .png): the frame with vision and the model
+ * seen from the estimate, beside the belief with the truth.  --imu: the
+ * torso roll and pitch of the camera pose: "angles" (default) the records'
+ * AngleX / AngleY, "accel" the tilt of the records' accelerometer (AngleY
+ * is about 0.087 rad below it at every point: tools/loc/physar.h), "off"
+ * none (head angles only).  Absent folder:
+ * one "physar: skipped: ..." line, exit status 0.
+ * --colors default is the built-in colour classes (as without --colors).
  */
 #include "loc/locrun.h"
+#include "loc/physar.h"
 #include "eval/calib_frames.h"
 #include "cli/args.h"
 #include "eval/picture.h"
@@ -81,13 +110,15 @@ static int lz_usage(void)
     fprintf(stderr,
             "usage: fieldloc localize SEQUENCE.txt [--pictures DIR] [--picture-every N]\n"
             "       fieldloc localize --uva-spots [--pictures DIR] [--write-seq DIR]\n"
+            "       fieldloc localize --physar [--localizer NAME] [--repeat N]\n"
+            "                                  [--imu angles|accel|off] [--pictures DIR]\n"
             "       (both: [--param NAME=VALUE]... localizer parameters,\n"
             "        [--calib CALIB] per-robot calibration from `fieldloc calibrate --out`,\n"
-            "        [--colors FILE] colour classes, see `fieldloc colors`)\n"
+            "        [--colors default|FILE] colour classes, see `fieldloc colors`)\n"
             "  SEQUENCE.txt: 'field NAME', 'camera NAME', optional 'prior X_MM Y_MM THETA_DEG',\n"
             "  then per frame 'frame IMAGE.ppm odo DX_MM DY_MM DTHETA_DEG head PITCH_RAD YAW_RAD'\n"
             "  prints per frame: pose X_MM Y_MM THETA_DEG RELIABILITY STATE sd X Y DEG mirror M\n"
-            "  --picture-every 1..1000000\n");
+            "  --picture-every 1..1000000; --physar: --repeat 1..1000 frames per point (10)\n");
     return 2;
 }
 
@@ -256,10 +287,58 @@ static int lz_uva_spots(const char *pictures, const char *write_seq,
     return 0;
 }
 
+/* ---- physar black1 points --------------------------------------------------- */
+
+static int lz_physar(const char *pictures, const fl_localizer_t *only, const void *params,
+                     int repeat, ph_imu_t imu, const fl_color_params_t *colors)
+{
+    ph_opts_t o;
+    ph_result_t *res;
+    char err[512];
+    int n_loc = 0, i, k, rc;
+    memset(&o, 0, sizeof o);
+    o.repeat = repeat;
+    o.colors = colors;
+    o.pictures = pictures;
+    o.params = params;
+    o.imu = imu;
+    if (rd_dir() == NULL) {
+        printf("physar: %s\n", rd_skip_message());
+        return 0;
+    }
+    res = calloc(fl_localizer_count() + 1u, sizeof *res);
+    if (res == NULL) {
+        fprintf(stderr, "localize: out of memory\n");
+        return 1;
+    }
+    for (i = 0; i < (int)fl_localizer_count(); i++) {
+        const fl_localizer_t *loc = fl_localizer_get((uint16_t)i);
+        if (only != NULL && loc != only)
+            continue;
+        rc = ph_run(loc, &o, &res[n_loc], err, (int)sizeof err);
+        if (rc != 0) {
+            fprintf(stderr, "localize: physar (%s): %s\n", loc->name,
+                    rc > 0 ? rd_skip_message() : err);
+            free(res);
+            return 1;
+        }
+        n_loc++;
+    }
+    ph_print_header(stdout, &o);
+    for (k = 0; n_loc > 0 && k < res[0].n; k++)
+        for (i = 0; i < n_loc; i++)
+            if (k < res[i].n)
+                ph_print_point(stdout, &res[i], &res[i].pt[k]);
+    for (i = 0; i < n_loc; i++)
+        ph_print_summary(stdout, &res[i]);
+    free(res);
+    return 0;
+}
+
 int cmd_localize(int argc, char **argv)
 {
     const char *seq_path = NULL, *pictures = NULL, *write_seq = NULL;
-    int uva = 0, every = 1, k, rc;
+    int uva = 0, physar = 0, imu = PH_IMU_ANGLES, imu_given = 0, repeat = PH_REPEAT_DEFAULT, repeat_given = 0, every = 1, k, rc;
     lr_seq_t seq;
     lr_seq_opts_t o;
     char err[512];
@@ -279,6 +358,28 @@ int cmd_localize(int argc, char **argv)
             write_seq = argv[++k];
         else if (!strcmp(argv[k], "--uva-spots"))
             uva = 1;
+        else if (!strcmp(argv[k], "--physar"))
+            physar = 1;
+        else if (!strcmp(argv[k], "--imu") && k + 1 < argc) {
+            const char *v = argv[++k];
+            imu_given = 1;
+            if (!strcmp(v, "angles"))
+                imu = PH_IMU_ANGLES;
+            else if (!strcmp(v, "accel"))
+                imu = PH_IMU_ACCEL;
+            else if (!strcmp(v, "off"))
+                imu = PH_IMU_OFF;
+            else {
+                fprintf(stderr, "fieldloc localize: --imu: \"%s\" is not angles, accel or off\n",
+                        v);
+                return 2;
+            }
+        }
+        else if (!strcmp(argv[k], "--repeat") && k + 1 < argc) {
+            if (arg_int("localize", "--repeat", argv[++k], 1, 1000, NULL, &repeat) != 0)
+                return 2;
+            repeat_given = 1;
+        }
         else if (!strcmp(argv[k], "--calib") && k + 1 < argc)
             calib_path = argv[++k];
         else if (!strcmp(argv[k], "--colors") && k + 1 < argc)
@@ -295,7 +396,7 @@ int cmd_localize(int argc, char **argv)
         } else if (argv[k][0] == '-' && argv[k][1] != '\0')
             return arg_unknown("localize", argv[k],
                                "--pictures=1 --picture-every=1 --write-seq=1 --localizer=1 "
-                               "--param=1 --calib=1 --colors=1");
+                               "--param=1 --calib=1 --colors=1 --repeat=1 --imu=1");
         else if (seq_path == NULL)
             seq_path = argv[k];
         else
@@ -305,10 +406,21 @@ int cmd_localize(int argc, char **argv)
         fprintf(stderr, "localize: %s\n", err);
         return 2;
     }
+    if (colors_path != NULL && !strcmp(colors_path, "default"))
+        colors_path = NULL;   /* the built-in classes */
+    else if (colors_path != NULL && !strcmp(colors_path, "auto")) {
+        fprintf(stderr, "fieldloc localize: --colors auto (field colour from the frame) is not "
+                        "available in this build; use --colors default or a colour file\n");
+        return 2;
+    }
     if (colors_path != NULL && det_colors_load(colors_path, &colors, err, (int)sizeof err) != 0) {
         fprintf(stderr, "fieldloc localize: %s\n", err);
         return 2;
     }
+    if (uva + physar > 1 || ((repeat_given || imu_given) && !physar) ||
+        (physar && (seq_path != NULL || write_seq != NULL || calib_path != NULL ||
+                    (n_param > 0 && localizer == NULL))))
+        return lz_usage();
     if ((loc = lr_localizer(localizer, err, (int)sizeof err)) == NULL) {
         fprintf(stderr, "localize: %s\n", err);
         return 2;
@@ -325,6 +437,12 @@ int cmd_localize(int argc, char **argv)
             free(params);
             return 2;
         }
+    }
+    if (physar) {
+        rc = lz_physar(pictures, localizer != NULL ? loc : NULL, localizer != NULL ? params : NULL,
+                       repeat, (ph_imu_t)imu, colors_path ? &colors : NULL);
+        free(params);
+        return rc;
     }
     if (uva) {
         rc = seq_path != NULL ? lz_usage() : lz_uva_spots(pictures, write_seq, loc, params,

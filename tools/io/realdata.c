@@ -461,6 +461,20 @@ void rd_uva_camera_pose(const rd_uva_record_t *r, const fl_camera_model_t *m,
     pose->pitch_offset = m->default_pitch_offset;
 }
 
+void rd_physar_camera_pose(const rd_physar_record_t *r, const fl_camera_model_t *m,
+                           fl_camera_pose_t *pose)
+{
+    if (!r || !m || !pose)
+        return;
+    memset(pose, 0, sizeof *pose);
+    pose->neck_height_mm = m->default_neck_height_mm;
+    pose->head_pitch = rd_angle_from_rad(r->head_pitch_rad);
+    pose->head_yaw = rd_angle_from_rad(r->head_yaw_rad);
+    pose->pitch_offset = m->default_pitch_offset;
+    pose->torso_roll = rd_angle_from_rad(r->imu_anglex_rad);
+    pose->torso_pitch = rd_angle_from_rad(r->imu_angley_rad);
+}
+
 void rd_uva_field_to_robot(const rd_uva_record_t *r, double fx_mm, double fy_mm,
                            double *rx_mm, double *ry_mm)
 {

@@ -208,4 +208,12 @@ int rd_modern_count(const rd_modern_record_t *r, char type);
 void rd_modern_camera_pose(const rd_modern_record_t *r, const fl_camera_model_t *m,
                            fl_camera_pose_t *pose);
 
+/* Camera pose of a physar record: the model's default neck height and pitch
+ * offset, the record's head joint angles and its torso angles from the
+ * inertial unit (imu_anglex = torso_roll, imu_angley = torso_pitch: the
+ * NAOqi AngleX / AngleY convention of fieldloc/camera.h), all rounded to
+ * binary angles. */
+void rd_physar_camera_pose(const rd_physar_record_t *r, const fl_camera_model_t *m,
+                           fl_camera_pose_t *pose);
+
 #endif
