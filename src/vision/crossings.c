@@ -374,6 +374,25 @@ bool fl_cr_end_ray(const cr_ctx_t *ctx, fl_angle_t ain, int32_t w, bool beside, 
  * grid (the AIBO's 208x160 frames, as LN_RIDGE_NEAR in lines.c): there it
  * found no fixture crossing and moved the localizer's heading on simulate
  * aibo2004 seed 6 from 2.96 to 3.02 degrees. */
+/* Crossings on a standing object (a robot's legs and arms) are no field
+ * feature: removed, order kept. */
+static void cr_drop_objects(fl_crossings_t *c, const fl_lines_t *lines, const fl_scan_t *scan)
+{
+    int32_t i, n = 0;
+    for (i = 0; i < c->n; i++) {
+        if (fl_lines_on_object(lines, scan, (c->c[i].u_q4 + 8) >> 4, (c->c[i].v_q4 + 8) >> 4)) {
+            c->robot_rejected++;
+            continue;
+        }
+        if (n != i) {
+            c->c[n] = c->c[i];
+            memcpy(c->garm[n], c->garm[i], sizeof c->garm[n]);
+        }
+        n++;
+    }
+    c->n = n;
+}
+
 int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
                           const fl_scan_t *scan, const fl_camera_t *camera,
                           const fl_field_t *field)
@@ -393,6 +412,7 @@ int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
     c->border_t = 0;
     c->luma_probes = 0;
     c->connectors = 0;
+    c->robot_rejected = 0;
     if (!lines || lines->width <= 0)
         return 0;
     if (scan && (scan->width != lines->width || scan->height != lines->height))
@@ -433,6 +453,7 @@ int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
                 fl_cr_close(&ctx, i, false);
                 fl_cr_close(&ctx, i, true);
             }
+    cr_drop_objects(c, lines, scan);
     return c->n;
 }
 
@@ -562,6 +583,10 @@ int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
             u > 16 * (lines->width - 1) || v > 16 * (lines->height - 1) ||
             !cr_white_near(scan, u, v))
             continue;
+        if (fl_lines_on_object(lines, scan, (u + 8) >> 4, (v + 8) >> 4)) {
+            c->robot_rejected++;   /* the circle's line hidden by a robot */
+            continue;
+        }
         memset(&it, 0, sizeof it);
         it.x.kind = k == 0 ? FL_LM_CENTRE_MARK : FL_LM_X;
         it.x.u_q4 = u;
