@@ -374,13 +374,37 @@ bool fl_cr_end_ray(const cr_ctx_t *ctx, fl_angle_t ain, int32_t w, bool beside, 
  * grid (the AIBO's 208x160 frames, as LN_RIDGE_NEAR in lines.c): there it
  * found no fixture crossing and moved the localizer's heading on simulate
  * aibo2004 seed 6 from 2.96 to 3.02 degrees. */
-/* Crossings on a standing object (a robot's legs and arms) are no field
- * feature: removed, order kept. */
+/* Above the field border of its column and of the columns 4 cells to one
+ * side by more than 8 cells and 4 line widths: the vertex is not on the
+ * carpet (an object in front of the border makes a dip there, as wide as
+ * the object: two lines meeting behind a robot's leg).  A single column's
+ * border (a line running down it) is not a dip. */
+static bool cr_above_border(const fl_lines_t *lines, const fl_scan_t *scan, int32_t u, int32_t v)
+{
+    int32_t i, w, lim, d;
+    if (!scan || scan->width != lines->width || u < 0 || v < 0 || u >= scan->width ||
+        v >= scan->height || scan->params.col_step < 1)
+        return false;
+    i = u / scan->params.col_step;
+    w = fl_lines_width_q4(lines, v, true);
+    lim = v + 8 * scan->params.row_step + (w + 8) / 16 * 4;
+    if (scan->border_v[i] >= scan->height || scan->border_v[i] <= lim)
+        return false;
+    for (d = -4; d <= 4; d += 8)
+        if (i + d >= 0 && i + d < scan->cols && scan->border_v[i + d] > lim &&
+            scan->border_v[i + d] < scan->height)
+            return true;
+    return false;
+}
+
+/* Crossings on a standing object (a robot's legs and arms) or above the
+ * carpet are no field feature: removed, order kept. */
 static void cr_drop_objects(fl_crossings_t *c, const fl_lines_t *lines, const fl_scan_t *scan)
 {
     int32_t i, n = 0;
     for (i = 0; i < c->n; i++) {
-        if (fl_lines_on_object(lines, scan, (c->c[i].u_q4 + 8) >> 4, (c->c[i].v_q4 + 8) >> 4)) {
+        int32_t u = (c->c[i].u_q4 + 8) >> 4, v = (c->c[i].v_q4 + 8) >> 4;
+        if (fl_lines_on_object(lines, scan, u, v) || cr_above_border(lines, scan, u, v)) {
             c->robot_rejected++;
             continue;
         }

@@ -191,8 +191,7 @@ static void ln_hrun(fl_lines_t *l, const fl_scan_t *s, int32_t i0, int32_t i1,
         l->runs_rejected++;
         return;
     }
-    if (fl_lines_int_on_robot(l, s, i0, j, false) || fl_lines_int_on_robot(l, s, i1, j, false) ||
-        fl_lines_int_on_robot(l, s, (i0 + i1) / 2, j, false)) {
+    if (fl_lines_int_run_on_robot(l, s, i0, i1, j)) {
         l->robot_rejected++;
         return;
     }

@@ -50,7 +50,8 @@ static int32_t lr_row_run(const fl_scan_t *s, int32_t i, int32_t j)
     return (b - a + 1) * s->params.col_step;
 }
 
-/* Is span [lo, hi] of column i (counts n_white, n_dark) an object? */
+/* Is span [lo, hi] of column i (n_white white cells, n_dark dark ones
+ * not counting its end cells: a line's blurred edges) an object? */
 static bool lr_standing(const fl_lines_t *l, const fl_scan_t *s, int32_t i, int32_t lo,
                         int32_t hi, int32_t n_white, int32_t n_dark)
 {
@@ -63,13 +64,13 @@ static bool lr_standing(const fl_lines_t *l, const fl_scan_t *s, int32_t i, int3
     if (wv <= 0 || wh <= 0) {
         if (n < 8)
             return false;
-    } else if (len_q4 < 3 * wv || len_q4 < 2 * wh) {
+    } else if (len_q4 < 2 * wv || 2 * len_q4 < 3 * wh) {
         return false;
     }
     /* white broken by joints, jersey, shadow; mostly dark (the gap
      * between a robot's legs) only where it stands on carpet, not along
      * the blurred edge of a line running out of the image */
-    if (n_dark >= 2 && n_dark * 8 >= n && (n_white * 8 >= n || hi < s->rows - 1))
+    if (n_dark >= 2 && n_dark * 10 >= n && (n_white * 8 >= n || hi < s->rows - 1))
         return true;
     if (wv <= 0 || wh <= 0)
         return false;
@@ -109,6 +110,7 @@ static int32_t lr_keep(fl_lines_t *l, int32_t i, int32_t k, int32_t lo, int32_t 
 static void lr_column(fl_lines_t *l, const fl_scan_t *s, int32_t i)
 {
     int32_t rs = s->params.row_step, j, j0, lo = -1, last = -1, nw = 0, nd = 0, gap = 0, k = 0;
+    int32_t c_lo = 0, c_last = 0;
     int32_t word = i >> 5, shift = 62 - 2 * (i & 31);
     for (j = 0; j < FL_LINES_ROBOT_SPANS; j++) {
         l->rob_lo[i][j] = 1;
@@ -123,18 +125,22 @@ static void lr_column(fl_lines_t *l, const fl_scan_t *s, int32_t i)
             if (lo < 0) {
                 lo = j;
                 nw = nd = 0;
+                c_lo = c;
             }
             if (c == FL_CLASS_WHITE)
                 nw++;
             else
                 nd++;
             last = j;
+            c_last = c;
             gap = 0;
             continue;
         }
         if (lo < 0 || (++gap <= 1 && j < s->rows))
             continue;
         /* two green cells (or the bottom): the span ends at last */
+        /* the end cells' dark is a blurred edge */
+        nd -= (c_lo != FL_CLASS_WHITE) + (last > lo && c_last != FL_CLASS_WHITE);
         if (lr_standing(l, s, i, lo, last, nw, nd))
             k = lr_keep(l, i, k, lo, last);
         lo = -1;
@@ -163,7 +169,7 @@ static bool lr_in(const fl_lines_t *l, int32_t i, int32_t j)
 bool fl_lines_int_on_robot(const fl_lines_t *l, const fl_scan_t *s, int32_t i, int32_t j,
                            bool inside)
 {
-    int32_t m = l->rob_step, i0, a;
+    int32_t m = l->rob_step, i0, a, b;
     bool in_a, in_b;
     if (m < 1 || i < 0 || i >= s->cols)
         return false;
@@ -173,11 +179,28 @@ bool fl_lines_int_on_robot(const fl_lines_t *l, const fl_scan_t *s, int32_t i, i
     if (i < i0)
         return lr_in(l, i0, j);
     a = i0 + (i - i0) / m * m;
-    in_a = lr_in(l, a, j);
+    /* a scan line itself: its neighbours on both sides */
+    b = a == i ? a + m : a + m;
     if (a == i)
-        return in_a;
-    in_b = a + m < s->cols && lr_in(l, a + m, j);
+        return lr_in(l, a, j);
+    in_a = a >= 0 && lr_in(l, a, j);
+    in_b = b < s->cols && lr_in(l, b, j);
     return inside ? in_a && in_b : in_a || in_b;
+}
+
+/* Is any scan line among grid columns i0..i1 on an object at row j? */
+bool fl_lines_int_run_on_robot(const fl_lines_t *l, const fl_scan_t *s, int32_t i0, int32_t i1,
+                               int32_t j)
+{
+    int32_t m = l->rob_step, i;
+    if (m < 1)
+        return false;
+    if (fl_lines_int_on_robot(l, s, i0, j, false) || fl_lines_int_on_robot(l, s, i1, j, false))
+        return true;
+    for (i = m / 2 + ((i0 - m / 2 + m - 1) / m) * m; i <= i1 && i < s->cols; i += m)
+        if (i >= 0 && lr_in(l, i, j))
+            return true;
+    return false;
 }
 
 bool fl_lines_on_object(const fl_lines_t *l, const fl_scan_t *scan, int32_t u_px,
