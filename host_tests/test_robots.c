@@ -12,7 +12,10 @@
  *     crossings still found;
  *   - real frames with robots (scarrix, ../shared/realdata; skipped when
  *     absent) with colour boxes set for their carpets and the robots' boxes
- *     as seen by eye: no crossing inside a box.
+ *     as seen by eye: no crossing inside a box;
+ *   - without a camera, a green board above a wall stays out of the field
+ *     (scan.h, the board pass); the far carpet above a robot and the
+ *     strip of carpet beyond a far boundary line stay in.
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
@@ -22,6 +25,7 @@
 #include "world/render.h"
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 typedef struct {
@@ -213,8 +217,94 @@ static void test_realdata(void)
     det_ctx_free(&dc);
 }
 
+/* ---- a green board above the field ----------------------------------------- */
+
+static void paint(uint8_t *rgb, int w, int v0, int v1, uint8_t r, uint8_t g, uint8_t b)
+{
+    int u, v;
+    for (v = v0; v < v1; v++)
+        for (u = 0; u < w; u++) {
+            uint8_t *p = rgb + 3 * (v * w + u);
+            /* a little texture so that no run is perfectly flat */
+            int d = ((u * 7 + v * 13) % 5) - 2;
+            p[0] = (uint8_t)(r + d);
+            p[1] = (uint8_t)(g + d);
+            p[2] = (uint8_t)(b + d);
+        }
+}
+
+/* Columns (of cols) whose border lies within tol px of v. */
+static int border_near(const fl_scan_t *s, int v, int tol)
+{
+    int i, n = 0;
+    for (i = 0; i < s->cols; i++)
+        n += abs(s->border_v[i] - v) <= tol;
+    return n;
+}
+
+/* No camera: the border search starts at row 0.  A board in carpet green
+ * (the hardest case: its colour is the carpet's) above a grey wall with a
+ * dark skirting, the carpet below with a line across: the border stays on
+ * the carpet.  A far field whose boundary line has a thin strip of carpet
+ * beyond it keeps its border on the strip (a white gap is a line). */
+static void test_board(void)
+{
+    enum { W = 320, H = 240 };
+    static uint8_t rgb[W * H * 3];
+    static fl_color_table_t colors;
+    static fl_scan_t scan;
+    fl_color_params_t cp;
+    fl_scan_params_t sp;
+    fl_image_t img;
+    int n;
+    fl_color_params_default(&cp);
+    CHECK_EQ(fl_color_init(&colors, &cp), FL_OK);
+    fl_scan_params_default(&sp);
+    CHECK_EQ(fl_scan_init(&scan, &sp), FL_OK);
+    CHECK_EQ(fl_image_init_packed(&img, FL_FMT_RGB888, rgb, W, H, 3 * W), FL_OK);
+    paint(rgb, W, 0, 60, 170, 170, 165);       /* wall */
+    paint(rgb, W, 60, 110, 60, 140, 60);       /* the board, carpet green */
+    paint(rgb, W, 110, 130, 175, 172, 168);    /* wall */
+    paint(rgb, W, 130, 140, 50, 45, 40);       /* dark skirting */
+    paint(rgb, W, 140, H, 60, 140, 60);        /* carpet */
+    paint(rgb, W, 190, 196, 235, 235, 235);    /* a line */
+    CHECK(fl_scan_frame(&scan, &colors, &img, NULL) > 0);
+    n = border_near(&scan, 140, 3);
+    t_info("board: border within 3 px of the carpet in %d of %d columns", n, (int)scan.cols);
+    CHECK(n * 100 >= 95 * scan.cols);
+    CHECK_EQ(fl_scan_class_at(&scan, 10, 80 / sp.row_step), FL_CLASS_OTHER);
+    /* carpet from row 60 with a robot (an eighth of the width, grey and
+     * dark) standing on it: far carpet above it, near carpet below it; the
+     * border stays on the far carpet (a robot is no wall) */
+    paint(rgb, W, 0, 60, 170, 170, 165);
+    paint(rgb, W, 60, H, 60, 140, 60);
+    {
+        int v, u;
+        for (v = 90; v < 170; v++)
+            for (u = 100; u < 100 + W / 8; u++) {
+                uint8_t c = (uint8_t)(v % 20 < 14 ? 220 : 50);
+                rgb[3 * (v * W + u)] = rgb[3 * (v * W + u) + 1] = rgb[3 * (v * W + u) + 2] = c;
+            }
+    }
+    CHECK(fl_scan_frame(&scan, &colors, &img, NULL) > 0);
+    CHECK_EQ(scan.border_v[(100 + W / 16) / sp.col_step], 60);
+    CHECK_EQ(border_near(&scan, 60, 2), scan.cols);
+    /* far field: wall, a 4 px strip of carpet, the boundary line (2 px),
+     * the field */
+    paint(rgb, W, 0, 100, 170, 170, 165);
+    paint(rgb, W, 100, 104, 60, 140, 60);
+    paint(rgb, W, 104, 106, 235, 235, 235);
+    paint(rgb, W, 106, H, 60, 140, 60);
+    CHECK(fl_scan_frame(&scan, &colors, &img, NULL) > 0);
+    n = border_near(&scan, 100, 2);
+    t_info("far field: border on the strip beyond the boundary line in %d of %d columns", n,
+           (int)scan.cols);
+    CHECK(n * 100 >= 95 * scan.cols);
+}
+
 void suite_robots(void)
 {
+    t_run("robots.board_border", test_board);
     t_run("robots.rendered", test_rendered);
     t_run("robots.realdata", test_realdata);
 }
