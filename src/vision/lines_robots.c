@@ -36,18 +36,19 @@
  */
 #include "lines_int.h"
 
-/* Non-green cells of grid row j in one run with cell i, in px (each side
- * walked at most 64 cells). */
-static int32_t lr_row_run(const fl_scan_t *s, int32_t i, int32_t j)
+/* Is the run of non-green cells of grid row j through cell i longer than
+ * lim cells?  (Walks at most lim + 1 cells.) */
+static bool lr_row_run_over(const fl_scan_t *s, int32_t i, int32_t j, int32_t lim)
 {
-    int32_t a = i, b = i, k;
-    for (k = 0; k < 64 && a - 1 >= 0; k++, a--)
-        if (((s->map[j][(a - 1) >> 5] >> (62 - 2 * ((a - 1) & 31))) & 3u) == FL_CLASS_GREEN)
-            break;
-    for (k = 0; k < 64 && b + 1 < s->cols; k++, b++)
-        if (((s->map[j][(b + 1) >> 5] >> (62 - 2 * ((b + 1) & 31))) & 3u) == FL_CLASS_GREEN)
-            break;
-    return (b - a + 1) * s->params.col_step;
+    const uint64_t *row = s->map[j];
+    int32_t a = i, b = i;
+    while (b - a < lim && a - 1 >= 0 &&
+           ((row[(a - 1) >> 5] >> (62 - 2 * ((a - 1) & 31))) & 3u) != FL_CLASS_GREEN)
+        a--;
+    while (b - a < lim && b + 1 < s->cols &&
+           ((row[(b + 1) >> 5] >> (62 - 2 * ((b + 1) & 31))) & 3u) != FL_CLASS_GREEN)
+        b++;
+    return b - a + 1 > lim;
 }
 
 /* Is span [lo, hi] of column i (n_white white cells, n_dark dark ones
@@ -80,7 +81,8 @@ static bool lr_standing(const fl_lines_t *l, const fl_scan_t *s, int32_t i, int3
     for (k = 1; k <= 2; k++) {
         int32_t j = lo + k * (n - 1) / 4;
         wt = fl_lines_width_q4(l, j * rs, false);
-        if (wt <= 0 || lr_row_run(s, i, j) * 16 <= 3 * wt + 32 * s->params.col_step)
+        /* more than 3 widths + 2 cells: (3 wt / 16) / col_step + 2 cells */
+        if (wt <= 0 || !lr_row_run_over(s, i, j, (3 * wt / 16) / s->params.col_step + 2))
             return false;
     }
     return true;
@@ -112,6 +114,7 @@ static void lr_column(fl_lines_t *l, const fl_scan_t *s, int32_t i)
     int32_t rs = s->params.row_step, j, j0, lo = -1, last = -1, nw = 0, nd = 0, gap = 0, k = 0;
     int32_t c_lo = 0, c_last = 0;
     int32_t word = i >> 5, shift = 62 - 2 * (i & 31);
+    const uint64_t *q;
     for (j = 0; j < FL_LINES_ROBOT_SPANS; j++) {
         l->rob_lo[i][j] = 1;
         l->rob_hi[i][j] = 0;
@@ -119,8 +122,9 @@ static void lr_column(fl_lines_t *l, const fl_scan_t *s, int32_t i)
     if (s->border_v[i] >= s->height)
         return;
     j0 = (s->border_v[i] + rs - 1) / rs;
-    for (j = j0; j <= s->rows; j++) {
-        int32_t c = j < s->rows ? (int32_t)((s->map[j][word] >> shift) & 3u) : FL_CLASS_GREEN;
+    q = &s->map[j0 < s->rows ? j0 : 0][word];
+    for (j = j0; j <= s->rows; j++, q += FL_SCAN_WORDS) {
+        int32_t c = j < s->rows ? (int32_t)((*q >> shift) & 3u) : FL_CLASS_GREEN;
         if (c != FL_CLASS_GREEN) {
             if (lo < 0) {
                 lo = j;
@@ -138,10 +142,10 @@ static void lr_column(fl_lines_t *l, const fl_scan_t *s, int32_t i)
         }
         if (lo < 0 || (++gap <= 1 && j < s->rows))
             continue;
-        /* two green cells (or the bottom): the span ends at last */
-        /* the end cells' dark is a blurred edge */
+        /* two green cells (or the bottom): the span ends at last; the end
+         * cells' dark is a blurred edge */
         nd -= (c_lo != FL_CLASS_WHITE) + (last > lo && c_last != FL_CLASS_WHITE);
-        if (lr_standing(l, s, i, lo, last, nw, nd))
+        if (nw >= 2 && last - lo >= 3 && lr_standing(l, s, i, lo, last, nw, nd))
             k = lr_keep(l, i, k, lo, last);
         lo = -1;
         gap = 0;
@@ -171,7 +175,7 @@ bool fl_lines_int_on_robot(const fl_lines_t *l, const fl_scan_t *s, int32_t i, i
 {
     int32_t m = l->rob_step, i0, a, b;
     bool in_a, in_b;
-    if (m < 1 || i < 0 || i >= s->cols)
+    if (l->robot_spans == 0 || m < 1 || i < 0 || i >= s->cols)
         return false;
     i0 = m / 2;
     if (i0 >= s->cols)
@@ -193,7 +197,7 @@ bool fl_lines_int_run_on_robot(const fl_lines_t *l, const fl_scan_t *s, int32_t 
                                int32_t j)
 {
     int32_t m = l->rob_step, i;
-    if (m < 1)
+    if (l->robot_spans == 0 || m < 1)
         return false;
     if (fl_lines_int_on_robot(l, s, i0, j, false) || fl_lines_int_on_robot(l, s, i1, j, false))
         return true;
