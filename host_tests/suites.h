@@ -18,6 +18,7 @@ T_SUITE(mcl);
 T_SUITE(confidence);
 T_SUITE(lines);
 T_SUITE(features);
+T_SUITE(robots);
 T_SUITE(camera_vision);
 T_SUITE(beacon);
 T_SUITE(localize);

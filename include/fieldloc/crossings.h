@@ -159,6 +159,8 @@ typedef struct {
     int32_t luma_probes;      /* arm probes that fell back to the luma
                                  (at most 128 per frame) */
     int32_t connectors;       /* crossings of short connectors (L + T) */
+    int32_t robot_rejected;   /* crossings on a standing object (lines.h:
+                                 a robot's white is no paint) */
     /* ---- private ---- */
     fl_angle_t garm[FL_CROSSINGS_MAX][4]; /* ground arms (robot frame) */
 } fl_crossings_t;

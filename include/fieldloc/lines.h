@@ -30,6 +30,25 @@
  * 32 samples, 256 such checks per frame, counted in ridge_checks).
  * Segments with luma points carry FL_SEG_LUMA.
  *
+ * Standing objects.  White that stands up from the carpet (robots, the
+ * ball, a person's shoes) is no paint.  Before the point scan every
+ * vertical scan line's stretches of non-green cells below its border
+ * (one green cell bridged) are tested: a stretch with at least 2 white
+ * cells, at least 4 cells long and (with a camera) at least 3 times as
+ * long as a line's projected width across it (2 times its width along the
+ * row) at the stretch's bottom, is an object when its white is broken by
+ * dark cells (OTHER or YELLOW, at least 2 and 1 in 8: joints, jersey,
+ * shadow) or when, at its top row, its non-green run is wider than 3
+ * projected line widths there plus 2 cells (a steep line is as wide as
+ * the projection; a flat one is not that long).  No camera: 8 cells and
+ * the dark rule only.  Up to FL_LINES_ROBOT_SPANS stretches (the longest)
+ * per scan line are kept; a cell is on an object when a scan line on
+ * either side of it (less than a line step away) has a stretch holding
+ * its row.  Runs and luma ridges there give no point (counted in
+ * robot_rejected); the crossing stage drops crossings inside one (the
+ * scan lines on both sides hold the row: a line ending at a robot's foot
+ * keeps its corner).
+ *
  * Segments (seed 000, Algorithm 1).  Points are taken as seeds in order.
  * A segment grows from its tail, then from its head, to the best of the
  * nearest (at most FL_LINES_CANDIDATES) unassigned points within gap_px
@@ -96,6 +115,7 @@ extern "C" {
 #define FL_LINES_NONE 0xffffu   /* point not in a segment */
 #define FL_LINES_CANDIDATES 5   /* nearest points tried per growth step */
 #define FL_LINES_SEG_MAX_POINTS 1023 /* points per segment (overflow bound) */
+#define FL_LINES_ROBOT_SPANS 2  /* standing-object spans kept per column */
 
 /* Point flags. */
 #define FL_LINE_POINT_VERTICAL 1u /* found on a vertical scan line (column) */
@@ -192,6 +212,10 @@ typedef struct {
                                  ridges beyond the per-frame cap */
     int32_t ridge_checks;     /* paths checked in the luma (after the class
                                  map fell short) */
+    int32_t robot_rejected;   /* runs and ridges on a standing object (a
+                                 robot, a ball, a leg): no points */
+    int32_t robot_spans;      /* standing-object spans found in the
+                                 sampled columns */
     /* ---- private ---- */
     fl_image_t img;           /* view of this frame's pixels (width 0:
                                  none); valid while the caller's frame is */
@@ -205,6 +229,12 @@ typedef struct {
     int32_t bshift, bcols, brows;   /* bucket size 2^bshift px, grid */
     uint16_t bstart[FL_LINES_MAX_BUCKETS + 1];
     uint16_t border[FL_LINES_MAX_POINTS];  /* point ids sorted by bucket */
+    /* standing objects: up to FL_LINES_ROBOT_SPANS spans of grid rows
+     * [lo, hi] per sampled column (every rob_step-th from rob_step / 2);
+     * lo > hi: none */
+    int32_t rob_step;
+    int16_t rob_lo[FL_SCAN_MAX_COLS][FL_LINES_ROBOT_SPANS];
+    int16_t rob_hi[FL_SCAN_MAX_COLS][FL_LINES_ROBOT_SPANS];
     int16_t wtab_h_q4[FL_LINES_WTAB];      /* projected widths by row band */
     int16_t wtab_v_q4[FL_LINES_WTAB];
     int32_t wtab_shift;
@@ -287,6 +317,14 @@ int32_t fl_lines_width_q4(const fl_lines_t *l, int32_t v_px, bool vertical);
  * config.h. */
 int32_t fl_lines_points_near(const fl_lines_t *l, int32_t u_q1, int32_t v_q1,
                              int32_t ru_px, int32_t rv_px, uint16_t *ids);
+
+/* Is pixel (u_px, v_px) inside a standing object (a robot, a ball: white
+ * that is no paint, see "Standing objects" above) of the last
+ * fl_lines_find_points with this scan: the scan lines on both sides of it
+ * (or its own) have a stretch holding its row?  false outside the image
+ * or with no scan. */
+bool fl_lines_on_object(const fl_lines_t *l, const fl_scan_t *scan, int32_t u_px,
+                        int32_t v_px);
 
 /* Distance in Q4 pixels from a point (Q4) to the infinite line of a
  * segment, signed (positive to the left of end0 -> end1 in image axes,

@@ -374,6 +374,49 @@ bool fl_cr_end_ray(const cr_ctx_t *ctx, fl_angle_t ain, int32_t w, bool beside, 
  * grid (the AIBO's 208x160 frames, as LN_RIDGE_NEAR in lines.c): there it
  * found no fixture crossing and moved the localizer's heading on simulate
  * aibo2004 seed 6 from 2.96 to 3.02 degrees. */
+/* Above the field border of its column and of the columns 4 cells to one
+ * side by more than 8 cells and 4 line widths: the vertex is not on the
+ * carpet (an object in front of the border makes a dip there, as wide as
+ * the object: two lines meeting behind a robot's leg).  A single column's
+ * border (a line running down it) is not a dip. */
+static bool cr_above_border(const fl_lines_t *lines, const fl_scan_t *scan, int32_t u, int32_t v)
+{
+    int32_t i, w, lim, d;
+    if (!scan || scan->width != lines->width || u < 0 || v < 0 || u >= scan->width ||
+        v >= scan->height || scan->params.col_step < 1)
+        return false;
+    i = u / scan->params.col_step;
+    w = fl_lines_width_q4(lines, v, true);
+    lim = v + 8 * scan->params.row_step + (w + 8) / 16 * 4;
+    if (scan->border_v[i] >= scan->height || scan->border_v[i] <= lim)
+        return false;
+    for (d = -4; d <= 4; d += 8)
+        if (i + d >= 0 && i + d < scan->cols && scan->border_v[i + d] > lim &&
+            scan->border_v[i + d] < scan->height)
+            return true;
+    return false;
+}
+
+/* Crossings on a standing object (a robot's legs and arms) or above the
+ * carpet are no field feature: removed, order kept. */
+static void cr_drop_objects(fl_crossings_t *c, const fl_lines_t *lines, const fl_scan_t *scan)
+{
+    int32_t i, n = 0;
+    for (i = 0; i < c->n; i++) {
+        int32_t u = (c->c[i].u_q4 + 8) >> 4, v = (c->c[i].v_q4 + 8) >> 4;
+        if (fl_lines_on_object(lines, scan, u, v) || cr_above_border(lines, scan, u, v)) {
+            c->robot_rejected++;
+            continue;
+        }
+        if (n != i) {
+            c->c[n] = c->c[i];
+            memcpy(c->garm[n], c->garm[i], sizeof c->garm[n]);
+        }
+        n++;
+    }
+    c->n = n;
+}
+
 int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
                           const fl_scan_t *scan, const fl_camera_t *camera,
                           const fl_field_t *field)
@@ -393,6 +436,7 @@ int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
     c->border_t = 0;
     c->luma_probes = 0;
     c->connectors = 0;
+    c->robot_rejected = 0;
     if (!lines || lines->width <= 0)
         return 0;
     if (scan && (scan->width != lines->width || scan->height != lines->height))
@@ -433,6 +477,7 @@ int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
                 fl_cr_close(&ctx, i, false);
                 fl_cr_close(&ctx, i, true);
             }
+    cr_drop_objects(c, lines, scan);
     return c->n;
 }
 
@@ -562,6 +607,10 @@ int32_t fl_crossings_add_circle(fl_crossings_t *c, const fl_circle_t *circle,
             u > 16 * (lines->width - 1) || v > 16 * (lines->height - 1) ||
             !cr_white_near(scan, u, v))
             continue;
+        if (fl_lines_on_object(lines, scan, (u + 8) >> 4, (v + 8) >> 4)) {
+            c->robot_rejected++;   /* the circle's line hidden by a robot */
+            continue;
+        }
         memset(&it, 0, sizeof it);
         it.x.kind = k == 0 ? FL_LM_CENTRE_MARK : FL_LM_X;
         it.x.u_q4 = u;

@@ -90,6 +90,9 @@ bool fl_lines_reset(fl_lines_t *l, int32_t width, int32_t height)
     l->luma_points = 0;
     l->luma_capped = 0;
     l->ridge_checks = 0;
+    l->robot_rejected = 0;
+    l->robot_spans = 0;
+    l->rob_step = 0;
     l->img.width = l->img.height = 0;
     l->lum_vend = l->lum_hend = -1;
     l->line_width_mm = 0;

@@ -172,4 +172,13 @@ int32_t fl_lines_int_paint_pct(fl_lines_t *l, const fl_scan_t *scan, int32_t u0,
  * and the segment growth read it). */
 void fl_lines_int_buckets(fl_lines_t *l);
 
+/* Standing objects (lines_robots.c): find the spans of every step-th grid
+ * column (after the width table is made); is grid cell (i, j) on one? */
+void fl_lines_int_robots(fl_lines_t *l, const fl_scan_t *s, int32_t step);
+bool fl_lines_int_on_robot(const fl_lines_t *l, const fl_scan_t *s, int32_t i, int32_t j,
+                           bool inside);
+/* ... any cell of row j from column i0 to i1 (a horizontal run)? */
+bool fl_lines_int_run_on_robot(const fl_lines_t *l, const fl_scan_t *s, int32_t i0, int32_t i1,
+                               int32_t j);
+
 #endif

@@ -191,6 +191,10 @@ static void ln_hrun(fl_lines_t *l, const fl_scan_t *s, int32_t i0, int32_t i1,
         l->runs_rejected++;
         return;
     }
+    if (fl_lines_int_run_on_robot(l, s, i0, i1, j)) {
+        l->robot_rejected++;
+        return;
+    }
     ln_push(l, (i0 + i1) * cs, 2 * j * rs, w, 0);
 }
 
@@ -209,6 +213,10 @@ static void ln_vrun(fl_lines_t *l, const fl_scan_t *s, int32_t i, int32_t j0,
          (j0 - 2) * rs >= s->border_v[i] &&
          ln_cell(s, i, j1 + 1) != FL_CLASS_GREEN && ln_cell(s, i, j1 + 2) != FL_CLASS_GREEN)) {
         l->runs_rejected++;
+        return;
+    }
+    if (fl_lines_int_on_robot(l, s, i, (j0 + j1) / 2, false)) {
+        l->robot_rejected++;
         return;
     }
     ln_push(l, 2 * i * cs, (j0 + j1) * rs, w, FL_LINE_POINT_VERTICAL);
@@ -410,6 +418,10 @@ static void ln_luma_run(fl_lines_t *l, const fl_scan_t *s, const ln_sline_t *sl,
         cbk + 16 < (cb1 < cb2 ? cb1 : cb2) || crk > 140 ||
         !ln_ridge_goes_on(l, sl, k, d)) { /* (last: a line, not a speck) */
         l->runs_rejected++;
+        return;
+    }
+    if (fl_lines_int_on_robot(l, s, u / cs, v / rs, false)) {
+        l->robot_rejected++;
         return;
     }
     if (l->luma_points >= LN_LUMA_MAX) {
@@ -675,6 +687,8 @@ int32_t fl_lines_find_points(fl_lines_t *l, const fl_scan_t *scan,
         mr = 1;
     if (mc < 1)
         mc = 1;
+    /* standing objects first: both scan directions skip their cells */
+    fl_lines_int_robots(l, scan, mc);
 
     /* horizontal scan lines: 32 cells per mask word.  Once a point was
      * dropped (the table is full) no later scan line can add one: the

@@ -230,6 +230,8 @@ int32_t fl_scan_frame(fl_scan_t *s, const fl_color_table_t *colors,
         fl_scan_internal_band(s, &f, w, j0, ns);
     fl_scan_internal_extend_borders(s, &f, ns, j0, max_white);
     fl_scan_internal_reject_bumps(s, &f, ns);
+    if (j0 == 0 && !s->below_horizon)   /* no horizon: a board may be first */
+        fl_scan_internal_reject_boards(s, &f, ns);
     if (s->n_border < cols)   /* else no column to repair */
         fl_scan_internal_repair_borders(s, &f);
     /* C */

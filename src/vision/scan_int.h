@@ -195,6 +195,9 @@ void fl_scan_internal_reject_bumps(fl_scan_t *s, const frame_t *f, int32_t ns);
 /* Phase A' (scan_border.c): columns without a border between columns
  * with one get the top of their lowest stretch of field colors. */
 void fl_scan_internal_repair_borders(fl_scan_t *s, const frame_t *f);
+/* scan_board.c: without a horizon, green regions above a wall or gap over
+ * the carpet connected to the bottom are not the field. */
+void fl_scan_internal_reject_boards(fl_scan_t *s, const frame_t *f, int32_t ns);
 /* Phase C (scan_post.c): yellow above the border of the post_top columns
  * into the map, and a foot at the border of each post. */
 void fl_scan_internal_trace_posts(fl_scan_t *s, const frame_t *f);

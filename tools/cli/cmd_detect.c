@@ -299,14 +299,15 @@ int cmd_detect(int argc, char **argv)
     if (stats) {
         const fl_vision_t *v = ctx.vis;
         fprintf(stderr,
-                "# points %d (dropped %d, width-rejected %d) segments %d (merges %d, white checks %d) "
-                "crossings %d (pairs %d, ground-rejected %d, arm-rejected %d, merged %d) "
+                "# points %d (dropped %d, width-rejected %d, robot-rejected %d) segments %d (merges %d, white checks %d) "
+                "crossings %d (pairs %d, ground-rejected %d, arm-rejected %d, robot-rejected %d, merged %d) "
                 "posts %d (candidates %d) circle %s (cand %d, rms %d mm) obs %d\n",
                 (int)v->lines.n_points, (int)v->lines.points_dropped,
-                (int)v->lines.runs_rejected, (int)v->lines.n_segments, (int)v->lines.merges,
+                (int)v->lines.runs_rejected, (int)v->lines.robot_rejected, (int)v->lines.n_segments, (int)v->lines.merges,
                 (int)v->lines.white_checks,
                 (int)v->crossings.n, (int)v->crossings.pairs, (int)v->crossings.rejected_ground,
-                (int)v->crossings.rejected_arms, (int)v->crossings.merged, (int)v->posts.n,
+                (int)v->crossings.rejected_arms, (int)v->crossings.robot_rejected,
+                (int)v->crossings.merged, (int)v->posts.n,
                 (int)v->posts.candidates, v->circle.found ? "found" : "no",
                 (int)v->circle.n_cand, (int)v->circle.rms_mm, (int)obs.n);
     }
