@@ -431,7 +431,7 @@ int cmd_demo(int argc, char **argv)
             return 1;
         }
     } else if (sim_scenario_builtin(&sc, field) != 0) {
-        fprintf(stderr, "demo: no built-in walk for field '%s' (spl2013, uva2013, aibo2004)\n",
+        fprintf(stderr, "demo: no built-in walk for field '%s' (spl2013, uva2013, aibo2004, spl2020)\n",
                 field);
         return 2;
     }
