@@ -945,6 +945,29 @@ static void test_others(void)
     CHECK_EQ(n_reported_hidden, 0);
     CHECK(hidden_steps >= 100);
 
+    /* added kidnaps never put the walker onto another robot */
+    {
+        unsigned seed;
+        int n_targets = 0;
+        for (seed = 1; seed <= 10; seed++) {
+            sim_scenario_t k = sc;
+            int e, o;
+            k.seed = seed;
+            CHECK_EQ(sim_scenario_set_kidnaps(&k, 8), 0);
+            for (e = 0; e < k.n_events; e++) {
+                if (k.event[e].kind != SIM_EVENT_KIDNAP)
+                    continue;
+                n_targets++;
+                for (o = 0; o < k.n_others; o++) {
+                    double dx = k.event[e].x_mm - k.other[o].x_mm;
+                    double dy = k.event[e].y_mm - k.other[o].y_mm;
+                    CHECK(dx * dx + dy * dy >= 500.0 * 500.0);
+                }
+            }
+        }
+        CHECK_EQ(n_targets, 80);
+    }
+
     /* one robot between the camera and the centre mark: the mark goes, the
      * two centre-line crossings beside it stay */
     bare = sc;

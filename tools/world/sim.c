@@ -1615,9 +1615,20 @@ int sim_scenario_set_kidnaps(sim_scenario_t *sc, int n)
         e.t_s = best_t;
         hx = sc->field->length_mm / 2.0 + sc->field->border_mm / 2.0;
         hy = sc->field->width_mm / 2.0 + sc->field->border_mm / 2.0;
-        e.x_mm = sim_round(sim_uniform(&rng, -hx, hx));
-        e.y_mm = sim_round(sim_uniform(&rng, -hy, hy));
-        e.heading_deg = sim_round(sim_uniform(&rng, -180.0, 180.0));
+        /* not onto another robot: drawn again (a walk without other robots
+         * draws once, so its kidnaps do not depend on this) */
+        for (j = 0; j < 16; j++) {
+            int near = 0, o;
+            e.x_mm = sim_round(sim_uniform(&rng, -hx, hx));
+            e.y_mm = sim_round(sim_uniform(&rng, -hy, hy));
+            e.heading_deg = sim_round(sim_uniform(&rng, -180.0, 180.0));
+            for (o = 0; o < sc->n_others; o++) {
+                double dx = e.x_mm - sc->other[o].x_mm, dy = e.y_mm - sc->other[o].y_mm;
+                near |= dx * dx + dy * dy < 500.0 * 500.0;
+            }
+            if (!near)
+                break;
+        }
         for (j = sc->n_events; j > 0 && sc->event[j - 1].t_s > e.t_s; j--)
             sc->event[j] = sc->event[j - 1];
         sc->event[j] = e;

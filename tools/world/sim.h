@@ -216,7 +216,8 @@ int sim_scenario_write(FILE *f, const sim_scenario_t *sc);
  * more adds kidnaps one by one, each at the time (0.1 s grid) farthest
  * from the start, the end, every kidnap and every penalty (start to end),
  * to a target drawn uniformly over the field plus half its border, heading
- * uniform, from a PRNG stream of its own derived from sc->seed (set the
+ * uniform (drawn again, at most 16 times, while within 500 mm of another
+ * robot of the scenario), from a PRNG stream of its own derived from sc->seed (set the
  * seed first).  The walk's noise stream is not touched: the walk is
  * identical up to the first added kidnap; after it the robot is elsewhere,
  * so the observations (how many are drawn) and with them the rest of the
