@@ -792,7 +792,9 @@ static const char sim_text_aibo2004[] =
  * with a goal area, a NAO v6 top camera at 640 x 480 (the resolution the
  * vision path's per-frame budget is stated for), and six other robots
  * standing where the walk sees them (two teammates and the own keeper in
- * blue, three opponents in red), at least 0.5 m off the route. */
+ * blue, three opponents in red), at least 0.6 m from where the walk goes
+ * with seeds 1-6 (its own kidnap, or two: --kidnaps 2; the penalty on
+ * either touchline). */
 static const char sim_text_spl2020[] =
     "# SPL field since 2020 (white goals, penalty and goal areas), NAO v6 top\n"
     "# camera at 640 x 480: the spl2013 lap with other robots on the field.\n"
@@ -839,11 +841,11 @@ static const char sim_text_spl2020[] =
     "penalty 95 8\n"
     "# other robots: X_MM Y_MM HEADING_DEG jersey\n"
     "other -4200 0 0 blue          # own keeper\n"
-    "other -2000 -2500 30 blue\n"
-    "other -2200 2000 -20 blue\n"
+    "other -3000 -2750 45 blue\n"
+    "other -1700 1750 -30 blue\n"
     "other 4200 300 180 red        # their keeper\n"
-    "other 1500 0 180 red          # at the centre circle\n"
-    "other 2000 -800 150 red\n";
+    "other -250 -250 180 red       # in the centre circle\n"
+    "other 3250 -2300 135 red\n";
 
 const char *const sim_builtin_names[SIM_BUILTIN_COUNT] = {"spl2013", "uva2013", "aibo2004",
                                                           "spl2020"};
