@@ -19,7 +19,8 @@
  * Observations: each landmark of the field map, transformed to the robot
  * frame with the (integer) true pose, is seen when its ground point projects
  * (fl_camera_ground_to_pixel, the firmware camera) at least fov_margin_px
- * inside the image and lies within max_range_mm; then misses, range and
+ * inside the image, lies within max_range_mm and no other robot of the
+ * scenario stands in the way (sim_occluded); then misses, range and
  * bearing noise, L<->T confusion, goal-post sides (known only when both
  * posts of that goal are seen), and false positives at random image pixels
  * (fov_margin_px inside the image, as true landmarks) below the horizon and
