@@ -16,7 +16,9 @@
 # (seeds $FEATURE_SEEDS, default 1-6, about 1 s each for the fuzzy grid) and
 # in frames mode (rendered frames through the vision path at 10 Hz; seeds
 # $FRAME_SEEDS, default 1-6: rendering is the slow part, about 85 s for the
-# three fields of one seed on 2 idle cores, more under load).  Each frames
+# three 2013/2004 fields of one seed on 2 idle cores, more under load;
+# spl2020's 640 x 480 frames cost about 3.3 times the CPU of an spl2013
+# walk, 200 s against 61 s, so about 100 s more per seed).  Each frames
 # walk is rendered once, by the fuzzy grid's run, into BUILD/results.work/
 # FIELD.SEED.obs (simulate --obs-cache); every other localizer, random-
 # generator seed and particle count reads those observations.  Seeds 1-3
