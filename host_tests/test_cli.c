@@ -732,6 +732,49 @@ static void t_physar_cli(void)
     CHECK(strstr(out, "physar mcl") == NULL);
 }
 
+/* Today's field in the synthetic world: simulate --field spl2020 (feature
+ * mode, 30 s) tracks within a bound (seed 1 measured 83 mm, 1.68 deg; seeds
+ * 1-5 60-83 mm, 1.45-1.68 deg), and demo --field spl2020 writes its pictures (the frame
+ * half at the walk's 640 x 480). */
+static void t_spl2020(void)
+{
+    char out[4096], err[512], args[1400];
+    const char *p;
+    double pos = -1, head = -1;
+    host_image_t frame;
+    if (cli_find() != 0) {
+        t_info("cli.spl2020: %s not built, skipped", t_cli);
+        return;
+    }
+    CHECK_EQ(cli_run("simulate --field spl2020 --seed 1 --steps 900 --quiet", out, sizeof out,
+                     err, sizeof err), 0);
+    CHECK(strstr(out, "# simulate field spl2020 ") != NULL);
+    p = strstr(out, "\npos_rmse_mm ");
+    CHECK(p != NULL && sscanf(p, "\npos_rmse_mm %lf", &pos) == 1);
+    p = strstr(out, "\nheading_rmse_deg ");
+    CHECK(p != NULL && sscanf(p, "\nheading_rmse_deg %lf", &head) == 1);
+    t_info("simulate spl2020 seed 1, 30 s features: pos rmse %.1f mm, heading %.2f deg", pos, head);
+    CHECK(pos >= 0 && pos <= 150);
+    CHECK(head >= 0 && head <= 3);
+    if (t_quick)
+        return;
+    snprintf(args, sizeof args,
+             "demo --field spl2020 --seconds 0.5 --picture-every-s 0 --no-png --out %s/demo2020", t_dir);
+    CHECK_EQ(cli_run(args, out, sizeof out, err, sizeof err), 0);
+    CHECK(strstr(out, "field spl2020, camera nao6-top-640") != NULL);
+    if (read_pic("demo2020/frame_final.ppm", &frame) == 0) {
+        CHECK(frame.width >= 640);
+        CHECK(frame.height >= 480);
+        host_image_free(&frame);
+    } else
+        t_fail_msg(__FILE__, __LINE__, "demo spl2020 frame picture readable");
+    if (read_pic("demo2020/demo_final.ppm", &frame) == 0) {
+        CHECK(frame.width > 640);   /* the frame beside the belief */
+        host_image_free(&frame);
+    } else
+        t_fail_msg(__FILE__, __LINE__, "demo spl2020 picture readable");
+}
+
 void suite_cli(void)
 {
     t_run("cli.font", t_font);
@@ -744,4 +787,5 @@ void suite_cli(void)
     t_run("cli.calib_files", t_calib_files);
     t_run("cli.stream", t_stream);
     t_run("cli.physar", t_physar_cli);
+    t_run("cli.spl2020", t_spl2020);
 }

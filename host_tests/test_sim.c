@@ -26,6 +26,8 @@
 #pragma weak render_frame
 #pragma weak render_read_frame
 #pragma weak render_frame_free
+#pragma weak render_project_field
+#pragma weak render_occluded
 
 static double ang_rad(fl_angle_t a) { return (double)a * (2 * PI / 65536.0); }
 
@@ -102,7 +104,7 @@ static void field_to_robot(const sim_step_t *st, double fx, double fy, double *r
 static void test_consistency(void)
 {
     int i;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < SIM_BUILTIN_COUNT; i++) {
         sim_scenario_t sc;
         sim_t sim;
         sim_step_t st;
@@ -243,7 +245,7 @@ static void test_odometry(void)
 static void test_geometry_noiseless(void)
 {
     int i;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < SIM_BUILTIN_COUNT; i++) {
         sim_scenario_t sc;
         sim_t sim;
         sim_step_t st;
@@ -252,6 +254,7 @@ static void test_geometry_noiseless(void)
         if (load_builtin(&sc, i) != 0)
             continue;
         sim_scenario_noise_off(&sc);
+        sc.n_others = 0;   /* completeness without occlusion (sim.occlusion) */
         CHECK_EQ(sim_init(&sim, &sc), 0);
         while (sim_step(&sim, &st)) {
             dcam_t dc;
@@ -316,7 +319,7 @@ static void test_geometry_noiseless(void)
 static void test_field_of_view(void)
 {
     int i;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < SIM_BUILTIN_COUNT; i++) {
         sim_scenario_t sc;
         sim_t sim;
         sim_step_t st;
@@ -472,7 +475,7 @@ static void test_events(void)
 {
     int i, sides[2] = {0, 0};
     unsigned seed;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < SIM_BUILTIN_COUNT; i++) {
         sim_scenario_t sc;
         sim_t sim;
         sim_step_t st, prev;
@@ -571,7 +574,7 @@ static void test_events(void)
 static void test_head(void)
 {
     int i;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < SIM_BUILTIN_COUNT; i++) {
         sim_scenario_t sc;
         sim_t sim;
         sim_step_t st;
@@ -630,8 +633,16 @@ static void test_scenario_text(void)
         "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\np_miss 2\n",/* range */
         "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\nkidnap 5 0 0 0\nkidnap 4 0 0 0\n",
         "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\nframe_hz 0\n",
+        "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\nother 1 2 3 green\n",
+        "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\nother 1 2 red\n",
+        "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\nother 1 2 3 red x\n",
+        "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\nother 1e9 2 3 red\n",
+        "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\nother nan 2 3 red\n",
+        "field spl2013\ncamera nao4-top-320\nwaypoint 0 0\nother 0 0 0 red\nother 0 0 0 red\n"
+        "other 0 0 0 red\nother 0 0 0 red\nother 0 0 0 red\nother 0 0 0 red\n"
+        "other 0 0 0 red\nother 0 0 0 red\nother 0 0 0 red\n",   /* 9 robots */
     };
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < SIM_BUILTIN_COUNT; i++) {
         FILE *f;
         char *buf = NULL;
         size_t len = 0;
@@ -655,6 +666,31 @@ static void test_scenario_text(void)
         err[0] = '\0';
         CHECK_EQ(sim_scenario_parse(&bad, bad_texts[i], err, (int)sizeof err), -1);
         CHECK(err[0] != '\0');
+    }
+    {
+        /* a name given twice, the second shorter (found by fuzz_walk): the
+         * round trip still gives identical bytes; robots round-trip too */
+        static const char twice[] = "name longer_name\nname x\nfield spl2020\n"
+                                    "camera nao6-top-640\ncamera nao6-top-320\nwaypoint 0 0\n"
+                                    "other -1000.5 20 -90 blue\nother 3 -4 359.25 red\n";
+        sim_scenario_t a, b;
+        char *buf = NULL;
+        size_t len = 0;
+        FILE *f;
+        CHECK_EQ(sim_scenario_parse(&a, twice, err, (int)sizeof err), 0);
+        CHECK_EQ(a.n_others, 2);
+        CHECK(a.other[0].jersey == RENDER_JERSEY_BLUE && a.other[1].jersey == RENDER_JERSEY_RED);
+        CHECK(a.other[0].x_mm == -1000.5 && a.other[1].heading_deg == 359.25);
+        f = open_memstream(&buf, &len);
+        CHECK(f != NULL);
+        if (f != NULL) {
+            CHECK_EQ(sim_scenario_write(f, &a), 0);
+            fclose(f);
+            CHECK(strstr(buf, "other -1000.5 20 -90 blue\n") != NULL);
+            CHECK_EQ(sim_scenario_parse(&b, buf, err, (int)sizeof err), 0);
+            CHECK(scenario_equal(&a, &b));
+            free(buf);
+        }
     }
     CHECK_EQ(sim_scenario_parse(NULL, "x", NULL, 0), -1);
     CHECK_EQ(sim_scenario_parse(&bad, NULL, NULL, 0), -1);
@@ -707,7 +743,7 @@ static uint32_t walk_digest(const sim_scenario_t *sc, uint32_t *n_steps)
 static void test_determinism(void)
 {
     int i;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < SIM_BUILTIN_COUNT; i++) {
         sim_scenario_t sc;
         uint32_t a, b, na, nb;
         char label[64];
@@ -732,7 +768,7 @@ static void test_determinism(void)
 static void test_fixtures(void)
 {
     int i;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < SIM_BUILTIN_COUNT; i++) {
         const char *name = sim_builtin_names[i];
         char path[256], err[128];
         char *walk, *trace, *gen = NULL;
@@ -826,6 +862,231 @@ static void test_sequence(void)
     rmdir(dir);
 }
 
+
+/* ---- other robots on the field (spl2020) ------------------------------------ */
+
+static int find_landmark(const fl_field_t *f, int32_t x, int32_t y)
+{
+    int i;
+    for (i = 0; i < f->n_landmarks; i++)
+        if (f->landmarks[i].x_mm == x && f->landmarks[i].y_mm == y)
+            return i;
+    return -1;
+}
+
+static int obs_has(const sim_step_t *st, int lm)
+{
+    int j;
+    for (j = 0; j < st->obs.n; j++)
+        if (st->obs_landmark[j] == lm)
+            return 1;
+    return 0;
+}
+
+/* The spl2020 walk has robots of both jerseys, the walker keeps clear of
+ * them, and a landmark behind one is not reported (feature mode) while the
+ * ones beside it are; the renderer's own occlusion test agrees. */
+static void test_others(void)
+{
+    sim_scenario_t sc, bare;
+    sim_t sim;
+    sim_step_t st;
+    fl_camera_t cam;
+    fl_camera_pose_t head;
+    uint64_t rng = 1;
+    int i, blue = 0, red = 0, centre, x_left, x_right, hidden_steps = 0;
+    long n_hidden = 0, n_reported_hidden = 0;
+    double min_clear = 1e9;
+    CHECK_EQ(sim_scenario_builtin(&sc, "spl2020"), 0);
+    CHECK_EQ(sc.n_others, 6);
+    for (i = 0; i < sc.n_others; i++) {
+        blue += sc.other[i].jersey == RENDER_JERSEY_BLUE;
+        red += sc.other[i].jersey == RENDER_JERSEY_RED;
+    }
+    CHECK_EQ(blue, 3);
+    CHECK_EQ(red, 3);
+    /* the walker (it does not avoid obstacles) keeps clear of the robots:
+     * seeds 1-6 (those of make results) with the walk's own kidnap and with
+     * two (--kidnaps 2), both penalty sides among them */
+    for (i = 0; i < 12; i++) {
+        sim_scenario_t w = sc;
+        w.seed = (uint64_t)(i / 2 + 1);
+        CHECK_EQ(sim_scenario_set_kidnaps(&w, i % 2 ? 2 : 1), 0);
+        CHECK_EQ(sim_init(&sim, &w), 0);
+        while (sim_step(&sim, &st)) {
+            int k;
+            for (k = 0; k < w.n_others; k++) {
+                double dx = st.true_x_mm - w.other[k].x_mm, dy = st.true_y_mm - w.other[k].y_mm;
+                double d = sqrt(dx * dx + dy * dy);
+                if (d < min_clear)
+                    min_clear = d;
+            }
+        }
+    }
+    /* the built-in walk: what a robot hides */
+    CHECK_EQ(sim_init(&sim, &sc), 0);
+    while (sim_step(&sim, &st)) {
+        int k, hid = 0;
+        /* every landmark in view that a robot hides is left out */
+        if (fl_camera_init(&cam, sc.camera, &st.head) != FL_OK)
+            continue;
+        for (k = 0; k < sc.field->n_landmarks; k++) {
+            const fl_landmark_t *lm = &sc.field->landmarks[k];
+            double ch = cos(ang_rad(st.heading)), sh = sin(ang_rad(st.heading));
+            double dx = lm->x_mm - st.x_mm, dy = lm->y_mm - st.y_mm;
+            fl_point_t gp;
+            int32_t u, v;
+            gp.x_mm = (int32_t)lround(dx * ch + dy * sh);
+            gp.y_mm = (int32_t)lround(-dx * sh + dy * ch);
+            if (!fl_camera_ground_to_pixel(&cam, gp, &u, &v) || u < 0 || v < 0 ||
+                u >= 16 * sc.camera->width_px || v >= 16 * sc.camera->height_px ||
+                sqrt(dx * dx + dy * dy) > sc.max_range_mm)
+                continue;   /* not in view anyway */
+            if (sim_occluded(&sc, &cam, st.x_mm, st.y_mm, st.heading, lm->x_mm, lm->y_mm, 0)) {
+                n_hidden++;
+                hid = 1;
+                n_reported_hidden += obs_has(&st, k);
+            }
+        }
+        hidden_steps += hid;
+    }
+    t_info("sim.others: walker (seeds 1-6) at least %.0f mm from the other robots; %ld landmark hidings "
+           "in view in %d of %u steps", min_clear, n_hidden, hidden_steps, sim_step_count(&sim));
+    CHECK(min_clear >= 600);
+    CHECK_EQ(n_reported_hidden, 0);
+    CHECK(hidden_steps >= 100);
+
+    /* added kidnaps never put the walker onto another robot */
+    {
+        unsigned seed;
+        int n_targets = 0;
+        for (seed = 1; seed <= 10; seed++) {
+            sim_scenario_t k = sc;
+            int e, o;
+            k.seed = seed;
+            CHECK_EQ(sim_scenario_set_kidnaps(&k, 8), 0);
+            for (e = 0; e < k.n_events; e++) {
+                if (k.event[e].kind != SIM_EVENT_KIDNAP)
+                    continue;
+                n_targets++;
+                for (o = 0; o < k.n_others; o++) {
+                    double dx = k.event[e].x_mm - k.other[o].x_mm;
+                    double dy = k.event[e].y_mm - k.other[o].y_mm;
+                    CHECK(dx * dx + dy * dy >= 500.0 * 500.0);
+                }
+            }
+        }
+        CHECK_EQ(n_targets, 80);
+    }
+
+    /* one robot between the camera and the centre mark: the mark goes, the
+     * two centre-line crossings beside it stay */
+    bare = sc;
+    sim_scenario_noise_off(&bare);
+    bare.n_others = 0;
+    memset(&head, 0, sizeof head);
+    head.neck_height_mm = 460;
+    head.head_pitch = (fl_angle_t)2607;   /* 0.25 rad */
+    CHECK_EQ(fl_camera_init(&cam, bare.camera, &head), FL_OK);
+    centre = find_landmark(bare.field, 0, 0);
+    x_left = find_landmark(bare.field, 0, 750);
+    x_right = find_landmark(bare.field, 0, -750);
+    CHECK(centre >= 0 && x_left >= 0 && x_right >= 0);
+    memset(&st, 0, sizeof st);
+    sim_observe(&bare, &cam, -2000, 0, 0, &rng, &st);
+    CHECK(obs_has(&st, centre));
+    CHECK(obs_has(&st, x_left));
+    CHECK(obs_has(&st, x_right));
+    bare.n_others = 1;
+    bare.other[0].x_mm = -1000;
+    bare.other[0].y_mm = 40;   /* the ray meets a leg (not the gap between them) */
+    bare.other[0].heading_deg = 180;
+    bare.other[0].jersey = RENDER_JERSEY_RED;
+    memset(&st, 0, sizeof st);
+    sim_observe(&bare, &cam, -2000, 0, 0, &rng, &st);
+    CHECK(!obs_has(&st, centre));
+    CHECK(obs_has(&st, x_left));
+    CHECK(obs_has(&st, x_right));
+    CHECK(sim_occluded(&bare, &cam, -2000, 0, 0, 0, 0, 0));
+    CHECK(!sim_occluded(&bare, &cam, -2000, 0, 0, 0, 750, 0));
+    /* a point under its feet is hidden; beside it (and the robot turned
+     * sideways) it is not */
+    CHECK(sim_occluded(&bare, &cam, -2000, 0, 0, -1000, 40, 0));
+    CHECK(!sim_occluded(&bare, &cam, -2000, 0, 0, -1000, 440, 0));
+    if (render_occluded != NULL) {
+        render_scene_t rs;
+        memset(&st, 0, sizeof st);
+        st.x_mm = -2000;
+        st.head = head;
+        sim_render_scene(&bare, &st, &rs);
+        CHECK_EQ(rs.n_robots, 1);
+        CHECK(render_occluded(&rs, 0, 0, 0, 1, -1));
+        CHECK(!render_occluded(&rs, 0, 750, 0, 1, -1));
+        CHECK(!render_occluded(&rs, 0, -750, 0, 1, -1));
+    }
+}
+
+/* The robots are drawn: frames of the spl2020 walk where one stands in
+ * view (its chest projects inside the image within 4 m) show robot pixels
+ * in the render's class mask. */
+static void test_others_rendered(void)
+{
+    sim_scenario_t sc;
+    sim_t sim;
+    sim_step_t st;
+    int picked = 0, shown = 0;
+    long total = 0, least = -1;
+    if (render_frame == NULL || render_project_field == NULL) {
+        t_info("sim.others_rendered: skipped, tools/world/render.c not built");
+        return;
+    }
+    if (t_quick) {
+        t_info("sim.others_rendered: skipped in quick mode (renders frames)");
+        return;
+    }
+    CHECK_EQ(sim_scenario_builtin(&sc, "spl2020"), 0);
+    CHECK_EQ(sim_init(&sim, &sc), 0);
+    /* one frame every 15 s of walk at most, where a robot is in view */
+    while (sim_step(&sim, &st) && picked < 8) {
+        render_scene_t rs;
+        render_frame_t fr;
+        int k, in_view = 0;
+        long px = 0;
+        size_t p;
+        if (st.t_ms < picked * 15000)
+            continue;
+        sim_render_scene(&sc, &st, &rs);
+        CHECK_EQ(rs.n_robots, 6);
+        for (k = 0; k < rs.n_robots; k++) {
+            double u, v, r;
+            if (render_project_field(&rs, rs.robots[k].x_mm, rs.robots[k].y_mm, 450, &u, &v, &r) &&
+                u >= 0 && v >= 0 && u < sc.camera->width_px && v < sc.camera->height_px &&
+                r < 4000)
+                in_view = 1;
+        }
+        if (!in_view)
+            continue;
+        picked++;
+        rs.supersample = 1;
+        if (render_frame(&rs, &fr) != 0) {
+            CHECK(0);
+            continue;
+        }
+        for (p = 0; p < (size_t)fr.width * (size_t)fr.height; p++)
+            px += fr.mask[p] == RENDER_CLASS_OBJECT;
+        render_frame_free(&fr);
+        total += px;
+        if (least < 0 || px < least)
+            least = px;
+        shown += px >= 1000;
+        t_info("sim.others_rendered: t %.1f s: %ld robot pixels", st.t_ms / 1000.0, px);
+    }
+    CHECK_EQ(picked, 8);
+    CHECK(shown >= 7);
+    t_info("sim.others_rendered: %d of %d frames with >= 1000 robot pixels (least %ld, total %ld)",
+           shown, picked, least, total);
+}
+
 void suite_sim(void)
 {
     t_run("sim.consistency", test_consistency);
@@ -839,4 +1100,6 @@ void suite_sim(void)
     t_run("sim.determinism", test_determinism);
     t_run("sim.fixtures", test_fixtures);
     t_run("sim.sequence", test_sequence);
+    t_run("sim.others", test_others);
+    t_run("sim.others_rendered", test_others_rendered);
 }

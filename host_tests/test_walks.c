@@ -19,7 +19,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *walk_names[3] = {"spl2013", "uva2013", "aibo2004"};
+#define N_WALKS 4
+static const char *walk_names[N_WALKS] = {"spl2013", "uva2013", "aibo2004", "spl2020"};
 
 static uint32_t replay(const char *name, uint32_t max_steps, uint32_t *steps, double *err_mm)
 {
@@ -163,20 +164,20 @@ static void test_walk_traces(void)
         if (out)
             fprintf(out, "# localizer trace digests of fixtures/walks (host_tests/test_walks.c)\n");
     }
-    for (i = 0; i < 3 * (int)fl_localizer_count(); i++) {
-        const fl_localizer_t *loc = fl_localizer_get((uint16_t)(i / 3));
+    for (i = 0; i < N_WALKS * (int)fl_localizer_count(); i++) {
+        const fl_localizer_t *loc = fl_localizer_get((uint16_t)(i / N_WALKS));
         uint32_t steps, h, gs = 0, gh = 0;
         double rms;
         char label[96], name[64];
         /* the fuzzy grid's lines keep their names; the others' are
          * "LOCALIZER:WALK" */
-        if (i < 3) {
+        if (i < N_WALKS) {
             CHECK(loc == &fl_localizer_fuzzy);
             snprintf(name, sizeof name, "%s", walk_names[i]);
             h = replay(walk_names[i], t_quick ? 300u : 1000000u, &steps, &rms);
         } else {
-            snprintf(name, sizeof name, "%s:%s", loc->name, walk_names[i % 3]);
-            h = replay_loc(loc, walk_names[i % 3], t_quick ? 300u : 1000000u, &steps, &rms);
+            snprintf(name, sizeof name, "%s:%s", loc->name, walk_names[i % N_WALKS]);
+            h = replay_loc(loc, walk_names[i % N_WALKS], t_quick ? 300u : 1000000u, &steps, &rms);
         }
         CHECK(steps > 0);
         snprintf(label, sizeof label, "walks.%s.%s", name, t_quick ? "quick" : "full");

@@ -14,11 +14,13 @@
 # OUT is then left as it was (the document is written to OUT.tmp and moved
 # over OUT only at the end).
 #
-# The walks: every field (spl2013, uva2013, aibo2004) in feature mode
+# The walks: every field (spl2013, uva2013, aibo2004, spl2020) in feature mode
 # (seeds $FEATURE_SEEDS, default 1-6, about 1 s each for the fuzzy grid) and
 # in frames mode (rendered frames through the vision path at 10 Hz; seeds
 # $FRAME_SEEDS, default 1-6: rendering is the slow part, about 85 s for the
-# three fields of one seed on 2 idle cores, more under load).  Each frames
+# three 2013/2004 fields of one seed on 2 idle cores, more under load;
+# spl2020's 640 x 480 frames cost about 3.3 times the CPU of an spl2013
+# walk, 200 s against 61 s, so about 100 s more per seed).  Each frames
 # walk is rendered once, by the fuzzy grid's run, into BUILD/results.work/
 # FIELD.SEED.obs (simulate --obs-cache); every other localizer, random-
 # generator seed and particle count reads those observations.  Seeds 1-3
@@ -49,7 +51,7 @@ B=${1:-build}
 OUT=${2:-docs/RESULTS.md}
 CLI=$B/fieldloc
 RD=../shared/realdata
-FIELDS="spl2013 uva2013 aibo2004"
+FIELDS="spl2013 uva2013 aibo2004 spl2020"
 FEATURE_SEEDS=${FEATURE_SEEDS:-"1 2 3 4 5 6"}
 FRAME_SEEDS=${FRAME_SEEDS:-"1 2 3 4 5 6"}
 RNG_SEEDS=${RNG_SEEDS:-"1 2 3 4 5"}

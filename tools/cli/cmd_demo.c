@@ -13,7 +13,9 @@
  *
  * Defaults: the built-in spl2013 walk (the text of
  * fixtures/walks/spl2013.walk), its own seed, --every 3, the whole walk,
- * --out build/demo, a picture every 10 s of walk time.
+ * --out build/demo, a picture every 10 s of walk time.  --field NAME takes
+ * another built-in walk: uva2013, aibo2004, or spl2020 (today's field:
+ * white goals, NAO v6 top camera at 640 x 480, other robots in view).
  *
  * Prints a progress line every 5 s of walk time (estimate, truth, error,
  * reliability, observations, wall time), the events (kidnap, penalty), the
@@ -431,7 +433,7 @@ int cmd_demo(int argc, char **argv)
             return 1;
         }
     } else if (sim_scenario_builtin(&sc, field) != 0) {
-        fprintf(stderr, "demo: no built-in walk for field '%s' (spl2013, uva2013, aibo2004)\n",
+        fprintf(stderr, "demo: no built-in walk for field '%s' (spl2013, uva2013, aibo2004, spl2020)\n",
                 field);
         return 2;
     }

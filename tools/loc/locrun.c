@@ -727,7 +727,8 @@ static void lr_vdiag_frame(lr_vdiag_t *d, const sim_scenario_t *sc, const fl_cam
         gp.y_mm = (int32_t)lround(ry);
         if (hypot(rx, ry) > sc->max_range_mm || !fl_camera_ground_to_pixel(cam, gp, &u, &v) ||
             u < 64 || v < 64 || u > 16 * (cam->model.width_px - 5) ||
-            v > 16 * (cam->model.height_px - 5))
+            v > 16 * (cam->model.height_px - 5) ||
+            sim_occluded(sc, cam, st->x_mm, st->y_mm, st->heading, lm->x_mm, lm->y_mm, 0))
             continue;
         d[lm->kind].truth_visible++;
         if (found[j])

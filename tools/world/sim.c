@@ -19,7 +19,8 @@
  * Observations: each landmark of the field map, transformed to the robot
  * frame with the (integer) true pose, is seen when its ground point projects
  * (fl_camera_ground_to_pixel, the firmware camera) at least fov_margin_px
- * inside the image and lies within max_range_mm; then misses, range and
+ * inside the image, lies within max_range_mm and no other robot of the
+ * scenario stands in the way (sim_occluded); then misses, range and
  * bearing noise, L<->T confusion, goal-post sides (known only when both
  * posts of that goal are seen), and false positives at random image pixels
  * (fov_margin_px inside the image, as true landmarks) below the horizon and
@@ -307,6 +308,9 @@ static int parse_name(const char *s, char *out)
     sp = strpbrk(s, " \t");
     if (n == 0 || n >= SIM_NAME_LEN || (sp != NULL && sp < s + n))
         return -1;
+    /* the whole array: a name given twice leaves no tail of the first, so
+     * equal scenarios are equal bytes (the round trip compares them) */
+    memset(out, 0, SIM_NAME_LEN);
     memcpy(out, s, n);
     out[n] = '\0';
     return 0;
@@ -398,6 +402,10 @@ static int sim_scenario_check(const sim_scenario_t *sc, const char **why)
         if (!(sc->event[i].t_s >= 0 && sc->event[i].duration_s >= 0 &&
               sc->event[i].duration_s <= 3600))
             *why = "event time or duration out of range";
+    for (i = 0; *why == NULL && i < sc->n_others; i++)
+        if (!(sim_abs(sc->other[i].x_mm) <= 20000 && sim_abs(sc->other[i].y_mm) <= 20000 &&
+              sim_abs(sc->other[i].heading_deg) <= 360))
+            *why = "other robot outside +-20000 mm or heading outside +-360 deg";
     for (i = 1; *why == NULL && i < sc->n_events; i++)
         if (sc->event[i].t_s < sc->event[i - 1].t_s)
             *why = "events not in time order";
@@ -496,6 +504,31 @@ int sim_scenario_parse(sim_scenario_t *sc, const char *text, char *err,
             sc->waypoint[sc->n_waypoints].x_mm = v[0];
             sc->waypoint[sc->n_waypoints].y_mm = v[1];
             sc->n_waypoints++;
+        } else if (strcmp(key, "other") == 0) {
+            double v[3];
+            char jersey[SIM_NAME_LEN];
+            const char *q = rest;
+            int j, ok = sc->n_others < SIM_MAX_OTHERS;
+            sim_other_t *o;
+            for (j = 0; ok && j < 3; j++) {
+                char *end;
+                errno = 0;
+                v[j] = strtod(q, &end);
+                ok = end != q && errno == 0 && (*end == ' ' || *end == '\t');
+                q = end;
+            }
+            while (ok && (*q == ' ' || *q == '\t'))
+                q++;
+            if (!ok || parse_name(q, jersey) != 0 ||
+                (strcmp(jersey, "red") != 0 && strcmp(jersey, "blue") != 0)) {
+                set_err(err, err_len, "other X_MM Y_MM DEG red|blue (at most 8)", line);
+                return -1;
+            }
+            o = &sc->other[sc->n_others++];
+            o->x_mm = v[0];
+            o->y_mm = v[1];
+            o->heading_deg = v[2];
+            o->jersey = strcmp(jersey, "blue") == 0 ? RENDER_JERSEY_BLUE : RENDER_JERSEY_RED;
         } else if (strcmp(key, "kidnap") == 0 || strcmp(key, "penalty") == 0) {
             double v[4];
             int want = key[0] == 'k' ? 4 : 2;
@@ -611,6 +644,10 @@ int sim_scenario_write(FILE *f, const sim_scenario_t *sc)
         else
             fprintf(f, "penalty %.17g %.17g\n", e->t_s, e->duration_s);
     }
+    for (j = 0; j < sc->n_others; j++)
+        fprintf(f, "other %.17g %.17g %.17g %s\n", sc->other[j].x_mm, sc->other[j].y_mm,
+                sc->other[j].heading_deg,
+                sc->other[j].jersey == RENDER_JERSEY_BLUE ? "blue" : "red");
     return ferror(f) ? -1 : 0;
 }
 
@@ -751,7 +788,68 @@ static const char sim_text_aibo2004[] =
     "kidnap 45 1200 -600 135\n"
     "penalty 80 6\n";
 
-const char *const sim_builtin_names[3] = {"spl2013", "uva2013", "aibo2004"};
+/* The spl2013 walk (same route, speeds, noise, kidnap and penalty, so the
+ * numbers compare) on today's field: white goals, the larger penalty area
+ * with a goal area, a NAO v6 top camera at 640 x 480 (the resolution the
+ * vision path's per-frame budget is stated for), and six other robots
+ * standing where the walk sees them (two teammates and the own keeper in
+ * blue, three opponents in red), at least 0.6 m from where the walk goes
+ * with seeds 1-6 (its own kidnap, or two: --kidnaps 2; the penalty on
+ * either touchline). */
+static const char sim_text_spl2020[] =
+    "# SPL field since 2020 (white goals, penalty and goal areas), NAO v6 top\n"
+    "# camera at 640 x 480: the spl2013 lap with other robots on the field.\n"
+    "robot nao\n"
+    "name spl2020\n"
+    "field spl2020\n"
+    "camera nao6-top-640\n"
+    "seed 2020\n"
+    "frame_hz 30\n"
+    "duration_s 130\n"
+    "neck_mm 460\n"
+    "head_pitch 0.25 0.45\n"
+    "pitch_period_s 4\n"
+    "yaw_amplitude_rad 1.5\n"
+    "yaw_period_s 6\n"
+    "v_forward_mm_s 180\n"
+    "v_side_mm_s 100\n"
+    "turn_deg_s 45\n"
+    "odo_scale 0.10 0.15 -0.07\n"
+    "odo_drift_deg_per_m 3\n"
+    "odo_sigma_trans 0.10\n"
+    "odo_sigma_rot 0.08\n"
+    "odo_sigma_rot_deg_per_m 2\n"
+    "slip_rate_hz 0.05\n"
+    "slip_max 60 10\n"
+    "max_range_mm 6000\n"
+    "range_sigma_pct 8\n"
+    "bearing_sigma_deg 1.5\n"
+    "orientation_sigma_deg 5\n"
+    "p_miss 0.2\n"
+    "fp_per_frame 0.15\n"
+    "p_confuse 0.05\n"
+    "penalty_x_mm -1000\n"
+    "start -3500 -2000 45\n"
+    "waypoint -1500 0\n"
+    "waypoint 0 1800\n"
+    "waypoint 2500 1800\n"
+    "waypoint 3500 0\n"
+    "waypoint 2500 -2000\n"
+    "waypoint 0 -1500\n"
+    "waypoint -3000 -1800\n"
+    "waypoint -3500 1500\n"
+    "kidnap 55 2500 -1000 180\n"
+    "penalty 95 8\n"
+    "# other robots: X_MM Y_MM HEADING_DEG jersey\n"
+    "other -4200 0 0 blue          # own keeper\n"
+    "other -3000 -2750 45 blue\n"
+    "other -1700 1750 -30 blue\n"
+    "other 4200 300 180 red        # their keeper\n"
+    "other -250 -250 180 red       # in the centre circle\n"
+    "other 3250 -2300 135 red\n";
+
+const char *const sim_builtin_names[SIM_BUILTIN_COUNT] = {"spl2013", "uva2013", "aibo2004",
+                                                          "spl2020"};
 
 const char *sim_builtin_text(const char *name)
 {
@@ -763,6 +861,8 @@ const char *sim_builtin_text(const char *name)
         return sim_text_uva2013;
     if (strcmp(name, "aibo2004") == 0)
         return sim_text_aibo2004;
+    if (strcmp(name, "spl2020") == 0)
+        return sim_text_spl2020;
     return NULL;
 }
 
@@ -830,6 +930,84 @@ static fl_angle_t sim_emit_angle(double rad, double *carry)
     return fl_angle_wrap(sim_emit(rad * (65536.0 / SIM_TWO_PI), carry));
 }
 
+/* Boxes enclosing a standing robot's body, its own frame (x forward, y
+ * left, z up; mm): lo x, y, z then hi x, y, z.  They enclose render.c's
+ * build_robot parts: NAO feet and legs, torso with the arms, the head;
+ * AIBO legs, body, head. */
+static const double sim_body_nao[3][6] = {
+    {-60, -95, 0, 100, 95, 290},
+    {-65, -148, 290, 65, 148, 565},
+    {-72, -72, 565, 85, 72, 717}};
+static const double sim_body_aibo[3][6] = {
+    {-117, -77, 0, 117, 77, 140},
+    {-130, -73, 130, 130, 73, 250},
+    {95, -55, 230, 220, 55, 340}};
+
+/* Does p + t d, t in [0, 1], meet the box b (slab test)? */
+static int sim_segment_box(const double p[3], const double d[3], const double b[6])
+{
+    double t0 = 0, t1 = 1;
+    int k;
+    for (k = 0; k < 3; k++) {
+        if (d[k] == 0) {
+            if (p[k] < b[k] || p[k] > b[k + 3])
+                return 0;
+        } else {
+            double ta = (b[k] - p[k]) / d[k], tb = (b[k + 3] - p[k]) / d[k];
+            if (ta > tb) {
+                double x = ta;
+                ta = tb;
+                tb = x;
+            }
+            if (ta > t0)
+                t0 = ta;
+            if (tb < t1)
+                t1 = tb;
+            if (t0 > t1)
+                return 0;
+        }
+    }
+    return 1;
+}
+
+int sim_occluded(const sim_scenario_t *sc, const fl_camera_t *cam, int32_t x_mm,
+                 int32_t y_mm, fl_angle_t heading, double fx, double fy, double fz)
+{
+    const double (*body)[6];
+    double sh, ch, cxr, cyr, c[3];
+    int i, j;
+    if (sc == NULL || cam == NULL || sc->n_others == 0)
+        return 0;
+    /* the renderer's rule: AIBO bodies on an aibo field or camera */
+    body = strncmp(sc->field_name, "aibo", 4) == 0 ||
+                   (sc->camera != NULL && strncmp(sc->camera->name, "aibo", 4) == 0)
+               ? sim_body_aibo : sim_body_nao;
+    sim_sincos(sim_rad(heading), &sh, &ch);
+    cxr = cam->pos_q4[0] / 16.0;
+    cyr = cam->pos_q4[1] / 16.0;
+    c[0] = x_mm + cxr * ch - cyr * sh;
+    c[1] = y_mm + cxr * sh + cyr * ch;
+    c[2] = cam->pos_q4[2] / 16.0;
+    for (i = 0; i < sc->n_others; i++) {
+        /* the segment in that robot's frame (its rounded pose, as rendered) */
+        double ox = sim_iround(sc->other[i].x_mm), oy = sim_iround(sc->other[i].y_mm);
+        double os, oc, p[3], q[3], d[3];
+        sim_sincos(sim_rad(sim_angle(sc->other[i].heading_deg * SIM_DEG)), &os, &oc);
+        p[0] = (c[0] - ox) * oc + (c[1] - oy) * os;
+        p[1] = -(c[0] - ox) * os + (c[1] - oy) * oc;
+        p[2] = c[2];
+        q[0] = (fx - ox) * oc + (fy - oy) * os;
+        q[1] = -(fx - ox) * os + (fy - oy) * oc;
+        q[2] = fz;
+        for (j = 0; j < 3; j++)
+            d[j] = q[j] - p[j];
+        for (j = 0; j < 3; j++)
+            if (sim_segment_box(p, d, body[j]))
+                return 1;
+    }
+    return 0;
+}
+
 static fl_landmark_kind_t sim_kind_present(const fl_field_t *f, uint64_t *rng)
 {
     fl_landmark_kind_t kinds[FL_LM_KIND_COUNT];
@@ -877,7 +1055,8 @@ void sim_observe(const sim_scenario_t *sc, const fl_camera_t *cam,
         gp.y_mm = sim_iround(ry);
         if (range > sc->max_range_mm ||
             !fl_camera_ground_to_pixel(cam, gp, &u, &v) ||
-            u < umin || u > umax || v < vmin || v > vmax)
+            u < umin || u > umax || v < vmin || v > vmax ||
+            sim_occluded(sc, cam, x_mm, y_mm, heading, lm->x_mm, lm->y_mm, 0))
             continue;
         /* every random draw below happens for every visible landmark, so
          * the stream does not depend on the outcome of earlier draws */
@@ -1196,7 +1375,7 @@ int sim_write_walk_fixtures(const char *out_dir)
     int i;
     if (out_dir == NULL)
         return -1;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < SIM_BUILTIN_COUNT; i++) {
         const char *name = sim_builtin_names[i];
         const char *text = sim_builtin_text(name);
         char path[1024], err[128];
@@ -1227,7 +1406,7 @@ int sim_write_walk_fixtures(const char *out_dir)
         if (bad)
             return -1;
     }
-    return 3;
+    return SIM_BUILTIN_COUNT;
 }
 
 /* ---- mode (b): rendered frames -------------------------------------------- */
@@ -1242,6 +1421,7 @@ int sim_write_walk_fixtures(const char *out_dir)
 void sim_render_scene(const sim_scenario_t *sc, const sim_step_t *st,
                       render_scene_t *scene)
 {
+    int i;
     if (sc == NULL || st == NULL || scene == NULL || render_scene_default == NULL)
         return;
     render_scene_default(scene, sc->field, sc->camera);
@@ -1250,6 +1430,13 @@ void sim_render_scene(const sim_scenario_t *sc, const sim_step_t *st,
     scene->robot_heading = st->heading;
     scene->head = st->head;
     scene->seed = (uint32_t)(sc->seed * 2654435761u) ^ (st->index * 40503u + 1u);
+    for (i = 0; i < sc->n_others && i < RENDER_MAX_ROBOTS; i++) {
+        scene->robots[i].x_mm = sim_iround(sc->other[i].x_mm);
+        scene->robots[i].y_mm = sim_iround(sc->other[i].y_mm);
+        scene->robots[i].heading = sim_angle(sc->other[i].heading_deg * SIM_DEG);
+        scene->robots[i].jersey = sc->other[i].jersey;
+    }
+    scene->n_robots = i;
 }
 
 static void sim_print_fixed(FILE *f, double v, int decimals)
@@ -1431,9 +1618,20 @@ int sim_scenario_set_kidnaps(sim_scenario_t *sc, int n)
         e.t_s = best_t;
         hx = sc->field->length_mm / 2.0 + sc->field->border_mm / 2.0;
         hy = sc->field->width_mm / 2.0 + sc->field->border_mm / 2.0;
-        e.x_mm = sim_round(sim_uniform(&rng, -hx, hx));
-        e.y_mm = sim_round(sim_uniform(&rng, -hy, hy));
-        e.heading_deg = sim_round(sim_uniform(&rng, -180.0, 180.0));
+        /* not onto another robot: drawn again (a walk without other robots
+         * draws once, so its kidnaps do not depend on this) */
+        for (j = 0; j < 16; j++) {
+            int near = 0, o;
+            e.x_mm = sim_round(sim_uniform(&rng, -hx, hx));
+            e.y_mm = sim_round(sim_uniform(&rng, -hy, hy));
+            e.heading_deg = sim_round(sim_uniform(&rng, -180.0, 180.0));
+            for (o = 0; o < sc->n_others; o++) {
+                double dx = e.x_mm - sc->other[o].x_mm, dy = e.y_mm - sc->other[o].y_mm;
+                near |= dx * dx + dy * dy < 500.0 * 500.0;
+            }
+            if (!near)
+                break;
+        }
         for (j = sc->n_events; j > 0 && sc->event[j - 1].t_s > e.t_s; j--)
             sc->event[j] = sc->event[j - 1];
         sc->event[j] = e;
