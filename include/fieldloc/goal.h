@@ -1,6 +1,7 @@
 /*
- * fieldloc/goal.h - yellow goal posts (seed 000, section 3.8): foot, top,
- * width, side and ground distance.
+ * fieldloc/goal.h - goal posts (seed 000, section 3.8): foot, top, width,
+ * side and ground distance; yellow posts (fl_goal_find, below) and white
+ * posts (fl_goal_find_white, further below).
  *
  * Method.  The scanner (scan.h) counts yellow cells per grid column
  * (yellow_cols, the post's run above the border included when it touches
@@ -71,7 +72,8 @@ typedef struct {
 typedef struct {
     int32_t n;
     fl_post_t post[FL_GOAL_MAX_POSTS];
-    int32_t dropped;              /* posts beyond FL_GOAL_MAX_POSTS */
+    int32_t dropped;              /* posts beyond FL_GOAL_MAX_POSTS (white:
+                                     and candidates beyond the cap) */
     int32_t candidates;           /* column runs examined */
     int32_t rejected_border;      /* foot above the field border */
     int32_t rejected_shape;       /* not a vertical bar */
@@ -84,6 +86,34 @@ typedef struct {
 int32_t fl_goal_find(fl_posts_t *out, const fl_scan_t *scan,
                      const fl_image_t *img, const fl_color_table_t *colors,
                      const fl_camera_t *camera, const fl_field_t *field);
+
+/* White posts (fields whose goals are white, spl2020): a white upright
+ * standing on the carpet in front of the field border.  Candidates are the
+ * grid columns whose pixel 2 px above the border is white against the
+ * carpet 2 px below it (at 2 of 4 rows 3-16 px up; runs end where the
+ * border jumps by more than 3 px) (the post hides the carpet strip behind it, so the
+ * scanner's border there is its foot).  A candidate is a post when its
+ * width above the foot (a goal line under the post skipped) fits
+ * diameter * f / distance at the foot's range (0.5x - 2 px .. 1.7x + 2
+ * px), the border of the columns beside it lies above its foot (it stands
+ * on the carpet), its white climbs to 0.7 of the height the camera
+ * predicts for a post at that range (or to the image top) and the lower
+ * 40 % of that is mostly as narrow as the foot: robots stop at a grey knee
+ * or a jersey, the ball and lines are flat.  White is relative to the
+ * carpet under the candidate: luma >= carpet + max(40, (255 - carpet) *
+ * 2 / 5) (max(20, 1/5) for widths), chroma |Cb-128| + |Cr-128| <= 48.
+ * Top: the top of a crossbar band (at most 2 widths + 2 thick) that ends
+ * the white at 0.6-1.4 post heights (else unknown); the
+ * side from white beside the top on one side only (at 1.5, 2.5, 3.5
+ * widths), else by the order of two posts.
+ * Needs the camera (NULL: no posts).
+ * Cost: 5 pixel reads per grid column, then at most 8 * FL_GOAL_MAX_POSTS
+ * candidates (the rest counted in dropped), each a column walk (the image
+ * height down, 1.6 post heights up) with a run of at most 2 widths + 4 px
+ * each way on every 2nd row and a few probes.  Returns n. */
+int32_t fl_goal_find_white(fl_posts_t *out, const fl_scan_t *scan,
+                           const fl_image_t *img, const fl_camera_t *camera,
+                           const fl_field_t *field);
 
 /* Color class of one image pixel through the tables (RGB888: the RGB
  * table; YUYV/planar: the YCbCr table).  OTHER outside the image. */

@@ -1,0 +1,132 @@
+/*
+ * host_tests/test_goal_white.c - white goal posts (goal.h,
+ * fl_goal_find_white) through fl_vision_frame on the rendered spl2020
+ * fixtures:
+ *   - the goals: every post foot of the truth found within 4 px, the left
+ *     post LEFT and the right one RIGHT, observations of kind post and
+ *     colour white;
+ *   - no post from robots (alone in front of the border, or around the
+ *     circle with the ball) nor from a near line seen end-on;
+ *   - bad input: NULL camera or scan, no posts.
+ */
+#include "test.h"
+#include "fieldloc/fieldloc.h"
+#include "world/render.h"
+#include "world/truth.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+    fl_color_table_t colors;
+    fl_vision_t vis;
+    fl_obs_list_t obs;
+    truth_t tr;
+    fl_camera_t cam;
+} gw_state_t;
+
+static gw_state_t *G;
+
+/* Run the vision path on fixture `name` (file extension ext); 0 or -1. */
+static int gw_run(const char *name, const char *ext)
+{
+    char path[256], err[256];
+    fl_color_params_t cp;
+    fl_vision_params_t vp;
+    render_frame_t fr;
+    const fl_camera_model_t *m;
+    if (!G)
+        G = calloc(1, sizeof *G);
+    if (!G)
+        return -1;
+    fl_color_params_default(&cp);
+    fl_vision_params_default(&vp);
+    if (fl_color_init(&G->colors, &cp) != FL_OK || fl_vision_init(&G->vis, &vp) != FL_OK)
+        return -1;
+    snprintf(path, sizeof path, "fixtures/frames/%s.truth", name);
+    if (truth_load(path, &G->tr, err, sizeof err) != 0)
+        return -1;
+    snprintf(path, sizeof path, "fixtures/frames/%s.%s", name, ext);
+    if (render_read_frame(path, &fr, err, sizeof err) != 0)
+        return -1;
+    m = fl_camera_model_find("nao6-top-320");
+    if (!m || fl_camera_init(&G->cam, m, &G->tr.head) != FL_OK) {
+        render_frame_free(&fr);
+        return -1;
+    }
+    fl_vision_frame(&G->vis, &G->colors, &fr.view, &G->cam, fl_field_find("spl2020"), &G->obs);
+    render_frame_free(&fr);
+    return 0;
+}
+
+static void test_goals(void)
+{
+    static const char *names[] = {"spl2020_goal_both", "spl2020_goal_robots", "spl2020_goal_far"};
+    static const char *exts[] = {"ppm", "ppm", "raw"};
+    int s, i, k;
+    for (s = 0; s < 3; s++) {
+        int feet = 0, white_obs = 0;
+        CHECK(gw_run(names[s], exts[s]) == 0);
+        if (!G)
+            return;
+        CHECK(G->vis.posts.n == 2);
+        for (i = 0; i < G->tr.n; i++) {
+            const truth_feature_t *f = &G->tr.f[i];
+            if (f->kind != TRUTH_POST_FOOT)
+                continue;
+            feet++;
+            for (k = 0; k < G->vis.posts.n; k++) {
+                const fl_post_t *p = &G->vis.posts.post[k];
+                if (fabs(p->foot_u_q4 / 16.0 - f->u) <= 4.0 && fabs(p->foot_v_q4 / 16.0 - f->v) <= 4.0)
+                    break;
+            }
+            CHECK(k < G->vis.posts.n);
+            if (k < G->vis.posts.n)
+                /* truth side 1 = left (y > 0), 2 = right, as fl_side_t */
+                CHECK((int)G->vis.posts.post[k].side == (int)f->side);
+        }
+        CHECK(feet == 2);
+        for (i = 0; i < G->obs.n; i++)
+            if (G->obs.obs[i].kind == FL_LM_POST) {
+                CHECK(G->obs.obs[i].color == FL_COLOR_WHITE);
+                white_obs++;
+            }
+        CHECK(white_obs == 2);
+    }
+}
+
+static void test_no_false_posts(void)
+{
+    static const char *names[] = {"spl2020_robot_border", "spl2020_robots_ball",
+                                  "spl2020_line_end_on"};
+    static const char *exts[] = {"ppm", "raw", "ppm"};
+    int s;
+    for (s = 0; s < 3; s++) {
+        CHECK(gw_run(names[s], exts[s]) == 0);
+        if (!G)
+            return;
+        CHECK(G->vis.posts.n == 0);
+    }
+}
+
+static void test_bad_input(void)
+{
+    fl_posts_t out;
+    CHECK(gw_run("spl2020_goal_both", "ppm") == 0);
+    if (!G)
+        return;
+    CHECK(fl_goal_find_white(&out, &G->vis.scan, NULL, &G->cam, NULL) == 0);
+    CHECK(fl_goal_find_white(&out, NULL, NULL, &G->cam, NULL) == 0);
+    CHECK(fl_goal_find_white(NULL, &G->vis.scan, NULL, NULL, NULL) == 0);
+}
+
+void suite_goal_white(void)
+{
+    t_run("goal_white.goals", test_goals);
+    t_run("goal_white.no_false_posts", test_no_false_posts);
+    t_run("goal_white.bad_input", test_bad_input);
+    free(G);
+    G = NULL;
+}

@@ -1,0 +1,446 @@
+/*
+ * src/vision/goal_white.c - white goal posts (the SPL field since 2015):
+ * a white upright standing on the carpet in front of the field border;
+ * see goal.h (fl_goal_find_white).
+ *
+ * Algorithm.  Per grid column: is the pixel 2 px above the border white
+ * against the carpet 2 px below it (brightness contrast, low chroma)?  A
+ * post stands 700 mm in front of the carpet's edge, so it hides the carpet
+ * strip behind it and the scanner's border of its columns is its foot.
+ * Runs of such columns are candidates.  Per candidate: the white column
+ * followed down (through the goal line under the post: rows much wider than
+ * the post) to the foot; the width above the foot against the width a
+ * post of the field's diameter has at the foot's range; the notch (the
+ * border of the columns beside the post lies above the foot: carpet behind
+ * the post, so it stands on the carpet); the climb up the column (white up
+ * to at least 0.7 of the height a post has at that range, or the image top:
+ * robots have grey joints, a jersey and stop at 0.6 m, the ball and lines
+ * are flat); the top where the white ends or a crossbar band begins; the
+ * side from the crossbar (white beside the top on one side only).
+ *
+ * White relative to the field: luma >= carpet + max(40, 2/5 of the
+ * headroom 255 - carpet) for the climb and the candidate test (strict),
+ * carpet + max(20, 1/5 of it) for widths (soft: the shaded edges of a
+ * round post), chroma |Cb - 128| + |Cr - 128| <= 48 in both.  The carpet
+ * luma is measured under the candidate's border, so shade and sunlight
+ * move the threshold with the field.
+ *
+ * Invariant: every stored post passed the width, notch and height checks;
+ * no two stored posts overlap; n <= FL_GOAL_MAX_POSTS.
+ * Memory: the caller's fl_posts_t; stack < 300 B.
+ * Cost: 2 pixel reads per grid column; at most WG_MAX_CAND candidates,
+ * each a column walk (at most the image height down and 1.6 post heights
+ * up), a horizontal run (at most 2 widths + 4 px each way) on every 2nd
+ * row of the climb and a few probes.
+ *
+ * Scaling and overflow.  Pixels Q4 (< 2^17); ground mm < 2^15; the
+ * distance from the camera sqrt(r^2 + h^2) in int64; expected sizes
+ * focal_q4 * size / (16 dist) with focal < 2^20, size < 2^12 (int64).
+ */
+#include "fieldloc/goal.h"
+
+#include <string.h>
+
+#define WG_MAX_CAND (8 * FL_GOAL_MAX_POSTS)
+
+/* What every candidate of a frame shares. */
+typedef struct {
+    fl_posts_t *out;
+    const fl_scan_t *s;
+    const fl_image_t *img;
+    const fl_camera_t *cam;
+    int32_t diam, post_h;
+    int32_t thr_hi, thr_lo;     /* strict / soft white luma of a candidate */
+} wg_ctx_t;
+
+/* Luma and chroma distance |Cb - 128| + |Cr - 128| of one pixel (the
+ * BT.601 conversion of src/base/image.c).  Luma 0 outside the image. */
+static int32_t wg_luma(const fl_image_t *img, int32_t u, int32_t v, int32_t *chroma)
+{
+    const uint8_t *p;
+    int32_t y, cb, cr;
+    *chroma = 255;
+    if (u < 0 || v < 0 || u >= img->width || v >= img->height)
+        return 0;
+    switch (img->format) {
+    case FL_FMT_RGB888: {
+        int32_t r, g, b;
+        p = img->plane[0] + (size_t)v * (size_t)img->stride[0] + 3u * (size_t)u;
+        r = p[0];
+        g = p[1];
+        b = p[2];
+        y = (19595 * r + 38470 * g + 7471 * b + 32768) >> 16;
+        cb = ((-11058 * r - 21710 * g + 32768 * b + (128 << 16) + 32768) >> 16) - 128;
+        cr = ((32768 * r - 27439 * g - 5329 * b + (128 << 16) + 32768) >> 16) - 128;
+        break;
+    }
+    case FL_FMT_YUYV422:
+        p = img->plane[0] + (size_t)v * (size_t)img->stride[0] + 4u * (size_t)(u >> 1);
+        y = p[(u & 1) * 2];
+        cb = p[1] - 128;
+        cr = p[3] - 128;
+        break;
+    case FL_FMT_YCBCR_PLANAR:
+        y = img->plane[0][(size_t)v * (size_t)img->stride[0] + (size_t)u];
+        cb = img->plane[1][(size_t)v * (size_t)img->stride[1] + (size_t)u] - 128;
+        cr = img->plane[2][(size_t)v * (size_t)img->stride[2] + (size_t)u] - 128;
+        break;
+    default:
+        return 0;
+    }
+    *chroma = (cb < 0 ? -cb : cb) + (cr < 0 ? -cr : cr);
+    return y;
+}
+
+/* White at luma threshold thr (and low chroma). */
+static bool wg_white(const fl_image_t *img, int32_t u, int32_t v, int32_t thr)
+{
+    int32_t c, y = wg_luma(img, u, v, &c);
+    return y >= thr && c <= 48;
+}
+
+/* Strict and soft thresholds over a carpet luma. */
+static void wg_thresholds(int32_t carpet, int32_t *hi, int32_t *lo)
+{
+    int32_t a = (255 - carpet) * 2 / 5, b = (255 - carpet) / 5;
+    *hi = carpet + (a > 40 ? a : 40);
+    *lo = carpet + (b > 20 ? b : 20);
+}
+
+/* Horizontal white run (luma >= thr) through (u, v), at most lim px each
+ * way: its width (0 when (u, v) is not white), ends into lohi. */
+static int32_t wg_hrun(const wg_ctx_t *c, int32_t u, int32_t v, int32_t lim, int32_t thr,
+                       int32_t lohi[2])
+{
+    int32_t a = u, b = u, k;
+    if (!wg_white(c->img, u, v, thr))
+        return 0;
+    for (k = 0; k < lim && wg_white(c->img, a - 1, v, thr); k++)
+        a--;
+    for (k = 0; k < lim && wg_white(c->img, b + 1, v, thr); k++)
+        b++;
+    lohi[0] = a;
+    lohi[1] = b;
+    return b - a + 1;
+}
+
+static int32_t wg_median3(int32_t a, int32_t b, int32_t c)
+{
+    if (a > b) { int32_t t = a; a = b; b = t; }
+    if (b > c) { int32_t t = b; b = c; c = t; }
+    if (a > b) { int32_t t = a; a = b; b = t; }
+    return b;
+}
+
+/* Distance from the camera (mm) to a ground point at range r at height
+ * z_mm; 0 without a camera. */
+static int64_t wg_dist(const fl_camera_t *cam, int32_t r, int32_t z_mm)
+{
+    int64_t hz = cam->pos_q4[2] / 16 - z_mm;
+    return (int64_t)fl_isqrt64((uint64_t)((int64_t)r * r + hz * hz));
+}
+
+/* Step of wg_candidate: the climb up column u from the post's bottom row
+ * pb, from the probe row vb above its shaded foot (strict white: a
+ * robot's grey knee is not; gaps of 2 rows bridged).  Into res: [0] the highest
+ * white row reached, [1] the top of a crossbar band (strict-white rows
+ * wider than 1.6 widths, at most 2 widths + 2 thick, where the white
+ * ends; -1: none), [2] narrow rows and [3] measured rows in the lower
+ * 40 % of the expected height h_exp. */
+static void wg_climb(const wg_ctx_t *c, int32_t u, int32_t pb, int32_t vb, int32_t w,
+                     int32_t h_exp, int32_t res[4])
+{
+    int32_t v, gap = 0, lim = 2 * w + 4, vmin = pb - h_exp * 8 / 5, band = 0, band_top = -1;
+    res[0] = pb;
+    res[1] = -1;
+    res[2] = 0;
+    res[3] = 0;
+    if (vmin < 0)
+        vmin = 0;
+    for (v = (vb < pb ? vb : pb - 1); v >= vmin; v--) {
+        int32_t ab[2], rw;
+        bool low = (pb - v) * 5 <= h_exp * 2;
+        if (!wg_white(c->img, u, v, c->thr_hi) && !wg_white(c->img, u + 1, v, c->thr_hi) &&
+            !wg_white(c->img, u - 1, v, c->thr_hi)) {
+            if (++gap > 2)
+                break;
+            continue;
+        }
+        gap = 0;
+        res[0] = v;
+        if (((pb - v) & 1) != 0 && band == 0)
+            continue;
+        rw = wg_hrun(c, u, v, lim, c->thr_hi, ab);
+        if (rw * 10 > w * 16 + 20) {
+            band++;
+            band_top = v;
+        } else {
+            band = 0;
+            if (low && rw > 0)
+                res[2]++;
+        }
+        if (low)
+            res[3]++;
+    }
+    if (band > 0 && band <= 2 * w + 2 && gap > 2)
+        res[1] = band_top;      /* a band with no white above it */
+}
+
+/* Step of wg_candidate: crossbar beside the top row vt (white on one side
+ * only at 1.5, 2.5 and 3.5 widths): the post's side. */
+static fl_side_t wg_side(const wg_ctx_t *c, int32_t u, int32_t vt, int32_t w)
+{
+    int32_t k, l = 0, r = 0;
+    for (k = 3; k <= 7; k += 2) {
+        if (wg_white(c->img, u + k * w / 2, vt, c->thr_hi))
+            r++;
+        if (wg_white(c->img, u - k * w / 2, vt, c->thr_hi))
+            l++;
+    }
+    if (r >= 2 && l == 0)
+        return FL_SIDE_LEFT;    /* crossbar to the right: left post facing the goal */
+    if (l >= 2 && r == 0)
+        return FL_SIDE_RIGHT;
+    return FL_SIDE_UNKNOWN;
+}
+
+/* Step of wg_candidate: the lowest row of the post above the goal line
+ * beside its foot (which joins its lowest rows).  From the white's lowest
+ * row foot_v up to vb: rows wider than 1.6 w0 + 2 (w0: the post's width
+ * at vb) are the line.  Returns that row (vb when every row is wide). */
+static int32_t wg_bottom(const wg_ctx_t *c, int32_t u, int32_t foot_v, int32_t vb,
+                         int32_t w0)
+{
+    int32_t v, ab[2], lim = 2 * w0 + 4;
+    for (v = foot_v; v > vb; v--) {
+        int32_t rw = wg_hrun(c, u, v, lim, c->thr_lo, ab);
+        if (rw > 0 && rw * 10 <= w0 * 16 + 20)
+            return v;
+    }
+    return vb;
+}
+
+/* Step of wg_candidate: ground point and range of the foot pixel (the
+ * front of the post: the centre is half a diameter further along the ray);
+ * sets p->foot_* and p->ground.  False without a ground point. */
+static bool wg_ground(const wg_ctx_t *c, fl_post_t *p, int32_t u_q4, int32_t v_px)
+{
+    p->foot_u_q4 = u_q4;
+    p->foot_v_q4 = v_px * 16 + 8;
+    if (!fl_camera_foot_to_centre(c->cam, &p->foot_u_q4, &p->foot_v_q4, c->diam, &p->ground))
+        return false;
+    fl_polar_from_point(p->ground, &p->range_mm, &p->bearing);
+    return p->range_mm > 0;
+}
+
+/* Step of wg_candidate: carpet behind the post beside it (the border of
+ * columns 1 width + 2 cells away lies above the bottom row pb). */
+static bool wg_notch(const wg_ctx_t *c, int32_t u, int32_t pb, int32_t w)
+{
+    const fl_scan_t *s = c->s;
+    int32_t k, ok = 0, cs = s->params.col_step;
+    for (k = -1; k <= 1; k += 2) {
+        int32_t uu = u + k * (w + 2 * cs + 2), ic = uu / cs;
+        if (uu < 0 || ic >= s->cols)
+            continue;
+        if (s->border_v[ic] < s->height && s->border_v[ic] <= pb - 1)
+            ok++;
+    }
+    return ok > 0;
+}
+
+/* One candidate: white just above the border in image columns u0..u1
+ * (px); vb a row of it, carpet luma `carpet`. */
+static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_t carpet)
+{
+    fl_posts_t *out = c->out;
+    const fl_camera_t *cam = c->cam;
+    int32_t u, k, v, gap, foot_v, thr_foot, pb, ab[2], wl[3], w, lim, h_exp, w_exp, cl[4], top;
+    int64_t dist;
+    fl_post_t p;
+    out->candidates++;
+    wg_thresholds(carpet, &c->thr_hi, &c->thr_lo);
+    u = (u0 + u1) / 2;
+    for (k = 0; k <= (u1 - u0) / 2 + 1; k++) {
+        if (wg_white(c->img, u + k, vb, c->thr_lo)) { u += k; break; }
+        if (wg_white(c->img, u - k, vb, c->thr_lo)) { u -= k; break; }
+    }
+    lim = u1 - u0 + 8;
+    w = wg_hrun(c, u, vb, lim, c->thr_lo, ab);
+    if (w == 0)
+        return;
+    u = (ab[0] + ab[1]) / 2;
+    /* down to the lowest white (1-px gaps bridged), then up out of a line */
+    foot_v = vb;
+    gap = 0;
+    thr_foot = carpet + ((255 - carpet) / 8 > 16 ? (255 - carpet) / 8 : 16);
+    for (v = vb + 1; v < c->img->height; v++) {
+        if (wg_white(c->img, u, v, thr_foot)) {
+            foot_v = v;
+            gap = 0;
+        } else if (++gap > 1) {
+            break;
+        }
+    }
+    if (foot_v >= c->img->height - 2)
+        return;                 /* foot not seen */
+    /* the scanner's border of the foot's column is the foot */
+    k = c->s->border_v[u / c->s->params.col_step];
+    if (foot_v < k - 4 || foot_v > k + 4) {
+        out->rejected_border++;
+        return;
+    }
+    pb = wg_bottom(c, u, foot_v, vb, w);
+    lim = 2 * w + 4;
+    for (k = 0; k < 3; k++)
+        wl[k] = wg_hrun(c, u, pb - 1 - 2 * k, lim, c->thr_lo, ab);
+    w = wg_median3(wl[0], wl[1], wl[2]);
+    if (w <= 0 || wg_hrun(c, u, pb - 1, lim, c->thr_lo, ab) == 0)
+        return;
+    u = (ab[0] + ab[1]) / 2;
+    memset(&p, 0, sizeof p);
+    /* the line beside a post joins its lowest rows; under the post it is
+     * hidden (the post stands on its far half), so the lowest white row
+     * in the column is the foot */
+    if (!wg_ground(c, &p, (ab[0] + ab[1]) * 8 + 8, foot_v))
+        return;
+    /* the width a post of the field's diameter has at this range */
+    dist = wg_dist(cam, p.range_mm, 0);
+    w_exp = dist > 0 ? (int32_t)((int64_t)cam->model.focal_q4 * c->diam / (16 * dist)) : 0;
+    if (w * 2 + 4 < w_exp || w * 10 > w_exp * 17 + 20) {
+        out->rejected_shape++;
+        return;
+    }
+    if (!wg_notch(c, u, pb, w)) {
+        out->rejected_border++;
+        return;
+    }
+    /* white up to 0.7 of a post's height (or the image top), the lower
+     * part mostly as narrow as the foot */
+    dist = wg_dist(cam, p.range_mm, c->post_h / 2);
+    h_exp = dist > 0 ? (int32_t)((int64_t)cam->model.focal_q4 * c->post_h / (16 * dist)) : 0;
+    wg_climb(c, u, pb, vb, w, h_exp, cl);
+    if ((cl[0] > 1 && (pb - cl[0]) * 10 < h_exp * 7) || cl[2] * 3 < cl[3]) {
+        out->rejected_shape++;
+        return;
+    }
+    /* top: a crossbar band ending the white at the post's height (where
+     * the white just ends, a post in front of a darker band of the room
+     * is as likely) */
+    top = -1;
+    if (cl[1] >= 0 && (pb - cl[1]) * 10 >= h_exp * 6 && (pb - cl[1]) * 10 <= h_exp * 14)
+        top = cl[1];
+    p.width_q4 = w * 16;
+    p.foot_visible = true;
+    p.top_visible = top > 0;
+    p.top_u_q4 = u * 16 + 8;
+    p.top_v_q4 = top > 0 ? top * 16 : 0;
+    p.confidence = 200;
+    p.side = p.top_visible ? wg_side(c, u, top + w / 2, w) : FL_SIDE_UNKNOWN;
+    for (k = 0; k < out->n; k++) {
+        int32_t d = out->post[k].foot_u_q4 - p.foot_u_q4;
+        if ((d < 0 ? -d : d) < p.width_q4 + out->post[k].width_q4)
+            return;
+    }
+    if (out->n >= FL_GOAL_MAX_POSTS) {
+        out->dropped++;
+        return;
+    }
+    out->post[out->n++] = p;
+}
+
+/* Candidate test of grid column i: white (soft: the foot of a post is
+ * often shaded) at 2 of the rows 3, 6, 10 and 16 px above its border
+ * against the carpet 2 px below.  Returns the carpet luma (the second
+ * lowest white probe row, above a line beside the foot, into *vb), or -1. */
+static int32_t wg_column(const wg_ctx_t *c, int32_t i, int32_t *vb)
+{
+    static const int32_t probe[4] = {3, 6, 10, 16};
+    const fl_scan_t *s = c->s;
+    int32_t b = s->border_v[i], u = i * s->params.col_step, ch, carpet, hi, lo, k, n = 0;
+    if (b < 4 || b + 2 >= s->height)
+        return -1;
+    carpet = wg_luma(c->img, u, b + 2, &ch);
+    wg_thresholds(carpet, &hi, &lo);
+    *vb = -1;
+    for (k = 0; k < 4 && b - probe[k] >= 0; k++)
+        if (wg_white(c->img, u, b - probe[k], lo) && ++n == 2)
+            *vb = b - probe[k];
+    return n >= 2 ? carpet : -1;
+}
+
+/* A run of candidate grid columns start..last: examined while under the
+ * cap, else counted. */
+static void wg_flush(wg_ctx_t *c, int32_t start, int32_t last, int32_t vb, int32_t carpet)
+{
+    const fl_scan_t *s = c->s;
+    int32_t cs = s->params.col_step;
+    if (c->out->candidates >= WG_MAX_CAND) {
+        c->out->dropped++;
+        return;
+    }
+    if (vb < 0)
+        vb = s->border_v[(start + last) / 2] - 3;
+    wg_candidate(c, start * cs, last * cs, vb, carpet);
+}
+
+int32_t fl_goal_find_white(fl_posts_t *out, const fl_scan_t *scan,
+                           const fl_image_t *img, const fl_camera_t *camera,
+                           const fl_field_t *field)
+{
+    int32_t i, start = -1, last = -1, csum = 0, cn = 0, vb, run_vb = -1;
+    wg_ctx_t ctx;
+    if (!out)
+        return 0;
+    memset(out, 0, sizeof *out);
+    if (!scan || scan->width <= 0 || scan->cols <= 0 || !img || !camera ||
+        img->width != scan->width || img->height != scan->height ||
+        camera->model.focal_q4 <= 0)
+        return 0;
+    memset(&ctx, 0, sizeof ctx);
+    ctx.out = out;
+    ctx.s = scan;
+    ctx.img = img;
+    ctx.cam = camera;
+    ctx.diam = field && field->post_diameter_mm > 0 ? field->post_diameter_mm : 100;
+    ctx.post_h = field && field->post_height_mm > 0 ? field->post_height_mm : 800;
+    for (i = 0; i <= scan->cols; i++) {
+        int32_t carpet = i < scan->cols ? wg_column(&ctx, i, &vb) : -1;
+        /* a post's columns share its foot row: a jump of the border ends
+         * a run (a post in front of a bright floor band) */
+        if (carpet >= 0 && start >= 0 && i - last == 1 &&
+            (scan->border_v[i] - scan->border_v[last] > 3 ||
+             scan->border_v[last] - scan->border_v[i] > 3)) {
+            wg_flush(&ctx, start, last, run_vb, csum / cn);
+            start = -1;
+        }
+        if (carpet >= 0) {
+            if (start < 0) {
+                start = i;
+                csum = cn = 0;
+                run_vb = -1;
+            }
+            if (vb > run_vb)
+                run_vb = vb;
+            last = i;
+            csum += carpet;
+            cn++;
+        } else if (start >= 0 && (i - last > 1 || i == scan->cols)) {
+            wg_flush(&ctx, start, last, run_vb, csum / cn);
+            start = -1;
+        }
+    }
+    /* two posts, sides unknown: order in the image */
+    if (out->n == 2) {
+        fl_post_t *a = &out->post[0], *b = &out->post[1];
+        if (a->side == FL_SIDE_UNKNOWN && b->side == FL_SIDE_UNKNOWN) {
+            a->side = FL_SIDE_LEFT;
+            b->side = FL_SIDE_RIGHT;
+        } else if (a->side == FL_SIDE_UNKNOWN) {
+            a->side = b->side == FL_SIDE_RIGHT ? FL_SIDE_LEFT : FL_SIDE_UNKNOWN;
+        } else if (b->side == FL_SIDE_UNKNOWN) {
+            b->side = a->side == FL_SIDE_LEFT ? FL_SIDE_RIGHT : FL_SIDE_UNKNOWN;
+        }
+    }
+    return out->n;
+}
