@@ -88,29 +88,45 @@ int32_t fl_goal_find(fl_posts_t *out, const fl_scan_t *scan,
                      const fl_camera_t *camera, const fl_field_t *field);
 
 /* White posts (fields whose goals are white, spl2020): a white upright
- * standing on the carpet in front of the field border.  Candidates are the
- * grid columns whose pixel 2 px above the border is white against the
- * carpet 2 px below it (at 2 of 4 rows 3-16 px up; runs end where the
- * border jumps by more than 3 px) (the post hides the carpet strip behind it, so the
- * scanner's border there is its foot).  A candidate is a post when its
- * width above the foot (a goal line under the post skipped) fits
- * diameter * f / distance at the foot's range (0.5x - 2 px .. 1.7x + 2
- * px), the border of the columns beside it lies above its foot (it stands
- * on the carpet), its white climbs to 0.7 of the height the camera
- * predicts for a post at that range (or to the image top) and the lower
- * 40 % of that is mostly as narrow as the foot: robots stop at a grey knee
- * or a jersey, the ball and lines are flat.  White is relative to the
- * carpet under the candidate: luma >= carpet + max(40, (255 - carpet) *
- * 2 / 5) (max(20, 1/5) for widths), chroma |Cb-128| + |Cr-128| <= 48.
- * Top: the top of a crossbar band (at most 2 widths + 2 thick) that ends
- * the white at 0.6-1.4 post heights (else unknown); the
- * side from white beside the top on one side only (at 1.5, 2.5, 3.5
- * widths), else by the order of two posts.
+ * standing on the field.  Candidates: grid columns white (soft, below) at
+ * 2 of the rows 3, 6, 10, 16 px above the border against the carpet
+ * below it (the darkest of 3 rows 2-9 px down: not a goal line); runs of them, ended where the border jumps by more than 3 px
+ * (a post's columns share its foot row: on the SPL field the post hides
+ * the carpet strip behind it, so the scanner's border there is its foot);
+ * each white stretch of a row 8 px above a run's probe row (two posts, or
+ * a post and the goal's rear frame, may share a run) is a candidate.  Its
+ * foot: the lowest row of its middle column that is white or grey (a
+ * shaded foot: brighter than the carpet, under half its chroma).
+ * A candidate is a post when
+ *  - its lowest white row (the foot) is within 4 px of its column's border
+ *    (up to half a width more above it: a goal line under the foot) and
+ *    the border of the columns beside it lies at or above the foot (a
+ *    white thing beyond the carpet stands above the border);
+ *  - its width above the foot (above the goal line beside the foot) fits
+ *    diameter * f / distance at the foot's range (0.5x - 2 px .. 1.7x + 2);
+ *  - the lower 40 % of the height the camera predicts for a post at that
+ *    range is as narrow as the foot on 1 row of 4 (a net or a banner may
+ *    hang beside it), and its white climbs (strict; soft over a shaded
+ *    stretch) either out of the image or on past 1.6 of that height (0.7
+ *    of it needed), or ends at 0.4-1.4 of it under a
+ *    crossbar (the foot's range errs with the body's tilt) or at 0.85 of
+ *    it with white on both sides (a white background).  A white end with
+ *    no bar beside it is a robot (jersey, head: 0.72 of a post) or
+ *    clutter; the ball and lines are flat.
+ * White is relative to the carpet under the candidate: luma >= carpet +
+ * max(40, (255 - carpet) * 2 / 5) (strict) or + max(20, 1/5 of that)
+ * (soft: widths, the shaded foot), chroma |Cb - 128| + |Cr - 128| <= 48.
+ * Crossbar: at 1.5, 2.5 and 3.5 widths beside the end's row (+ half a
+ * width), soft white there and not one width above it, on one side only
+ * (a robot's shoulders reach 2 widths).  It gives the top (the end) and
+ * the side: to the right, the left post facing the goal.  Else the top is
+ * unknown and two posts take their sides from their order in the image.
  * Needs the camera (NULL: no posts).
- * Cost: 5 pixel reads per grid column, then at most 8 * FL_GOAL_MAX_POSTS
+ * Cost: 7 pixel reads per grid column, then at most 8 * FL_GOAL_MAX_POSTS
  * candidates (the rest counted in dropped), each a column walk (the image
- * height down, 1.6 post heights up) with a run of at most 2 widths + 4 px
- * each way on every 2nd row and a few probes.  Returns n. */
+ * height down, 1.6 post heights + 2 widths up) with a run of at most 2
+ * widths + 4 px each way on every 2nd row of the lower 40 % and 12 probes.
+ * Returns n. */
 int32_t fl_goal_find_white(fl_posts_t *out, const fl_scan_t *scan,
                            const fl_image_t *img, const fl_camera_t *camera,
                            const fl_field_t *field);

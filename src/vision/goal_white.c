@@ -51,6 +51,7 @@ typedef struct {
     const fl_camera_t *cam;
     int32_t diam, post_h;
     int32_t thr_hi, thr_lo;     /* strict / soft white luma of a candidate */
+    int32_t thr_ft;             /* white of a shaded foot */
 } wg_ctx_t;
 
 /* Luma and chroma distance |Cb - 128| + |Cr - 128| of one pixel (the
@@ -124,14 +125,6 @@ static int32_t wg_hrun(const wg_ctx_t *c, int32_t u, int32_t v, int32_t lim, int
     return b - a + 1;
 }
 
-static int32_t wg_median3(int32_t a, int32_t b, int32_t c)
-{
-    if (a > b) { int32_t t = a; a = b; b = t; }
-    if (b > c) { int32_t t = b; b = c; c = t; }
-    if (a > b) { int32_t t = a; a = b; b = t; }
-    return b;
-}
-
 /* Distance from the camera (mm) to a ground point at range r at height
  * z_mm; 0 without a camera. */
 static int64_t wg_dist(const fl_camera_t *cam, int32_t r, int32_t z_mm)
@@ -142,66 +135,80 @@ static int64_t wg_dist(const fl_camera_t *cam, int32_t r, int32_t z_mm)
 
 /* Step of wg_candidate: the climb up column u from the post's bottom row
  * pb, from the probe row vb above its shaded foot (strict white: a
- * robot's grey knee is not; gaps of 2 rows bridged).  Into res: [0] the highest
- * white row reached, [1] the top of a crossbar band (strict-white rows
- * wider than 1.6 widths, at most 2 widths + 2 thick, where the white
- * ends; -1: none), [2] narrow rows and [3] measured rows in the lower
- * 40 % of the expected height h_exp. */
+ * robot's grey knee is not; gaps of 2 rows bridged), at most 1.6 expected
+ * heights h_exp.  Into res: [0] the highest white row reached, [1] 1 when
+ * the white ended below that limit (0: it went on, strict or, for 2 widths
+ * above, soft on 2 rows of 3), [2] narrow rows (no
+ * wider than 1.6 widths) and [3] measured rows (every 2nd) in the lower
+ * 40 % of h_exp. */
 static void wg_climb(const wg_ctx_t *c, int32_t u, int32_t pb, int32_t vb, int32_t w,
                      int32_t h_exp, int32_t res[4])
 {
-    int32_t v, gap = 0, lim = 2 * w + 4, vmin = pb - h_exp * 8 / 5, band = 0, band_top = -1;
+    int32_t v, gap = 0, lim = 2 * w + 4, vmin = pb - h_exp * 8 / 5;
     res[0] = pb;
-    res[1] = -1;
+    res[1] = 0;
     res[2] = 0;
     res[3] = 0;
     if (vmin < 0)
         vmin = 0;
     for (v = (vb < pb ? vb : pb - 1); v >= vmin; v--) {
         int32_t ab[2], rw;
-        bool low = (pb - v) * 5 <= h_exp * 2;
         if (!wg_white(c->img, u, v, c->thr_hi) && !wg_white(c->img, u + 1, v, c->thr_hi) &&
             !wg_white(c->img, u - 1, v, c->thr_hi)) {
-            if (++gap > 2)
+            if (++gap > 2) {
+                res[1] = 1;
                 break;
+            }
             continue;
         }
         gap = 0;
         res[0] = v;
-        if (((pb - v) & 1) != 0 && band == 0)
+        if (((pb - v) & 1) != 0 || (pb - v) * 5 > h_exp * 2)
             continue;
         rw = wg_hrun(c, u, v, lim, c->thr_hi, ab);
-        if (rw * 10 > w * 16 + 20) {
-            band++;
-            band_top = v;
-        } else {
-            band = 0;
-            if (low && rw > 0)
-                res[2]++;
-        }
-        if (low)
-            res[3]++;
+        if (rw > 0 && rw * 10 <= w * 16 + 20)
+            res[2]++;
+        res[3]++;
     }
-    if (band > 0 && band <= 2 * w + 2 && gap > 2)
-        res[1] = band_top;      /* a band with no white above it */
+    if (res[1]) {
+        /* a shaded stretch of the post (soft white on most rows of the
+         * next 2 widths) has not ended it; a robot's jersey has */
+        int32_t n = 0, m = 0;
+        for (v = res[0] - 1; v >= 0 && v >= res[0] - 2 * w - 4; v--, m++)
+            if (wg_white(c->img, u, v, c->thr_lo))
+                n++;
+        if (m > 0 && n * 3 >= m * 2)
+            res[1] = 0;
+    }
 }
 
-/* Step of wg_candidate: crossbar beside the top row vt (white on one side
- * only at 1.5, 2.5 and 3.5 widths): the post's side. */
-static fl_side_t wg_side(const wg_ctx_t *c, int32_t u, int32_t vt, int32_t w)
+/* Step of wg_candidate: the crossbar at the top row vt: at 1.5, 2.5 and
+ * 3.5 widths beside the post, soft white at vt and not one width above it
+ * (a bar, not a white background).  Returns 3 for a bar on one side with
+ * no white on the other: the post's side (FL_SIDE_LEFT: the bar to the
+ * right, the left post facing the goal); 0 for white on both sides or a
+ * white background (no answer); -1: no bar (a robot's head or shoulders
+ * reach 2 widths). */
+static int32_t wg_bar(const wg_ctx_t *c, int32_t u, int32_t vt, int32_t w, fl_side_t *side)
 {
-    int32_t k, l = 0, r = 0;
-    for (k = 3; k <= 7; k += 2) {
-        if (wg_white(c->img, u + k * w / 2, vt, c->thr_hi))
-            r++;
-        if (wg_white(c->img, u - k * w / 2, vt, c->thr_hi))
-            l++;
-    }
-    if (r >= 2 && l == 0)
-        return FL_SIDE_LEFT;    /* crossbar to the right: left post facing the goal */
-    if (l >= 2 && r == 0)
-        return FL_SIDE_RIGHT;
-    return FL_SIDE_UNKNOWN;
+    int32_t k, d, n[2] = {0, 0}, bar[2] = {0, 0};
+    *side = FL_SIDE_UNKNOWN;
+    for (d = 0; d < 2; d++)
+        for (k = 3; k <= 7; k += 2) {
+            int32_t uu = u + (d ? k : -k) * w / 2;
+            if (!wg_white(c->img, uu, vt, c->thr_lo))
+                continue;
+            n[d]++;
+            if (!wg_white(c->img, uu, vt - w - 2, c->thr_lo))
+                bar[d]++;
+        }
+    if (n[1] == 3 && bar[1] >= 2 && n[0] <= 1)
+        *side = FL_SIDE_LEFT;
+    else if (n[0] == 3 && bar[0] >= 2 && n[1] <= 1)
+        *side = FL_SIDE_RIGHT;
+    if (*side != FL_SIDE_UNKNOWN)
+        return 3;
+    return (n[0] >= 2 && n[1] >= 2) || n[0] - bar[0] >= 2 || n[1] - bar[1] >= 2 ? 0 : -1;
 }
 
 /* Step of wg_candidate: the lowest row of the post above the goal line
@@ -233,20 +240,79 @@ static bool wg_ground(const wg_ctx_t *c, fl_post_t *p, int32_t u_q4, int32_t v_p
     return p->range_mm > 0;
 }
 
-/* Step of wg_candidate: carpet behind the post beside it (the border of
- * columns 1 width + 2 cells away lies above the bottom row pb). */
+/* Step of wg_candidate: the post stands on the field: the border of the
+ * columns 1 width + 2 cells beside it lies at or above its bottom row pb
+ * (on the SPL field it lies well above: the post hides the carpet strip
+ * behind it; a lab with a narrow border has the feet on the carpet's
+ * edge).  A white thing beyond the carpet stands above that border. */
 static bool wg_notch(const wg_ctx_t *c, int32_t u, int32_t pb, int32_t w)
 {
     const fl_scan_t *s = c->s;
-    int32_t k, ok = 0, cs = s->params.col_step;
+    int32_t k, ok = 0, seen = 0, cs = s->params.col_step;
     for (k = -1; k <= 1; k += 2) {
         int32_t uu = u + k * (w + 2 * cs + 2), ic = uu / cs;
-        if (uu < 0 || ic >= s->cols)
+        if (uu < 0 || ic >= s->cols || s->border_v[ic] >= s->height)
             continue;
-        if (s->border_v[ic] < s->height && s->border_v[ic] <= pb - 1)
+        seen++;
+        if (s->border_v[ic] <= pb + 2 + 2 * s->params.row_step)
             ok++;
     }
-    return ok > 0;
+    return seen > 0 && ok == seen;
+}
+
+/* Step of wg_candidate: the post's width: the median of the soft white
+ * runs (at most lim px each way) on rows pb - 1, pb - 3, pb - 5 (a zero
+ * counts), ends of the lowest non-zero run into lohi; 0 when none. */
+static int32_t wg_width(const wg_ctx_t *c, int32_t u, int32_t pb, int32_t lim, int32_t lohi[2])
+{
+    int32_t wl[3], k, t, found = 0;
+    for (k = 0; k < 3; k++) {
+        int32_t lh[2];
+        wl[k] = wg_hrun(c, u, pb - 1 - 2 * k, lim, c->thr_lo, lh);
+        if (wl[k] > 0 && !found) {
+            found = 1;
+            lohi[0] = lh[0];
+            lohi[1] = lh[1];
+        }
+    }
+    if (wl[0] > wl[1]) { t = wl[0]; wl[0] = wl[1]; wl[1] = t; }
+    if (wl[1] > wl[2]) { t = wl[1]; wl[1] = wl[2]; wl[2] = t; }
+    if (wl[0] > wl[1]) { t = wl[0]; wl[0] = wl[1]; wl[1] = t; }
+    return found ? wl[1] : 0;
+}
+
+/* Step of wg_candidate: the chroma of the carpet below the border of
+ * column u (the darkest of the rows 2, 5 and 9 px down, as wg_column). */
+static int32_t wg_carpet_chroma(const wg_ctx_t *c, int32_t u)
+{
+    const fl_scan_t *s = c->s;
+    int32_t b = s->border_v[u / s->params.col_step], k, best = 256, chroma = 0;
+    for (k = 2; k <= 9; k += k < 5 ? 3 : 4) {
+        int32_t ch, y = b + k < s->height ? wg_luma(c->img, u, b + k, &ch) : 256;
+        if (y < best) {
+            best = y;
+            chroma = ch;
+        }
+    }
+    return chroma;
+}
+
+/* Step of wg_candidate: the lowest row of the post in column u below vb
+ * (1-px gaps bridged): white at the foot's threshold, or grey (a shaded
+ * foot: brighter than the carpet with less than half its chroma). */
+static int32_t wg_foot(const wg_ctx_t *c, int32_t u, int32_t vb, int32_t carpet)
+{
+    int32_t v, gap = 0, foot_v = vb, k = wg_carpet_chroma(c, u);
+    for (v = vb + 1; v < c->img->height; v++) {
+        int32_t ch, y = wg_luma(c->img, u, v, &ch);
+        if ((y >= c->thr_ft && ch <= 48) || (y >= carpet + 8 && ch * 2 < k)) {
+            foot_v = v;
+            gap = 0;
+        } else if (++gap > 1) {
+            break;
+        }
+    }
+    return foot_v;
 }
 
 /* One candidate: white just above the border in image columns u0..u1
@@ -255,8 +321,9 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
 {
     fl_posts_t *out = c->out;
     const fl_camera_t *cam = c->cam;
-    int32_t u, k, v, gap, foot_v, thr_foot, pb, ab[2], wl[3], w, lim, h_exp, w_exp, cl[4], top;
+    int32_t u, k, foot_v, pb, ab[2], w, lim, h_exp, w_exp, cl[4], top;
     int64_t dist;
+    fl_side_t side;
     fl_post_t p;
     out->candidates++;
     wg_thresholds(carpet, &c->thr_hi, &c->thr_lo);
@@ -270,34 +337,30 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
     if (w == 0)
         return;
     u = (ab[0] + ab[1]) / 2;
-    /* down to the lowest white (1-px gaps bridged), then up out of a line */
-    foot_v = vb;
-    gap = 0;
-    thr_foot = carpet + ((255 - carpet) / 8 > 16 ? (255 - carpet) / 8 : 16);
-    for (v = vb + 1; v < c->img->height; v++) {
-        if (wg_white(c->img, u, v, thr_foot)) {
-            foot_v = v;
-            gap = 0;
-        } else if (++gap > 1) {
-            break;
-        }
-    }
+    c->thr_ft = carpet + ((255 - carpet) / 8 > 16 ? (255 - carpet) / 8 : 16);
+    foot_v = wg_foot(c, u, vb, carpet);
     if (foot_v >= c->img->height - 2)
         return;                 /* foot not seen */
-    /* the scanner's border of the foot's column is the foot */
+    /* the scanner's border of the foot's column is the foot (or the far
+     * edge of a goal line under it, about half a width lower) */
     k = c->s->border_v[u / c->s->params.col_step];
-    if (foot_v < k - 4 || foot_v > k + 4) {
+    if (foot_v < k - 4 - w / 2 || foot_v > k + 4) {
         out->rejected_border++;
         return;
     }
+    /* the width right above the foot (where the post stands before the
+     * carpet strip; beyond a thin strip the floor may be white) */
     pb = wg_bottom(c, u, foot_v, vb, w);
     lim = 2 * w + 4;
-    for (k = 0; k < 3; k++)
-        wl[k] = wg_hrun(c, u, pb - 1 - 2 * k, lim, c->thr_lo, ab);
-    w = wg_median3(wl[0], wl[1], wl[2]);
-    if (w <= 0 || wg_hrun(c, u, pb - 1, lim, c->thr_lo, ab) == 0)
+    w = wg_width(c, u, pb, lim, ab);
+    if (w <= 0)
         return;
-    u = (ab[0] + ab[1]) / 2;
+    if (u != (ab[0] + ab[1]) / 2) {
+        /* the first column was off centre (a shaded stripe of a round
+         * post cuts a run): the foot again from the middle */
+        u = (ab[0] + ab[1]) / 2;
+        foot_v = wg_foot(c, u, vb, carpet);
+    }
     memset(&p, 0, sizeof p);
     /* the line beside a post joins its lowest rows; under the post it is
      * hidden (the post stands on its far half), so the lowest white row
@@ -315,28 +378,43 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
         out->rejected_border++;
         return;
     }
-    /* white up to 0.7 of a post's height (or the image top), the lower
-     * part mostly as narrow as the foot */
+    /* the height a post has here */
     dist = wg_dist(cam, p.range_mm, c->post_h / 2);
     h_exp = dist > 0 ? (int32_t)((int64_t)cam->model.focal_q4 * c->post_h / (16 * dist)) : 0;
     wg_climb(c, u, pb, vb, w, h_exp, cl);
-    if ((cl[0] > 1 && (pb - cl[0]) * 10 < h_exp * 7) || cl[2] * 3 < cl[3]) {
+    /* where the white ends inside the image at a post's height (0.4-1.4
+     * of it: the foot's range errs with the body's tilt), a crossbar: it
+     * gives the top and the side, and a white end without one is a robot
+     * (head, shoulders) or clutter; white on both sides (a white
+     * background) asks for 0.85 of the height (a robot is 0.72 of a
+     * post).  Where the white goes on or leaves the image, 0.7 of the
+     * height suffices. */
+    side = FL_SIDE_UNKNOWN;
+    top = -1;
+    k = pb - cl[0];
+    if (cl[1] && cl[0] > 1 && k * 10 >= h_exp * 4 && k * 10 <= h_exp * 14) {
+        int32_t bar = wg_bar(c, u, cl[0] + (w + 1) / 2, w, &side);
+        if (bar < 0 || (bar == 0 && k * 20 < h_exp * 17)) {
+            out->rejected_shape++;
+            return;
+        }
+        if (bar > 0)
+            top = cl[0];
+    } else if (cl[0] > 1 && k * 10 < h_exp * 7) {
         out->rejected_shape++;
         return;
     }
-    /* top: a crossbar band ending the white at the post's height (where
-     * the white just ends, a post in front of a darker band of the room
-     * is as likely) */
-    top = -1;
-    if (cl[1] >= 0 && (pb - cl[1]) * 10 >= h_exp * 6 && (pb - cl[1]) * 10 <= h_exp * 14)
-        top = cl[1];
+    if (cl[2] * 4 < cl[3]) {      /* the lower part as narrow as the foot */
+        out->rejected_shape++;
+        return;
+    }
     p.width_q4 = w * 16;
     p.foot_visible = true;
     p.top_visible = top > 0;
     p.top_u_q4 = u * 16 + 8;
     p.top_v_q4 = top > 0 ? top * 16 : 0;
     p.confidence = 200;
-    p.side = p.top_visible ? wg_side(c, u, top + w / 2, w) : FL_SIDE_UNKNOWN;
+    p.side = side;
     for (k = 0; k < out->n; k++) {
         int32_t d = out->post[k].foot_u_q4 - p.foot_u_q4;
         if ((d < 0 ? -d : d) < p.width_q4 + out->post[k].width_q4)
@@ -351,7 +429,7 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
 
 /* Candidate test of grid column i: white (soft: the foot of a post is
  * often shaded) at 2 of the rows 3, 6, 10 and 16 px above its border
- * against the carpet 2 px below.  Returns the carpet luma (the second
+ * against the carpet 2, 5 or 9 px below (the darkest).  Returns the carpet luma (the second
  * lowest white probe row, above a line beside the foot, into *vb), or -1. */
 static int32_t wg_column(const wg_ctx_t *c, int32_t i, int32_t *vb)
 {
@@ -360,7 +438,14 @@ static int32_t wg_column(const wg_ctx_t *c, int32_t i, int32_t *vb)
     int32_t b = s->border_v[i], u = i * s->params.col_step, ch, carpet, hi, lo, k, n = 0;
     if (b < 4 || b + 2 >= s->height)
         return -1;
+    /* the darkest of 3 rows below the border: a goal line under a post's
+     * foot is no carpet */
     carpet = wg_luma(c->img, u, b + 2, &ch);
+    for (k = 5; k <= 9; k += 4) {
+        int32_t y = b + k < s->height ? wg_luma(c->img, u, b + k, &ch) : 255;
+        if (y < carpet)
+            carpet = y;
+    }
     wg_thresholds(carpet, &hi, &lo);
     *vb = -1;
     for (k = 0; k < 4 && b - probe[k] >= 0; k++)
@@ -369,19 +454,37 @@ static int32_t wg_column(const wg_ctx_t *c, int32_t i, int32_t *vb)
     return n >= 2 ? carpet : -1;
 }
 
-/* A run of candidate grid columns start..last: examined while under the
- * cap, else counted. */
+/* A run of candidate grid columns start..last: each white stretch of a
+ * row just above its probe row vb (two posts, or a post and the goal's
+ * rear frame, may share a run) examined while under the cap, the rest
+ * counted. */
 static void wg_flush(wg_ctx_t *c, int32_t start, int32_t last, int32_t vb, int32_t carpet)
 {
     const fl_scan_t *s = c->s;
-    int32_t cs = s->params.col_step;
-    if (c->out->candidates >= WG_MAX_CAND) {
-        c->out->dropped++;
-        return;
-    }
+    int32_t cs = s->params.col_step, u, u1 = last * cs + cs - 1, a = -1, hi, lo, vs;
     if (vb < 0)
         vb = s->border_v[(start + last) / 2] - 3;
-    wg_candidate(c, start * cs, last * cs, vb, carpet);
+    if (vb < 0)
+        return;
+    wg_thresholds(carpet, &hi, &lo);
+    if (u1 >= c->img->width)
+        u1 = c->img->width - 1;
+    /* the stretches 8 px above the probe row: clear of a goal's ground
+     * frame joining its posts */
+    vs = vb >= 8 ? vb - 8 : vb;
+    for (u = start * cs; u <= u1 + 1; u++) {
+        bool wh = u <= u1 && wg_white(c->img, u, vs, lo);
+        if (wh && a < 0)
+            a = u;
+        if (wh || a < 0)
+            continue;
+        if (c->out->candidates >= WG_MAX_CAND) {
+            c->out->dropped++;
+            return;
+        }
+        wg_candidate(c, a, u - 1, vs, carpet);
+        a = -1;
+    }
 }
 
 int32_t fl_goal_find_white(fl_posts_t *out, const fl_scan_t *scan,
@@ -408,7 +511,7 @@ int32_t fl_goal_find_white(fl_posts_t *out, const fl_scan_t *scan,
         int32_t carpet = i < scan->cols ? wg_column(&ctx, i, &vb) : -1;
         /* a post's columns share its foot row: a jump of the border ends
          * a run (a post in front of a bright floor band) */
-        if (carpet >= 0 && start >= 0 && i - last == 1 &&
+        if (carpet >= 0 && start >= 0 &&
             (scan->border_v[i] - scan->border_v[last] > 3 ||
              scan->border_v[last] - scan->border_v[i] > 3)) {
             wg_flush(&ctx, start, last, run_vb, csum / cn);
