@@ -3,35 +3,29 @@
  * a white upright standing on the carpet in front of the field border;
  * see goal.h (fl_goal_find_white).
  *
- * Algorithm.  Per grid column: is the pixel 2 px above the border white
- * against the carpet 2 px below it (brightness contrast, low chroma)?  A
- * post stands 700 mm in front of the carpet's edge, so it hides the carpet
- * strip behind it and the scanner's border of its columns is its foot.
- * Runs of such columns are candidates.  Per candidate: the white column
- * followed down (through the goal line under the post: rows much wider than
- * the post) to the foot; the width above the foot against the width a
- * post of the field's diameter has at the foot's range; the notch (the
- * border of the columns beside the post lies above the foot: carpet behind
- * the post, so it stands on the carpet); the climb up the column (white up
- * to at least 0.7 of the height a post has at that range, or the image top:
- * robots have grey joints, a jersey and stop at 0.6 m, the ball and lines
- * are flat); the top where the white ends or a crossbar band begins; the
- * side from the crossbar (white beside the top on one side only).
+ * Algorithm (the rules and their reasons: goal.h).  Per grid column: white
+ * just above the border against the carpet below it.  Runs of such
+ * columns (split where the border jumps), and within a run each white
+ * stretch of a row above it, are candidates.  Per candidate: the foot (the
+ * column walked down through a shaded foot), the scanner's border there,
+ * the width against the width of a post at the foot's range, the carpet
+ * beside it at or above the foot, the climb up the column and, where the
+ * white ends, the crossbar beside it (the top and the side).
  *
  * White relative to the field: luma >= carpet + max(40, 2/5 of the
- * headroom 255 - carpet) for the climb and the candidate test (strict),
- * carpet + max(20, 1/5 of it) for widths (soft: the shaded edges of a
- * round post), chroma |Cb - 128| + |Cr - 128| <= 48 in both.  The carpet
- * luma is measured under the candidate's border, so shade and sunlight
- * move the threshold with the field.
+ * headroom 255 - carpet) for the climb (strict), carpet + max(20, 1/5 of
+ * it) for candidates and widths (soft: the shaded edges of a round post),
+ * chroma |Cb - 128| + |Cr - 128| <= 48 in both.  The carpet luma is
+ * measured under the candidate's border, so shade and sunlight move the
+ * threshold with the field.
  *
- * Invariant: every stored post passed the width, notch and height checks;
+ * Invariant: every stored post passed the foot, width, carpet and height
+ * checks;
  * no two stored posts overlap; n <= FL_GOAL_MAX_POSTS.
  * Memory: the caller's fl_posts_t; stack < 300 B.
- * Cost: 2 pixel reads per grid column; at most WG_MAX_CAND candidates,
- * each a column walk (at most the image height down and 1.6 post heights
- * up), a horizontal run (at most 2 widths + 4 px each way) on every 2nd
- * row of the climb and a few probes.
+ * Cost: see goal.h (fl_goal_find_white): per grid column 7 pixel reads,
+ * then at most WG_MAX_CAND candidates, each bounded by the expected width
+ * and height of a post at its foot's range.
  *
  * Scaling and overflow.  Pixels Q4 (< 2^17); ground mm < 2^15; the
  * distance from the camera sqrt(r^2 + h^2) in int64; expected sizes
@@ -93,11 +87,65 @@ static int32_t wg_luma(const fl_image_t *img, int32_t u, int32_t v, int32_t *chr
     return y;
 }
 
-/* White at luma threshold thr (and low chroma). */
+/* Luma only (0 outside the image): the cheap test most reads end at. */
+static int32_t wg_y(const fl_image_t *img, int32_t u, int32_t v)
+{
+    const uint8_t *p;
+    if (u < 0 || v < 0 || u >= img->width || v >= img->height)
+        return 0;
+    p = img->plane[0] + (size_t)v * (size_t)img->stride[0];
+    switch (img->format) {
+    case FL_FMT_RGB888:
+        p += 3u * (size_t)u;
+        return (19595 * p[0] + 38470 * p[1] + 7471 * p[2] + 32768) >> 16;
+    case FL_FMT_YUYV422:
+        return p[4u * (size_t)(u >> 1) + (size_t)((u & 1) * 2)];
+    case FL_FMT_YCBCR_PLANAR:
+        return p[u];
+    default:
+        return 0;
+    }
+}
+
+/* White at luma threshold thr (and low chroma): the chroma only for
+ * pixels bright enough (most reads end at the luma). */
 static bool wg_white(const fl_image_t *img, int32_t u, int32_t v, int32_t thr)
 {
-    int32_t c, y = wg_luma(img, u, v, &c);
-    return y >= thr && c <= 48;
+    const uint8_t *p;
+    int32_t cb, cr;
+    if (u < 0 || v < 0 || u >= img->width || v >= img->height)
+        return false;
+    p = img->plane[0] + (size_t)v * (size_t)img->stride[0];
+    switch (img->format) {
+    case FL_FMT_RGB888: {
+        int32_t r, g, b;
+        p += 3u * (size_t)u;
+        r = p[0];
+        g = p[1];
+        b = p[2];
+        if (((19595 * r + 38470 * g + 7471 * b + 32768) >> 16) < thr)
+            return false;
+        cb = ((-11058 * r - 21710 * g + 32768 * b + (128 << 16) + 32768) >> 16) - 128;
+        cr = ((32768 * r - 27439 * g - 5329 * b + (128 << 16) + 32768) >> 16) - 128;
+        break;
+    }
+    case FL_FMT_YUYV422:
+        p += 4u * (size_t)(u >> 1);
+        if (p[(u & 1) * 2] < thr)
+            return false;
+        cb = p[1] - 128;
+        cr = p[3] - 128;
+        break;
+    case FL_FMT_YCBCR_PLANAR:
+        if (p[u] < thr)
+            return false;
+        cb = img->plane[1][(size_t)v * (size_t)img->stride[1] + (size_t)u] - 128;
+        cr = img->plane[2][(size_t)v * (size_t)img->stride[2] + (size_t)u] - 128;
+        break;
+    default:
+        return false;
+    }
+    return (cb < 0 ? -cb : cb) + (cr < 0 ? -cr : cr) <= 48;
 }
 
 /* Strict and soft thresholds over a carpet luma. */
@@ -218,7 +266,7 @@ static int32_t wg_bar(const wg_ctx_t *c, int32_t u, int32_t vt, int32_t w, fl_si
 static int32_t wg_bottom(const wg_ctx_t *c, int32_t u, int32_t foot_v, int32_t vb,
                          int32_t w0)
 {
-    int32_t v, ab[2], lim = 2 * w0 + 4;
+    int32_t v, ab[2], lim = (w0 * 16 + 20) / 10 + 1;  /* enough to tell "wider" */
     for (v = foot_v; v > vb; v--) {
         int32_t rw = wg_hrun(c, u, v, lim, c->thr_lo, ab);
         if (rw > 0 && rw * 10 <= w0 * 16 + 20)
@@ -298,12 +346,18 @@ static int32_t wg_carpet_chroma(const wg_ctx_t *c, int32_t u)
 }
 
 /* Step of wg_candidate: the lowest row of the post in column u below vb
- * (1-px gaps bridged): white at the foot's threshold, or grey (a shaded
- * foot: brighter than the carpet with less than half its chroma). */
+ * (1-px gaps bridged; at most 6 px below the column's border): white at
+ * the foot's threshold, or grey (a shaded foot: brighter than the carpet
+ * with less than half its chroma). */
 static int32_t wg_foot(const wg_ctx_t *c, int32_t u, int32_t vb, int32_t carpet)
 {
     int32_t v, gap = 0, foot_v = vb, k = wg_carpet_chroma(c, u);
-    for (v = vb + 1; v < c->img->height; v++) {
+    /* the foot lies at most 4 px below the border of its column (checked
+     * by the caller): the walk ends past that */
+    int32_t vmax = c->s->border_v[u / c->s->params.col_step] + 6;
+    if (vmax > c->img->height)
+        vmax = c->img->height;
+    for (v = vb + 1; v < vmax; v++) {
         int32_t ch, y = wg_luma(c->img, u, v, &ch);
         if ((y >= c->thr_ft && ch <= 48) || (y >= carpet + 8 && ch * 2 < k)) {
             foot_v = v;
@@ -348,10 +402,17 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
         out->rejected_border++;
         return;
     }
+    /* the widest a post can be at the foot's range (runs are cut there:
+     * a white wall costs no more than a post) */
+    memset(&p, 0, sizeof p);
+    if (!wg_ground(c, &p, u * 16 + 8, foot_v))
+        return;
+    dist = wg_dist(cam, p.range_mm, 0);
+    w_exp = dist > 0 ? (int32_t)((int64_t)cam->model.focal_q4 * c->diam / (16 * dist)) : 0;
+    lim = (w_exp * 17 + 20) / 10 + 2;
     /* the width right above the foot (where the post stands before the
      * carpet strip; beyond a thin strip the floor may be white) */
-    pb = wg_bottom(c, u, foot_v, vb, w);
-    lim = 2 * w + 4;
+    pb = wg_bottom(c, u, foot_v, vb, w < lim ? w : lim);
     w = wg_width(c, u, pb, lim, ab);
     if (w <= 0)
         return;
@@ -435,14 +496,14 @@ static int32_t wg_column(const wg_ctx_t *c, int32_t i, int32_t *vb)
 {
     static const int32_t probe[4] = {3, 6, 10, 16};
     const fl_scan_t *s = c->s;
-    int32_t b = s->border_v[i], u = i * s->params.col_step, ch, carpet, hi, lo, k, n = 0;
+    int32_t b = s->border_v[i], u = i * s->params.col_step, carpet, hi, lo, k, n = 0;
     if (b < 4 || b + 2 >= s->height)
         return -1;
     /* the darkest of 3 rows below the border: a goal line under a post's
      * foot is no carpet */
-    carpet = wg_luma(c->img, u, b + 2, &ch);
+    carpet = wg_y(c->img, u, b + 2);
     for (k = 5; k <= 9; k += 4) {
-        int32_t y = b + k < s->height ? wg_luma(c->img, u, b + k, &ch) : 255;
+        int32_t y = b + k < s->height ? wg_y(c->img, u, b + k) : 255;
         if (y < carpet)
             carpet = y;
     }
@@ -482,7 +543,10 @@ static void wg_flush(wg_ctx_t *c, int32_t start, int32_t last, int32_t vb, int32
             c->out->dropped++;
             return;
         }
-        wg_candidate(c, a, u - 1, vs, carpet);
+        if ((u - a) * 6 <= c->img->width)
+            wg_candidate(c, a, u - 1, vs, carpet);
+        else
+            c->out->rejected_shape++;   /* a white wall or floor: too wide */
         a = -1;
     }
 }
