@@ -262,15 +262,19 @@ static int32_t wg_bar(const wg_ctx_t *c, int32_t u, int32_t vt, int32_t w, fl_si
 /* Step of wg_candidate: the lowest row of the post above the goal line
  * beside its foot (which joins its lowest rows).  From the white's lowest
  * row foot_v up to vb: rows wider than 1.6 w0 + 2 (w0: the post's width
- * at vb) are the line.  Returns that row (vb when every row is wide). */
+ * at vb) are the line (counted into *nline).  Returns that row (vb when
+ * no row is narrow). */
 static int32_t wg_bottom(const wg_ctx_t *c, int32_t u, int32_t foot_v, int32_t vb,
-                         int32_t w0)
+                         int32_t w0, int32_t *nline)
 {
     int32_t v, ab[2], lim = (w0 * 16 + 20) / 10 + 1;  /* enough to tell "wider" */
+    *nline = 0;
     for (v = foot_v; v > vb; v--) {
         int32_t rw = wg_hrun(c, u, v, lim, c->thr_lo, ab);
         if (rw > 0 && rw * 10 <= w0 * 16 + 20)
             return v;
+        if (rw > 0)
+            (*nline)++;
     }
     return vb;
 }
@@ -308,25 +312,29 @@ static bool wg_notch(const wg_ctx_t *c, int32_t u, int32_t pb, int32_t w)
     return seen > 0 && ok == seen;
 }
 
-/* Step of wg_candidate: the post's width: the median of the soft white
- * runs (at most lim px each way) on rows pb - 1, pb - 3, pb - 5 (a zero
- * counts), ends of the lowest non-zero run into lohi; 0 when none. */
-static int32_t wg_width(const wg_ctx_t *c, int32_t u, int32_t pb, int32_t lim, int32_t lohi[2])
+/* Step of wg_candidate: the post's width: of the soft white runs (at
+ * most lim px each way) on rows pb - 1, pb - 3, pb - 5 and at 10, 20 and
+ * 30 % of the expected height h_exp above pb, the one nearest the
+ * expected width w_exp (a goal's ground frame, a net or a banner beside a
+ * post widen some rows, never all); its ends into lohi; 0 when none. */
+static int32_t wg_width(const wg_ctx_t *c, int32_t u, int32_t pb, int32_t lim, int32_t w_exp,
+                        int32_t h_exp, int32_t lohi[2])
 {
-    int32_t wl[3], k, t, found = 0;
-    for (k = 0; k < 3; k++) {
-        int32_t lh[2];
-        wl[k] = wg_hrun(c, u, pb - 1 - 2 * k, lim, c->thr_lo, lh);
-        if (wl[k] > 0 && !found) {
-            found = 1;
+    int32_t k, best = 0, bd = 0;
+    for (k = 0; k < 6; k++) {
+        int32_t lh[2], d, r = k < 3 ? pb - 1 - 2 * k : pb - h_exp * (k - 2) / 10;
+        int32_t rw = wg_hrun(c, u, r, lim, c->thr_lo, lh);
+        if (rw <= 0)
+            continue;
+        d = rw > w_exp ? rw - w_exp : w_exp - rw;
+        if (best == 0 || d < bd) {
+            best = rw;
+            bd = d;
             lohi[0] = lh[0];
             lohi[1] = lh[1];
         }
     }
-    if (wl[0] > wl[1]) { t = wl[0]; wl[0] = wl[1]; wl[1] = t; }
-    if (wl[1] > wl[2]) { t = wl[1]; wl[1] = wl[2]; wl[2] = t; }
-    if (wl[0] > wl[1]) { t = wl[0]; wl[0] = wl[1]; wl[1] = t; }
-    return found ? wl[1] : 0;
+    return best;
 }
 
 /* Step of wg_candidate: the chroma of the carpet below the border of
@@ -375,7 +383,7 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
 {
     fl_posts_t *out = c->out;
     const fl_camera_t *cam = c->cam;
-    int32_t u, k, foot_v, pb, ab[2], w, lim, h_exp, w_exp, cl[4], top;
+    int32_t u, k, foot_v, pb, nline, ab[2], w, lim, h_exp, w_exp, cl[4], top;
     int64_t dist;
     fl_side_t side;
     fl_post_t p;
@@ -410,10 +418,11 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
     dist = wg_dist(cam, p.range_mm, 0);
     w_exp = dist > 0 ? (int32_t)((int64_t)cam->model.focal_q4 * c->diam / (16 * dist)) : 0;
     lim = (w_exp * 17 + 20) / 10 + 2;
-    /* the width right above the foot (where the post stands before the
-     * carpet strip; beyond a thin strip the floor may be white) */
-    pb = wg_bottom(c, u, foot_v, vb, w < lim ? w : lim);
-    w = wg_width(c, u, pb, lim, ab);
+    dist = wg_dist(cam, p.range_mm, c->post_h / 2);
+    h_exp = dist > 0 ? (int32_t)((int64_t)cam->model.focal_q4 * c->post_h / (16 * dist)) : 0;
+    /* the width above the foot */
+    pb = wg_bottom(c, u, foot_v, vb, w < lim ? w : lim, &nline);
+    w = wg_width(c, u, pb, lim, w_exp, h_exp, ab);
     if (w <= 0)
         return;
     if (u != (ab[0] + ab[1]) / 2) {
@@ -423,10 +432,12 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
         foot_v = wg_foot(c, u, vb, carpet);
     }
     memset(&p, 0, sizeof p);
-    /* the line beside a post joins its lowest rows; under the post it is
-     * hidden (the post stands on its far half), so the lowest white row
-     * in the column is the foot */
-    if (!wg_ground(c, &p, (ab[0] + ab[1]) * 8 + 8, foot_v))
+    /* the lowest row in the column is the foot; but where a goal line
+     * shows under the post (every row below its lowest narrow row pb is
+     * wide: a dark, shaded foot is not), the post meets the field at the
+     * line's far edge */
+    k = nline >= 2 && nline >= foot_v - pb ? pb + 1 : foot_v;
+    if (!wg_ground(c, &p, (ab[0] + ab[1]) * 8 + 8, k))
         return;
     /* the width a post of the field's diameter has at this range */
     dist = wg_dist(cam, p.range_mm, 0);
@@ -455,7 +466,7 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
     k = pb - cl[0];
     if (cl[1] && cl[0] > 1 && k * 10 >= h_exp * 4 && k * 10 <= h_exp * 14) {
         int32_t bar = wg_bar(c, u, cl[0] + (w + 1) / 2, w, &side);
-        if (bar < 0 || (bar == 0 && k * 20 < h_exp * 17)) {
+        if (bar < 0 || (bar == 0 && k * 10 < h_exp * 8)) {
             out->rejected_shape++;
             return;
         }
