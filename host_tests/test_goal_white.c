@@ -8,6 +8,7 @@
  *   - no post from robots (alone in front of the border, or around the
  *     circle with the ball: only the far goal's posts there) nor from a
  *     near line seen end-on;
+ *   - a drawn single post: the crossbar to one side gives its side;
  *   - bad input: NULL camera or scan, no posts.
  */
 #include "test.h"
@@ -135,6 +136,65 @@ static void test_no_false_posts(void)
     }
 }
 
+/* A drawn post: a grey room above row 100, carpet below, one white post
+ * 100 mm wide and 800 mm tall at 2.5 m ahead (sizes through the camera)
+ * with a crossbar to one side (dir +1 right, -1 left) and dark above it.
+ * Returns the side found for the single post, or -1. */
+static int gw_drawn(int dir)
+{
+    static uint8_t rgb[320 * 240 * 3];
+    const fl_camera_model_t *m = fl_camera_model_find("nao6-top-320");
+    fl_camera_pose_t pose;
+    fl_point_t g = {2500, 0};
+    fl_image_t img;
+    int32_t fu, fv, u, v, w, h, k;
+    if (!m || !G)
+        return -1;
+    memset(&pose, 0, sizeof pose);
+    pose.neck_height_mm = m->default_neck_height_mm;
+    pose.pitch_offset = m->default_pitch_offset;
+    pose.head_pitch = fl_angle_from_urad(100000);
+    if (fl_camera_init(&G->cam, m, &pose) != FL_OK ||
+        !fl_camera_ground_to_pixel(&G->cam, g, &fu, &fv))
+        return -1;
+    fu /= 16;
+    fv /= 16;
+    /* about f d / r: a width of 100 mm and a height of 800 mm at 2.5 m */
+    w = G->cam.model.focal_q4 * 100 / (16 * 2500);
+    h = G->cam.model.focal_q4 * 800 / (16 * 2500);
+    for (v = 0; v < 240; v++)
+        for (u = 0; u < 320; u++) {
+            uint8_t *p = rgb + 3 * (v * 320 + u);
+            bool post = u >= fu - w / 2 && u < fu - w / 2 + w && v <= fv && v > fv - h;
+            bool bar = v <= fv - h + w && v > fv - h &&
+                       (dir > 0 ? u >= fu && u < fu + 6 * w : u <= fu && u > fu - 6 * w);
+            if (post || bar)
+                p[0] = p[1] = p[2] = 235;
+            else if (v > fv - 12)
+                p[0] = 60, p[1] = 140, p[2] = 60;     /* carpet: 12 px strip behind */
+            else
+                p[0] = p[1] = p[2] = 70;              /* dark room */
+        }
+    fl_image_init_packed(&img, FL_FMT_RGB888, rgb, 320, 240, 320 * 3);
+    fl_vision_frame(&G->vis, &G->colors, &img, &G->cam, fl_field_find("spl2020"), &G->obs);
+    k = G->vis.posts.n;
+    if (k != 1)
+        return -1;
+    return (int)G->vis.posts.post[0].side;
+}
+
+/* The crossbar decides the side of a single post: bar to the right, the
+ * left post (facing the goal); to the left, the right post. */
+static void test_crossbar_side(void)
+{
+    CHECK(gw_run("spl2020_goal_both", "ppm") == 0);   /* tables and vision */
+    if (!G)
+        return;
+    CHECK_EQ(gw_drawn(1), (int)FL_SIDE_LEFT);
+    CHECK(G->vis.posts.n == 1 && G->vis.posts.post[0].top_visible);
+    CHECK_EQ(gw_drawn(-1), (int)FL_SIDE_RIGHT);
+}
+
 static void test_bad_input(void)
 {
     fl_posts_t out;
@@ -150,6 +210,7 @@ void suite_goal_white(void)
 {
     t_run("goal_white.goals", test_goals);
     t_run("goal_white.no_false_posts", test_no_false_posts);
+    t_run("goal_white.crossbar_side", test_crossbar_side);
     t_run("goal_white.bad_input", test_bad_input);
     free(G);
     G = NULL;

@@ -22,7 +22,8 @@
  * Invariant: every stored post passed the foot, width, carpet and height
  * checks;
  * no two stored posts overlap; n <= FL_GOAL_MAX_POSTS.
- * Memory: the caller's fl_posts_t; stack < 300 B.
+ * Memory: the caller's fl_posts_t; stack 696 B at the deepest (`make stack`:
+ * through the camera's foot projection).
  * Cost: see goal.h (fl_goal_find_white): per grid column 7 pixel reads,
  * then at most WG_MAX_CAND candidates, each bounded by the expected width
  * and height of a post at its foot's range.
