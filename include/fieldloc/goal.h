@@ -1,6 +1,7 @@
 /*
- * fieldloc/goal.h - yellow goal posts (seed 000, section 3.8): foot, top,
- * width, side and ground distance.
+ * fieldloc/goal.h - goal posts (seed 000, section 3.8): foot, top, width,
+ * side and ground distance; yellow posts (fl_goal_find, below) and white
+ * posts (fl_goal_find_white, further below).
  *
  * Method.  The scanner (scan.h) counts yellow cells per grid column
  * (yellow_cols, the post's run above the border included when it touches
@@ -71,7 +72,8 @@ typedef struct {
 typedef struct {
     int32_t n;
     fl_post_t post[FL_GOAL_MAX_POSTS];
-    int32_t dropped;              /* posts beyond FL_GOAL_MAX_POSTS */
+    int32_t dropped;              /* posts beyond FL_GOAL_MAX_POSTS (white:
+                                     and candidates beyond the cap) */
     int32_t candidates;           /* column runs examined */
     int32_t rejected_border;      /* foot above the field border */
     int32_t rejected_shape;       /* not a vertical bar */
@@ -84,6 +86,59 @@ typedef struct {
 int32_t fl_goal_find(fl_posts_t *out, const fl_scan_t *scan,
                      const fl_image_t *img, const fl_color_table_t *colors,
                      const fl_camera_t *camera, const fl_field_t *field);
+
+/* White posts (fields whose goals are white, spl2020): a white upright
+ * standing on the field.  Candidates: grid columns white (soft, below) at
+ * 2 of the rows 3, 6, 10, 16 px above the border against the carpet below
+ * it (the darkest of 3 rows 2-9 px down: not a goal line); runs of them,
+ * ended where the border jumps by more than 3 px (a post's columns share
+ * its foot row: on the SPL field the post hides the carpet strip behind
+ * it, so the scanner's border there is its foot); each white stretch of a
+ * row 8 px above a run's probe row (two posts, or a post and the goal's
+ * rear frame, may share a run) is a candidate.  Its foot: the lowest row
+ * of its middle column that is white or grey (a shaded foot: brighter
+ * than the carpet, under half its chroma); where a goal line shows under
+ * the post (every row below its lowest narrow row is wide), the line's
+ * far edge.  A candidate is a post when
+ *  - its foot is within 4 px of its column's border (up to half a width
+ *    more above it: a goal line under the foot) and the border of the
+ *    columns beside it lies at or above the foot (a white thing beyond
+ *    the carpet stands above the border);
+ *  - its width fits diameter * f / distance at the foot's range (0.5x - 2
+ *    px .. 1.7x + 2): of the runs on 3 rows above the foot and at 10, 20
+ *    and 30 % of a post's height, the one nearest that (a goal's ground
+ *    frame, a net or a banner widen some rows, never all);
+ *  - the lower 40 % of the height the camera predicts for a post at that
+ *    range is as narrow on 1 row of 4, and its white climbs (strict; soft
+ *    over a shaded stretch) either out of the image or on past 1.6 of that
+ *    height (0.7 of it needed), or ends at 0.4-1.4 of it under a crossbar
+ *    (the foot's range errs with the body's tilt) or at 0.8 of it with
+ *    white on both sides (a white background).  A white end with no bar
+ *    beside it is a robot (jersey, head: 0.72 of a post) or clutter; the
+ *    ball and lines are flat.
+ * White is relative to the carpet under the candidate: luma >= carpet +
+ * max(40, (255 - carpet) * 2 / 5) (strict) or + max(20, 1/5 of that)
+ * (soft: candidates, widths), chroma |Cb - 128| + |Cr - 128| <= 48.
+ * Crossbar: at 1.5, 2.5 and 3.5 widths beside the end's row (+ half a
+ * width), soft white there and not one width above it, on one side only
+ * (a robot's shoulders reach 2 widths).  It gives the top (the end) and
+ * the side: to the right, the left post facing the goal.  Else the top is
+ * unknown and two posts take their sides from their order in the image.
+ * Needs the camera (NULL: no posts).
+ * Cost: 7 pixel reads per grid column (luma only, the chroma of bright
+ * ones), then at most 8 * FL_GOAL_MAX_POSTS candidates (the rest counted
+ * in dropped; white stretches wider than 1/6 of the image are rejected
+ * unexamined), each: a run across its stretch, two foot walks (at most
+ * to 6 px below the border), runs cut at 1.7 expected widths + 2 px each
+ * way on the rows from the foot to the probe row and on 6 rows, a climb
+ * (at most 1.6 post heights + 2 widths, a run of at most 2 widths + 4 px
+ * each way on every 2nd row of its lower 40 %) and 12 probes.  Measured
+ * (callgrind): 0.34 M instructions on a 320x240 frame with a goal, 0.03-
+ * 0.2 M on the noise frames of `make bench`, 0.5-0.9 M on real 640x480
+ * frames.  Returns n. */
+int32_t fl_goal_find_white(fl_posts_t *out, const fl_scan_t *scan,
+                           const fl_image_t *img, const fl_camera_t *camera,
+                           const fl_field_t *field);
 
 /* Color class of one image pixel through the tables (RGB888: the RGB
  * table; YUYV/planar: the YCbCr table).  OTHER outside the image. */

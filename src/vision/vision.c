@@ -194,8 +194,12 @@ int32_t fl_vision_frame(fl_vision_t *v, const fl_color_table_t *colors,
     if (v->params.circle)
         fl_crossings_add_circle(&v->crossings, &v->circle, &v->lines, &v->scan,
                                 camera, field);
-    if (v->params.posts)
-        fl_goal_find(&v->posts, &v->scan, img, colors, camera, field);
+    if (v->params.posts) {
+        if (field->goal_color[0] == FL_COLOR_WHITE)
+            fl_goal_find_white(&v->posts, &v->scan, img, camera, field);
+        else
+            fl_goal_find(&v->posts, &v->scan, img, colors, camera, field);
+    }
 
     /* observations: posts, circle, crossings by confidence */
     for (i = 0; i < v->posts.n; i++) {

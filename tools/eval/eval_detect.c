@@ -305,9 +305,11 @@ int evd_fixtures(det_ctx_t *ctx, const char *dir, double max_range, int verbose,
             tru[nt].v = f->v;
             tru[nt].range_mm = f->range_mm;
             tru[nt].required = !f->occluded && f->range_mm <= max_range;
-            /* posts: only the yellow goals are detected */
+            /* posts: the yellow goals and, where the goals are white,
+             * the white ones are detected (coloured aibo goals are not) */
             if ((k == 'G' || k == 'U') && f->landmark >= 0 &&
-                field->landmarks[f->landmark].color != FL_COLOR_YELLOW)
+                field->landmarks[f->landmark].color != FL_COLOR_YELLOW &&
+                field->landmarks[f->landmark].color != FL_COLOR_WHITE)
                 tru[nt].required = 0;
             nt++;
         }

@@ -174,6 +174,18 @@ static const fixture_t fixtures[] = {
     {"spl2020_bright_jpeg", S20, "nao6-top-320", "rgb", 2000, 0, 0, 50000, 0, 450, 306,
      "light 150 -30 0 1\njpeg 2",
      "white goal, bright with a ramp and JPEG blocks"},
+    {"spl2020_robot_border", S20, "nao6-top-320", "rgb", 1500, 1500, 52000, 50000, 0, 450, 307,
+     "other 3000 3400 -16384 blue",
+     "a robot standing alone between the touchline and the border: no post"},
+    {"spl2020_line_end_on", S20, "nao6-top-320", "rgb", 0, 1200, 90000, 150000, 0, 450, 308, "",
+     "the halfway line end-on up to the touchline: no post"},
+    {"spl2020_goal_far", S20, "nao6-top-320", "yuyv", 0, 300, 0, 0, 0, 450, 309, "",
+     "white goal at 4.5 m"},
+    {"spl2020_goal_one_post", S20, "nao6-top-320", "rgb", 3000, 1600, -30000, 50000, 0, 450, 310, "",
+     "one white post (the left one) at 1.7 m"},
+    {"spl2020_goal_robots", S20, "nao6-top-320", "rgb", 2000, 300, 0, 50000, 0, 450, 311,
+     "other 4200 0 -32768 red\nother 3400 -1300 16384 blue",
+     "white goal with a goalkeeper between the posts and a robot beside"},
 
     /* ---- aibo2004: AIBO ERS-7 camera, colored goals and beacons ---- */
     {"aibo2004_goal_yellow", A04, "aibo-ers7", "rgb", 900, 0, 0, 50000, 0, 160, 401, "",
