@@ -95,6 +95,20 @@ static const char *const det_colors_help[][2] = {
     {"adapt_max_hue",
      "\n# largest hue re-centring of green and yellow, hue units (0: never).\n"
      "# 0..30\n"},
+    {"field_auto",
+     "\n# 1: the boxes above are relative to the carpet below (field_hue,\n"
+     "# field_val, green_sat_ref) and follow it frame by frame; what\n"
+     "# `fieldloc calibrate-colors` writes.  0: fixed boxes.  0..1\n"},
+    {"field_hue", "# carpet hue the boxes were made for.  0..179\n"},
+    {"field_val", "# carpet median V (brightness) they were made for.  1..255\n"},
+    {"auto_margin",
+     "# hue units added on each side of the measured carpet hue spread when\n"
+     "# the boxes are derived from a frame (--colors auto).  0..30\n"},
+    {"auto_shadow_pct",
+     "# green V_LO as % of the carpet's darkest V (hard shadows).  10..100\n"},
+    {"auto_yellow",
+     "# 1: yellow goals (yellow box kept clear of the carpet hue); 0: white\n"
+     "# goals, no yellow class (with field_auto 1).  0..1\n"},
 };
 
 size_t det_colors_text(const fl_color_params_t *p, char *buf, size_t cap)
