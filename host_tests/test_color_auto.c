@@ -158,26 +158,20 @@ static void test_hue_rotated(void)
     }
 }
 
-/* Sunlit (paler, brighter, a little more yellow) and shaded (darker)
- * patches of one carpet, on a yellow-goal field: all three green, none
- * yellow; a white line on the shaded part stays white. */
-static void test_sun_shade(void)
+/* One carpet in three lights (nominal, hard shadow, sunlit: paler,
+ * brighter, a little more yellow) over a wall; the estimate of the image
+ * (no camera: the lower half) into *t with auto_yellow as given. */
+static void sun_shade_table(const double carpet[3][3], int auto_yellow, fl_color_table_t *t,
+                            fl_color_params_t *p)
 {
-    static const double carpet[3][3] = {/* h, s, v */
-                                        {42, 150, 120},   /* physar-like, nominal */
-                                        {42, 150, 45},    /* hard shadow */
-                                        {35, 95, 235}};   /* sunlit */
     enum { W = 96, H = 64 };
     static uint8_t px[W * H * 3];
-    static fl_color_table_t t;
     static fl_color_estimate_t e;
     fl_image_t img;
-    fl_color_params_t p;
-    int u, v, k;
-    uint8_t rgb[3];
+    int u, v;
     for (v = 0; v < H; v++)
         for (u = 0; u < W; u++) {
-            k = u * 3 / W;
+            int k = u * 3 / W;
             if (v < H / 2)
                 hsv_to_rgb(110, 40, 90, px + 3 * (v * W + u));   /* wall, above */
             else
@@ -185,36 +179,53 @@ static void test_sun_shade(void)
         }
     CHECK_EQ(fl_image_init_packed(&img, FL_FMT_RGB888, px, W, H, W * 3), FL_OK);
     CHECK_EQ(fl_color_estimate(&img, NULL, &e), FL_OK);
-    fl_color_params_default(&p);
-    p.auto_yellow = 1;
-    CHECK_EQ(fl_color_auto_params(&e, &p), FL_OK);
-    CHECK_EQ(fl_color_init(&t, &p), FL_OK);
-    t_info("sun/shade: carpet hue %d (%d..%d) S p5 %d med %d V p2 %d; green %d..%d S >= %d "
-           "V >= %d, yellow %d..%d", e.hue, e.hue_lo, e.hue_hi, e.s_p5, e.s_med, e.v_p2,
-           p.green.h_lo, p.green.h_hi, p.green.s_lo, p.green.v_lo, p.yellow.h_lo, p.yellow.h_hi);
+    fl_color_params_default(p);
+    p->auto_yellow = (uint8_t)auto_yellow;
+    CHECK_EQ(fl_color_auto_params(&e, p), FL_OK);
+    CHECK_EQ(fl_color_init(t, p), FL_OK);
+    t_info("carpet hue %d (%d..%d) S p5 %d med %d V p2 %d; green %d..%d S >= %d V >= %d, "
+           "yellow %s %d..%d", e.hue, e.hue_lo, e.hue_hi, e.s_p5, e.s_med, e.v_p2, p->green.h_lo,
+           p->green.h_hi, p->green.s_lo, p->green.v_lo, t->yellow_off ? "off" : "on",
+           p->yellow.h_lo, p->yellow.h_hi);
+}
+
+/* Sunlit and shaded carpet are green and never yellow: a UvA-like carpet
+ * on a yellow-goal field (the posts stay yellow), a physar-like yellowish
+ * carpet on a white-goal field (no yellow class; the 2013 boxes call its
+ * sunlit part yellow); a grey line in the shade stays white. */
+static void test_sun_shade(void)
+{
+    static const double uva[3][3] = {{58, 120, 130}, {58, 120, 45}, {52, 70, 235}};
+    static const double physar[3][3] = {{42, 150, 120}, {42, 150, 45}, {35, 95, 235}};
+    static fl_color_table_t t;
+    fl_color_params_t p;
+    uint8_t rgb[3];
+    int k;
+    sun_shade_table(uva, 1, &t, &p);
     CHECK(!t.yellow_off);
     for (k = 0; k < 3; k++) {
-        hsv_to_rgb(carpet[k][0], carpet[k][1], carpet[k][2], rgb);
+        hsv_to_rgb(uva[k][0], uva[k][1], uva[k][2], rgb);
         CHECK_EQ(fl_color_class_rgb(&t, rgb[0], rgb[1], rgb[2]), FL_CLASS_GREEN);
         CHECK_EQ(fl_color_class_rgb_exact(&t, rgb[0], rgb[1], rgb[2]), FL_CLASS_GREEN);
     }
-    /* a goal post (hue 28, saturated) is still yellow on this field */
-    hsv_to_rgb(28, 200, 200, rgb);
+    hsv_to_rgb(28, 200, 200, rgb);   /* a yellow post */
     CHECK_EQ(fl_color_class_rgb(&t, rgb[0], rgb[1], rgb[2]), FL_CLASS_YELLOW);
-    /* a line in the shade: grey, brighter than the shaded carpet */
     CHECK_EQ(fl_color_class_rgb(&t, 150, 155, 150), FL_CLASS_WHITE);
-    /* white goals: no yellow class at all, the post colour is not yellow */
-    p.auto_yellow = 0;
-    CHECK_EQ(fl_color_auto_params(&e, &p), FL_OK);
-    CHECK_EQ(fl_color_init(&t, &p), FL_OK);
+    sun_shade_table(physar, 0, &t, &p);
     CHECK(t.yellow_off);
+    for (k = 0; k < 3; k++) {
+        hsv_to_rgb(physar[k][0], physar[k][1], physar[k][2], rgb);
+        CHECK_EQ(fl_color_class_rgb(&t, rgb[0], rgb[1], rgb[2]), FL_CLASS_GREEN);
+        CHECK_EQ(fl_color_class_rgb_exact(&t, rgb[0], rgb[1], rgb[2]), FL_CLASS_GREEN);
+    }
     hsv_to_rgb(28, 200, 200, rgb);
     CHECK(fl_color_class_rgb(&t, rgb[0], rgb[1], rgb[2]) != FL_CLASS_YELLOW);
     CHECK(fl_color_class_rgb_exact(&t, rgb[0], rgb[1], rgb[2]) != FL_CLASS_YELLOW);
+    CHECK_EQ(fl_color_class_rgb(&t, 150, 155, 150), FL_CLASS_WHITE);
     /* the 2013 boxes call the sunlit patch yellow (what the test guards) */
     fl_color_params_default(&p);
     CHECK_EQ(fl_color_init(&t, &p), FL_OK);
-    hsv_to_rgb(carpet[2][0], carpet[2][1], carpet[2][2], rgb);
+    hsv_to_rgb(physar[2][0], physar[2][1], physar[2][2], rgb);
     CHECK_EQ(fl_color_class_rgb_exact(&t, rgb[0], rgb[1], rgb[2]), FL_CLASS_YELLOW);
 }
 
@@ -282,7 +293,7 @@ static void test_track(void)
     CHECK_EQ(fl_color_track(&t, &f), 0);
 }
 
-/* Tracking with the scanner on a rendered frame whose carpet drifted by 7
+/* Tracking with the scanner on a rendered frame whose carpet drifted by 11
  * hue units after the start-up estimate (to the edge of the box: the
  * scanner samples the carpet only where it still finds green, so a drift
  * must stay within the box from one frame to the next): the green
@@ -304,7 +315,7 @@ static void test_track_scanner(void)
     fl_color_params_default(&p);
     CHECK_EQ(fl_color_auto_params(&e, &p), FL_OK);
     CHECK_EQ(fl_color_init(&t, &p), FL_OK);
-    rotate_carpet(&fr, 7);   /* a drift within the box: its edge */
+    rotate_carpet(&fr, 11);   /* a drift within the box: to its edge */
     carpet_classes(&fr, &t, &g0, &y);
     fl_vision_params_default(&vp);
     CHECK_EQ(fl_vision_init(&vis, &vp), FL_OK);
@@ -313,11 +324,11 @@ static void test_track_scanner(void)
         (void)fl_color_track(&t, &vis.scan.field);
     }
     carpet_classes(&fr, &t, &g1, &y);
-    t_info("carpet rotated +7 after start-up: green %.4f -> %.4f in 25 frames (%d rebuilds, "
+    t_info("carpet rotated +11 after start-up: green %.4f -> %.4f in 25 frames (%d rebuilds, "
            "shift %d)", g0, g1, (int)t.track_rebuilds, t.hue_shift);
     CHECK_LE(g0 + 0.05, g1);
     CHECK_LE(0.97, g1);
-    CHECK(t.hue_shift >= 5 && t.hue_shift <= 9);
+    CHECK(t.hue_shift >= 9 && t.hue_shift <= 13);
     render_frame_free(&fr);
 }
 
@@ -391,10 +402,12 @@ static void test_calibrate_cli(void)
 
 /* The real frames that are not the UvA 2013 set: with --colors auto the
  * carpet below the border (the lower half in columns without one) is
- * mostly green and hardly yellow; floors a little below what was
- * measured (the default boxes, for reference, in the info lines).  The
- * yellow box is kept (as on a yellow-goal field) so that its fraction
- * measures how much carpet, sunlit or not, it would take. */
+ * mostly green and never yellow (white goals: no yellow class); with the
+ * yellow class kept clear of the carpet (as on a yellow-goal field) it
+ * takes little of the carpet, sunlit or not.  Floors and ceilings a
+ * little beyond what was measured (the 2013 boxes, for reference, in the
+ * info lines; the yellow of oisin_demo is a yellow tape on the carpet,
+ * of the referee frame yellow clothing). */
 typedef struct {
     const char *file, *camera;
     double green_floor, yellow_ceiling;
@@ -408,23 +421,23 @@ static void test_realdata_modern(void)
         {"physar_landmark_based_slam_dataset_black1_point2_top.ppm", "nao6-top-640", 0.88, 0.01},
         {"physar_landmark_based_slam_dataset_black1_point3_top.ppm", "nao6-top-640", 0.92, 0.01},
         {"physar_landmark_based_slam_dataset_black1_point4_top.ppm", "nao6-top-640", 0.90, 0.01},
-        {"physar_landmark_based_slam_dataset_black1_point5_top.ppm", "nao6-top-640", 0.87, 0.01},
+        {"physar_landmark_based_slam_dataset_black1_point5_top.ppm", "nao6-top-640", 0.87, 0.015},
         {"scarrix_Detect_Foot_danu_fallen_robot_9500_upper.ppm", "nao6-top-640", 0.90, 0.01},
         {"scarrix_Detect_Foot_danu_gaolie_shots_on_goal_2002_upper.ppm", "nao6-top-640", 0.92, 0.01},
         {"scarrix_Detect_Foot_danu_moving_ball_across_vision_3141_upper.ppm", "nao6-top-640", 0.94, 0.01},
         {"scarrix_Detect_Foot_eobr313.ppm", "nao6-top-640", 0.88, 0.01},
         {"scarrix_Detect_Foot_lower_942458.ppm", "nao6-bottom-320", 0.93, 0.01},
         {"scarrix_Detect_Foot_oisin_ball_robot0476.ppm", "nao6-top-640", 0.85, 0.01},
-        {"scarrix_Detect_Foot_oisin_demo_ball0485.ppm", "nao6-top-640", 0.82, 0.01},
+        {"scarrix_Detect_Foot_oisin_demo_ball0485.ppm", "nao6-top-640", 0.82, 0.06},
         {"NaoHTWK_HTWKVision_ChinaTest2015GAB03B_AnyBallTest3_00049806_U.ppm", "nao6-top-640", 0.74, 0.01},
         {"NaoHTWK_HTWKVision_ChinaTest2015GAB03B_AnyBallTest3_00051659_U.ppm", "nao6-top-640", 0.73, 0.01},
         {"BerlinUnited_NaoTH-Deeplearning_rc19_outdoor5_bottom_18795.ppm", "nao6-bottom-640", 0.80, 0.01},
-        {"BerlinUnited_NaoTH-Deeplearning_referee_pose_test_image.ppm", "nao6-top-640", 0.78, 0.035},
+        {"BerlinUnited_NaoTH-Deeplearning_referee_pose_test_image.ppm", "nao6-top-640", 0.78, 0.055},
         {"dbloisi_detectball_log_31527.ppm", "nao6-top-640", 0.80, 0.01},
         {"dbloisi_detectball_log_40230.ppm", "nao6-top-640", 0.89, 0.01},
     };
     const char *dir = t_realdata_dir();
-    static fl_color_table_t t, d;
+    static fl_color_table_t t, ty, d;
     static fl_color_estimate_t e;
     static fl_vision_t vis;
     fl_vision_params_t vp;
@@ -445,8 +458,8 @@ static void test_realdata_modern(void)
         fl_camera_pose_t pose;
         const fl_camera_model_t *m = fl_camera_model_find(frames[k].camera);
         fl_obs_list_t obs;
-        double frac[2][4];
-        int pass, i, j;
+        double frac[3][4];
+        int pass, i, j, border = 0;
         snprintf(path, sizeof path, "%s/%s", dir, frames[k].file);
         if (render_read_frame(path, &fr, err, sizeof err) != 0) {
             t_fail_msg(__FILE__, __LINE__, "%s", err);
@@ -458,13 +471,17 @@ static void test_realdata_modern(void)
         CHECK_EQ(fl_camera_init(&cam, m, &pose), FL_OK);
         CHECK_EQ(fl_color_estimate(&fr.view, &cam, &e), FL_OK);
         fl_color_params_default(&p);
-        p.auto_yellow = 1;   /* a yellow class kept clear of the carpet: measured */
+        p.auto_yellow = 0;   /* their fields: white goals */
         CHECK_EQ(fl_color_auto_params(&e, &p), FL_OK);
         CHECK_EQ(fl_color_init(&t, &p), FL_OK);
-        for (pass = 0; pass < 2; pass++) {
+        p.auto_yellow = 1;   /* as if the goals were yellow */
+        CHECK_EQ(fl_color_auto_params(&e, &p), FL_OK);
+        CHECK_EQ(fl_color_init(&ty, &p), FL_OK);
+        for (pass = 0; pass < 3; pass++) {
             long n[4] = {0, 0, 0, 0}, tot = 0;
             const fl_scan_t *s = &vis.scan;
-            fl_vision_frame(&vis, pass ? &t : &d, &fr.view, &cam, fl_field_find("spl2020"), &obs);
+            fl_vision_frame(&vis, pass == 0 ? &d : pass == 1 ? &t : &ty, &fr.view, &cam,
+                            fl_field_find("spl2020"), &obs);
             for (i = 0; i < s->cols; i++) {
                 int32_t j0 = s->border_v[i] < s->height ? s->first_row[i] : s->rows / 2;
                 for (j = j0; j < s->rows; j++) {
@@ -474,15 +491,16 @@ static void test_realdata_modern(void)
             }
             for (i = 0; i < 4; i++)
                 frac[pass][i] = tot ? (double)n[i] / (double)tot : 0;
-            if (pass)
-                t_info("%.40s: carpet hue %d, border %d/%d columns; below it green %.3f "
-                       "yellow %.3f (2013 boxes: green %.3f yellow %.3f)",
-                       frames[k].file, e.hue, (int)s->n_border, (int)s->cols,
-                       frac[1][FL_CLASS_GREEN], frac[1][FL_CLASS_YELLOW],
-                       frac[0][FL_CLASS_GREEN], frac[0][FL_CLASS_YELLOW]);
+            if (pass == 1)
+                border = s->n_border;
         }
+        t_info("%.40s: carpet hue %d, border %d columns; below it green %.3f (yellow class "
+               "kept: yellow %.3f) (2013 boxes: green %.3f yellow %.3f)", frames[k].file, e.hue,
+               (int)border, frac[1][FL_CLASS_GREEN], frac[2][FL_CLASS_YELLOW],
+               frac[0][FL_CLASS_GREEN], frac[0][FL_CLASS_YELLOW]);
         CHECK_LE(frames[k].green_floor, frac[1][FL_CLASS_GREEN]);
-        CHECK_LE(frac[1][FL_CLASS_YELLOW], frames[k].yellow_ceiling);
+        CHECK_EQ(frac[1][FL_CLASS_YELLOW], 0.0);   /* no yellow class on a white-goal field */
+        CHECK_LE(frac[2][FL_CLASS_YELLOW], frames[k].yellow_ceiling);
         render_frame_free(&fr);
     }
 }

@@ -262,7 +262,7 @@ static void test_round_trip(void)
                       "field_hue 64\n"
                       "field_val 131\n"
                       "auto_margin 4\n"
-                      "auto_shadow_pct 50\n"
+                      "auto_shadow_pct 25\n"
                       "auto_yellow 1\n") == 0);
     /* parsed over params that differ in every field: p exactly */
     t_rng_seed(&r, 11);

@@ -7,21 +7,26 @@
  * dominant saturated hue of the ground part of the image: every pixel of a
  * grid of at most 128 x 96 (step width/64, height/48) below the horizon
  * (with a camera; without one, the lower half).  Pass 1: hue histogram of
- * the samples with S >= 40 and V >= 24, mode over 5 bins (any hue: the
- * 2013 UvA carpet at 64, scarrix frames at ~80), spread = the 3rd and 97th
- * percentile of the samples within +-30 of the mode.  Pass 2: S and V
+ * the samples with S >= 40 and V >= 24, mode over 5 bins among the hues
+ * 30..100 (60..200 degrees: any green carpet; the 2013 UvA carpet at ~60,
+ * the physar one 37..53, scarrix and HTWK frames 75..89; a yellow post or
+ * an orange ball filling the view is not taken), spread = the 3rd and
+ * 97th percentile of the samples within +-30 of the mode.  Pass 2: S and V
  * histograms of the samples inside that spread with S >= 16 (sunlit
  * carpet is paler: its S falls, V rises; shadows keep hue and S, lower V).
  * From that, fl_color_auto_params derives (green_sat_ref, field_hue and
  * field_val record the carpet they were made for):
- *   green   hue spread +- auto_margin, at least 8 and at most 30 units on
- *           each side of the mode; S from half the carpet's median S
+ *   green   hue spread +- auto_margin, at least 12 and at most 30 units on
+ *           each side of the mode (with auto_yellow, not below 3 units
+ *           above the yellow box: the posts are not carpet); S from half the carpet's median S
  *           (24..49: lines are far paler than the carpet, sunlit carpet
  *           keeps most of its S) to 255; V from auto_shadow_pct % of V p2
- *           (hard shadows; at least 8) to 255 (sunlit patches)
- *   white   any hue, S below green's S_LO (the boxes meet), V from V p2 of
- *           the carpet (30..160): a line is brighter than the darkest
- *           carpet; the scanner's white_contrast_pct does the rest
+ *           (hard shadows, the shade at a post's foot; at least 8) to 255
+ *           (sunlit patches)
+ *   white   any hue, S below green's S_LO (the boxes meet), V from half
+ *           the carpet's V p2 (30..160: lines at half the light; the 2013
+ *           box has 60 for a carpet p1 of 57); the scanner's
+ *           white_contrast_pct does the rest
  *   yellow  auto_yellow 1: the given box with its hue kept 2 units clear
  *           of green (so no carpet pixel, sunlit or not, is yellow);
  *           auto_yellow 0 (white goals): no yellow class at all

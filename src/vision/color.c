@@ -274,7 +274,7 @@ void fl_color_params_default(fl_color_params_t *p)
     p->field_hue = 64;
     p->field_val = 131;
     p->auto_margin = 4;
-    p->auto_shadow_pct = 50;
+    p->auto_shadow_pct = 25;
     p->auto_yellow = 1;
 }
 

@@ -16,6 +16,14 @@
 
 #include <string.h>
 
+/* Carpet hues searched for the mode (60..200 degrees: yellow-green to
+ * cyan; every SPL carpet seen, 37..89, with room), and the half-width of
+ * the window its spread is measured in (pale carpets have a wide hue
+ * spread: oisin, NaoTH outdoor). */
+#define FL_AUTO_HUE_MIN 30
+#define FL_AUTO_HUE_MAX 100
+#define FL_AUTO_SPREAD 30
+
 static int32_t wrap180(int32_t h)
 {
     h %= 180;
@@ -102,12 +110,13 @@ static uint8_t percentile(const uint16_t *hist, int32_t n, int32_t pct)
     return (uint8_t)x;
 }
 
-/* Mode of the hue histogram over 5 bins, and the 3rd / 97th percentile of
- * the samples within +-30 of it. */
+/* Mode of the hue histogram over 5 bins among the carpet hues
+ * (FL_AUTO_HUE_MIN..MAX), and the 3rd / 97th percentile of the samples
+ * within +-FL_AUTO_SPREAD of it. */
 static void hue_mode(fl_color_estimate_t *e)
 {
-    int32_t h, d, best = -1, mode = 0, tot = 0, acc, lo = -30, hi = 30;
-    for (h = 0; h < 180; h++) {
+    int32_t h, d, best = -1, mode = 0, tot = 0, acc, lo = -FL_AUTO_SPREAD, hi = FL_AUTO_SPREAD;
+    for (h = FL_AUTO_HUE_MIN; h <= FL_AUTO_HUE_MAX; h++) {
         int32_t s = 0;
         for (d = -2; d <= 2; d++)
             s += e->hist_h[wrap180(h + d)];
@@ -116,10 +125,10 @@ static void hue_mode(fl_color_estimate_t *e)
             mode = h;
         }
     }
-    for (d = -30; d <= 30; d++)
+    for (d = -FL_AUTO_SPREAD; d <= FL_AUTO_SPREAD; d++)
         tot += e->hist_h[wrap180(mode + d)];
     acc = 0;
-    for (d = -30; d <= 30; d++) {
+    for (d = -FL_AUTO_SPREAD; d <= FL_AUTO_SPREAD; d++) {
         acc += e->hist_h[wrap180(mode + d)];
         if (acc * 100 >= tot * 3) {
             lo = d;
@@ -127,7 +136,7 @@ static void hue_mode(fl_color_estimate_t *e)
         }
     }
     acc = 0;
-    for (d = 30; d >= -30; d--) {
+    for (d = FL_AUTO_SPREAD; d >= -FL_AUTO_SPREAD; d--) {
         acc += e->hist_h[wrap180(mode + d)];
         if (acc * 100 >= tot * 3) {
             hi = d;
@@ -194,8 +203,17 @@ fl_status_t fl_color_auto_params(const fl_color_estimate_t *e, fl_color_params_t
     if (fl_color_params_check(p, NULL) != FL_OK)
         return FL_ERR_RANGE;
     q = *p;
-    lo = clampi(hdiff(e->hue_lo, e->hue) - q.auto_margin, -30, -8);
-    hi = clampi(hdiff(e->hue_hi, e->hue) + q.auto_margin, 8, 30);
+    lo = hdiff(e->hue_lo, e->hue) - q.auto_margin;
+    if (q.auto_yellow && q.yellow.h_lo <= q.yellow.h_hi) {
+        /* on a yellow-goal field the posts' hue is not carpet: the spread
+         * stops 3 units above the yellow box (unless the carpet itself is
+         * that close: then yellow_clear trims the yellow box) */
+        int32_t floor = hdiff(q.yellow.h_hi + 3, e->hue);
+        if (floor < 0 && lo < floor)
+            lo = floor;
+    }
+    lo = clampi(lo, -30, -12);
+    hi = clampi(hdiff(e->hue_hi, e->hue) + q.auto_margin, 12, 30);
     s_lo = clampi(e->s_med / 2, 24, 49);
     q.green.h_lo = (uint8_t)wrap180(e->hue + lo);
     q.green.h_hi = (uint8_t)wrap180(e->hue + hi);
@@ -207,7 +225,7 @@ fl_status_t fl_color_auto_params(const fl_color_estimate_t *e, fl_color_params_t
     q.white.h_hi = 179;
     q.white.s_lo = 0;
     q.white.s_hi = (uint8_t)(s_lo - 1);
-    q.white.v_lo = (uint8_t)clampi(e->v_p2, 30, 160);
+    q.white.v_lo = (uint8_t)clampi(e->v_p2 / 2, 30, 160);
     q.white.v_hi = 255;
     if (q.auto_yellow && !yellow_clear(&q.green, &q.yellow))
         q.auto_yellow = 0;

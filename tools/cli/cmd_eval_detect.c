@@ -20,10 +20,14 @@
  * crossings and feet by distance bin (|r - r_true| / r_true).
  * The scoring is in tools/eval/eval_detect.c.  --pictures DIR writes one
  * picture per frame (stages, truth rings, legend strip).
+ * --colors default|auto|FILE (eval/colors_opt.h): the colour classes; auto
+ * estimates the carpet of each frame.  Without it: auto on the white-goal
+ * fixtures (spl2020), default on the others and the UvA 2013 frames.
  * Numbers are checked (tools/cli/args.h; the ranges of the vision
  * parameters, lines.h / crossings.h / scan.h); errors exit with status 2.
  */
 #include "cli/args.h"
+#include "eval/colors_opt.h"
 #include "eval/detect.h"
 #include "io/realdata.h"
 #include "cli/registry.h"
@@ -37,6 +41,7 @@ static int evd_usage(int rc)
     fprintf(stderr,
             "usage: fieldloc eval-detect [--fixtures DIR] [--realdata DIR] [--max-range MM]\n"
             "         [--only PREFIX] [--verbose] [--pictures DIR] [--no-real] [--no-fixtures]\n"
+            "         [--colors default|auto|FILE]\n"
             "  tuning: --run 1..255 px  --grid 1..16 px  --step 1..64 px  --err BASE POINT\n"
             "          (0..65535 each)  --white 0..100 %%  --white-s 0..254  --tol 1..45 deg\n"
             "          --minconf 0..255;  --max-range 100..20000 mm\n");
@@ -52,6 +57,8 @@ int cmd_eval_detect(int argc, char **argv)
     evd_stats_t s;
     fl_vision_params_t vp;
     static const char C[] = "eval-detect";
+    colors_opt_t colors;
+    memset(&colors, 0, sizeof colors);   /* unset: the policy per field */
     fl_vision_params_default(&vp);
     for (i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--fixtures") && i + 1 < argc)
@@ -73,6 +80,10 @@ int cmd_eval_detect(int argc, char **argv)
             skip_real = 1;
         else if (!strcmp(argv[i], "--no-fixtures"))
             skip_fix = 1;
+        else if (!strcmp(argv[i], "--colors") && i + 1 < argc) {
+            if (colors_opt_parse(C, argv[++i], &colors) != 0)
+                return 2;
+        }
         /* tuning knobs (defaults: fl_vision_params_default) */
         else if (!strcmp(argv[i], "--run") && i + 1 < argc) {
             if (arg_int32(C, "--run", argv[++i], 1, 255, "px", &vp.scan.border_run_px))
@@ -109,12 +120,13 @@ int cmd_eval_detect(int argc, char **argv)
             return arg_unknown(C, argv[i],
                                "--fixtures=1 --realdata=1 --max-range=1 --only=1 --pictures=1 "
                                "--run=1 --grid=1 --step=1 --err=2 --white=1 --white-s=1 --tol=1 "
-                               "--minconf=1");
+                               "--minconf=1 --colors=1");
     }
     if (det_ctx_init_params(&ctx, &vp) != 0) {
         fprintf(stderr, "eval-detect: bad parameters\n");
         return 1;
     }
+    ctx.colors_each = &colors;
     evd_stats_clear(&s);
     n = skip_fix ? -2 : evd_fixtures(&ctx, fix, max_range, verbose, &s, only);
     if (n == -2)

@@ -35,10 +35,12 @@
  * pose after the model's defaults (fl_calib_apply: neck height, pitch and
  * roll offsets).  A file that does not parse ("FILE:LINE: reason") or is
  * for another camera than the sequence's: exit status 2.
- * --colors FILE (both modes): the colour classes of a colour file
- * (fieldloc/color.h; `fieldloc colors` writes the defaults) for every
- * frame's vision; one that does not parse: "fieldloc localize: FILE:LINE:
- * reason", exit status 2.
+ * --colors default|auto|FILE (both modes): the colour classes
+ * (eval/colors_opt.h) of every frame's vision: the 2013 boxes, the field
+ * colour estimated on the first frame and tracked frame by frame, or a
+ * colour file (one that does not parse: "fieldloc localize: FILE:LINE:
+ * reason", exit status 2).  Without it: auto for a white-goal field or
+ * real frames outside the UvA 2013 set, else default.
  *
  * --pictures DIR writes DIR/frame_NNNNN.ppm (+ .png): the frame
  * with the detected features and the field model seen from the estimate,
@@ -83,7 +85,8 @@ static int lz_usage(void)
             "       fieldloc localize --uva-spots [--pictures DIR] [--write-seq DIR]\n"
             "       (both: [--param NAME=VALUE]... localizer parameters,\n"
             "        [--calib CALIB] per-robot calibration from `fieldloc calibrate --out`,\n"
-            "        [--colors FILE] colour classes, see `fieldloc colors`)\n"
+            "        [--colors default|auto|FILE] colour classes: the 2013 boxes, from the\n"
+            "        frames (tracked), or a file from `fieldloc colors|calibrate-colors`)\n"
             "  SEQUENCE.txt: 'field NAME', 'camera NAME', optional 'prior X_MM Y_MM THETA_DEG',\n"
             "  then per frame 'frame IMAGE.ppm odo DX_MM DY_MM DTHETA_DEG head PITCH_RAD YAW_RAD'\n"
             "  prints per frame: pose X_MM Y_MM THETA_DEG RELIABILITY STATE sd X Y DEG mirror M\n"
@@ -101,7 +104,7 @@ typedef struct {
 
 static int lz_uva_spots(const char *pictures, const char *write_seq,
                         const fl_localizer_t *loc, const void *params, const fl_calib_t *calib,
-                        const fl_color_params_t *colors)
+                        const colors_opt_t *colors)
 {
     const char *dir = rd_dir();
     char path[1200], err[256];
@@ -263,12 +266,13 @@ int cmd_localize(int argc, char **argv)
     lr_seq_t seq;
     lr_seq_opts_t o;
     char err[512];
-    const char *localizer = NULL, *param[64], *calib_path = NULL, *colors_path = NULL;
+    const char *localizer = NULL, *param[64], *calib_path = NULL;
     fl_calib_t calib;
-    fl_color_params_t colors;
+    colors_opt_t colors;
     int n_param = 0;
     const fl_localizer_t *loc;
     void *params;
+    memset(&colors, 0, sizeof colors);   /* COLORS_UNSET: the policy decides */
     for (k = 0; k < argc; k++) {
         if (!strcmp(argv[k], "--pictures") && k + 1 < argc)
             pictures = argv[++k];
@@ -281,8 +285,10 @@ int cmd_localize(int argc, char **argv)
             uva = 1;
         else if (!strcmp(argv[k], "--calib") && k + 1 < argc)
             calib_path = argv[++k];
-        else if (!strcmp(argv[k], "--colors") && k + 1 < argc)
-            colors_path = argv[++k];
+        else if (!strcmp(argv[k], "--colors") && k + 1 < argc) {
+            if (colors_opt_parse("localize", argv[++k], &colors) != 0)
+                return 2;
+        }
         else if (!strcmp(argv[k], "--localizer") && k + 1 < argc)
             localizer = argv[++k];
         else if (!strcmp(argv[k], "--param") && k + 1 < argc) {
@@ -305,10 +311,6 @@ int cmd_localize(int argc, char **argv)
         fprintf(stderr, "localize: %s\n", err);
         return 2;
     }
-    if (colors_path != NULL && det_colors_load(colors_path, &colors, err, (int)sizeof err) != 0) {
-        fprintf(stderr, "fieldloc localize: %s\n", err);
-        return 2;
-    }
     if ((loc = lr_localizer(localizer, err, (int)sizeof err)) == NULL) {
         fprintf(stderr, "localize: %s\n", err);
         return 2;
@@ -329,7 +331,7 @@ int cmd_localize(int argc, char **argv)
     if (uva) {
         rc = seq_path != NULL ? lz_usage() : lz_uva_spots(pictures, write_seq, loc, params,
                                                            calib_path ? &calib : NULL,
-                                                           colors_path ? &colors : NULL);
+                                                           &colors);
         free(params);
         return rc;
     }
@@ -354,7 +356,7 @@ int cmd_localize(int argc, char **argv)
         mkdir(pictures, 0777);
     memset(&o, 0, sizeof o);
     o.calib = calib_path != NULL ? &calib : NULL;
-    o.colors = colors_path != NULL ? &colors : NULL;
+    o.colors = &colors;
     o.out = stdout;
     o.name = seq_path;
     o.pictures = pictures;

@@ -32,6 +32,7 @@ int det_ctx_init_params(det_ctx_t *c, const fl_vision_params_t *p)
         return -1;
     }
     c->params = *p;
+    c->colors_built = COLORS_DEFAULT;
     return 0;
 }
 
@@ -180,6 +181,15 @@ int det_run(det_ctx_t *c, const fl_image_t *img, const fl_camera_t *cam,
     fl_obs_list_t local;
     const fl_vision_t *v = c->vis;
     int n = 0, i;
+    if (c->colors_each != NULL) {
+        colors_opt_t o = *c->colors_each;
+        colors_opt_resolve(&o, field, NULL);
+        if (o.mode == COLORS_AUTO || (int)o.mode != c->colors_built) {
+            if (colors_opt_setup(&o, c->colors, field, img, cam, NULL) < 0)
+                return 0;
+            c->colors_built = (int)o.mode;
+        }
+    }
     fl_vision_frame(c->vis, c->colors, img, cam, field, obs ? obs : &local);
     for (i = 0; i < v->crossings.n; i++) {
         const fl_crossing_t *x = &v->crossings.c[i];
