@@ -261,7 +261,9 @@ typedef struct {
     uint8_t d_quant;            /* D bucket size used for the patterns */
     uint8_t yellow_off;         /* 1: no yellow class (field_auto with
                                    auto_yellow 0) */
-    uint8_t reserved[2];
+    uint8_t track_wait;         /* frames before fl_color_track may
+                                   rebuild again */
+    uint8_t reserved[1];
     /* fl_color_track's state (color_auto.h): the carpet as tracked (hue
      * in 1/16 units, S, V) and what the tables were last built for */
     int16_t track_hue_q4;

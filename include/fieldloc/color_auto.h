@@ -44,13 +44,17 @@
  * tracked S / green_sat_ref (1/2..1x, white S_HI follows); the tables are
  * rebuilt only when the shift moved by >= 2 hue units, green S_LO by >= 6
  * or green or white V_LO by >= 8 from what they were built for
- * (hysteresis).  The scanner samples the carpet below the border only, so
+ * (hysteresis), and at most once per FL_COLOR_TRACK_GAP (8) frames.  The
+ * scanner samples the carpet below the border only, so
  * the tracker follows a carpet that drifts within the box from frame to
  * frame; a jump out of it (another venue) needs a new start-up estimate.
  * No ceiling on the hue (fl_color_adapt's adapt_max_hue does not apply).
- * Cost bound per frame: O(1) arithmetic, plus at most one table rebuild
- * (fl_color_int_build, the cost of fl_color_init: 3.5 M instructions,
- * callgrind, x86-64 -O2; DESIGN.md "Field colour from the frame").
+ * Cost bound per frame: ~300 instructions without a rebuild; a rebuild
+ * (the table build of fl_color_init) is 7.2 M instructions (callgrind,
+ * x86-64 -O2; 1.5 times the vision path on a 640x480 frame), at most one
+ * per 8 frames: <= 0.9 M per frame over any 8 frames.  The start-up
+ * estimate is 0.8 M on a 640x480 frame (DESIGN.md "Field colour from the
+ * frame").
  * Without field_auto fl_color_track does nothing (returns 0).
  */
 #ifndef FIELDLOC_COLOR_AUTO_H
@@ -69,6 +73,8 @@ extern "C" {
 #define FL_COLOR_TRACK_HUE_Q4 16  /* 1 hue unit */
 #define FL_COLOR_TRACK_SAT 4
 #define FL_COLOR_TRACK_VAL 6
+/* At most one table rebuild per this many tracked frames. */
+#define FL_COLOR_TRACK_GAP 8
 
 /* A start-up estimate of the carpet (fl_color_estimate). */
 typedef struct {

@@ -249,6 +249,7 @@ void fl_color_int_track_reset(fl_color_table_t *t)
     t->track_val = p->field_val;
     t->track_frames = 0;
     t->track_rebuilds = 0;
+    t->track_wait = 0;
     t->yellow_off = (uint8_t)(p->field_auto && !p->auto_yellow);
 }
 
@@ -293,6 +294,20 @@ static void track_boxes(fl_color_table_t *t, int32_t shift)
     t->yellow_off = (uint8_t)(!p->auto_yellow || !yellow_clear(&t->green, &t->yellow));
 }
 
+static int32_t iabs(int32_t x)
+{
+    return x < 0 ? -x : x;
+}
+
+/* The hysteresis: t's new effective boxes differ enough from the ones the
+ * tables were built for (shift, green g, white w). */
+static bool moved(const fl_color_table_t *t, int32_t old_shift, const fl_hsv_box_t *g,
+                  const fl_hsv_box_t *w)
+{
+    return iabs(t->hue_shift - old_shift) >= 2 || iabs(t->green.s_lo - g->s_lo) >= 6 ||
+           iabs(t->green.v_lo - g->v_lo) >= 8 || iabs(t->white.v_lo - w->v_lo) >= 8;
+}
+
 int fl_color_track(fl_color_table_t *t, const fl_field_color_t *field)
 {
     fl_hsv_box_t g, w, y;
@@ -312,6 +327,8 @@ int fl_color_track(fl_color_table_t *t, const fl_field_color_t *field)
     if (d > 30 * 16 || d < -30 * 16)
         return 0;   /* not the carpet the boxes are tracking */
     t->track_frames++;
+    if (t->track_wait > 0)
+        t->track_wait--;
     t->track_hue_q4 = (int16_t)wrap180_q4(step_toward(h, h + d, FL_COLOR_TRACK_HUE_Q4));
     t->track_sat = (uint8_t)step_toward(t->track_sat, field->sat, FL_COLOR_TRACK_SAT);
     t->track_val = (uint8_t)step_toward(t->track_val, field->val, FL_COLOR_TRACK_VAL);
@@ -321,10 +338,9 @@ int fl_color_track(fl_color_table_t *t, const fl_field_color_t *field)
     old_off = t->yellow_off;
     shift = hdiff((t->track_hue_q4 + 8) / 16, t->params.field_hue);
     track_boxes(t, shift);
-    if (shift - old_shift < 2 && old_shift - shift < 2 && t->green.s_lo < g.s_lo + 6 &&
-        g.s_lo < t->green.s_lo + 6 && t->green.v_lo < g.v_lo + 8 && g.v_lo < t->green.v_lo + 8 &&
-        t->white.v_lo < w.v_lo + 8 && w.v_lo < t->white.v_lo + 8) {
-        /* within the hysteresis: the boxes the tables were built for stay */
+    if (t->track_wait > 0 || !moved(t, old_shift, &g, &w)) {
+        /* within the hysteresis, or too soon after the last rebuild: the
+         * boxes the tables were built for stay */
         t->green = g;
         t->white = w;
         t->yellow = y;
@@ -334,5 +350,6 @@ int fl_color_track(fl_color_table_t *t, const fl_field_color_t *field)
     }
     fl_color_int_build(t);
     t->track_rebuilds++;
+    t->track_wait = FL_COLOR_TRACK_GAP - 1;
     return 1;
 }
