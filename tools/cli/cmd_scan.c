@@ -7,6 +7,7 @@
  *        [--format rgb|yuyv|planar] [--step COL ROW] [--full]
  *        [--run N] [--camera NAME --head PITCH_RAD YAW_RAD [--neck MM]]
  *        [--uva] [--adapt] [--repeat N] [--quiet] [--colors default|auto|FILE]
+ *        [--field NAME]
  * --full is --step 1 1.  --uva takes the camera from the UvA 2013 labels
  * (camera "uva2013", the record of the image's file name).  --adapt re-scans
  * once after fl_color_adapt when the field color moved.  --repeat scans
@@ -15,7 +16,9 @@
  * each scan.  --colors default|auto|FILE: the colour classes
  * (eval/colors_opt.h; a file that does not parse: "fieldloc scan:
  * FILE:LINE: reason", exit status 2); without it, auto for real frames
- * that are not the UvA 2013 set, else default.  Besides the counts over
+ * that are not the UvA 2013 set, else default.  --field NAME gives the
+ * goal colour for auto (yellow goals keep a yellow class clear of the
+ * carpet); without it, and without --uva, white goals: no yellow class.  Besides the counts over
  * the whole grid, the classes of the cells below the border (the lower
  * half in columns without one) are printed as fractions.
  * The picture has a legend strip below the frame (picture.h).  Numbers are
@@ -45,7 +48,7 @@ static int usage(void)
             "usage: fieldloc scan IMAGE.ppm|FRAME.raw [--picture OUT.ppm|.png]\n"
             "         [--format rgb|yuyv|planar] [--step COL ROW] [--full] [--run N]\n"
             "         [--camera NAME --head PITCH_RAD YAW_RAD [--neck MM]] [--uva]\n"
-            "         [--adapt] [--repeat N] [--quiet] [--colors default|auto|FILE]\n"
+            "         [--adapt] [--repeat N] [--quiet] [--colors default|auto|FILE] [--field NAME]\n"
             "  --step 1..16 1..16, --run 1..255 px, --neck 50..2000 mm, --repeat 1..1000000,\n"
             "  --head: NAO HeadPitch -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad\n");
     return 2;
@@ -101,7 +104,8 @@ static void scan_print_below(const fl_scan_t *s)
 
 int cmd_scan(int argc, char **argv)
 {
-    const char *in = NULL, *picture = NULL, *camname = NULL;
+    const char *in = NULL, *picture = NULL, *camname = NULL, *field_name = NULL;
+    const fl_field_t *field = NULL;
     colors_opt_t co;
     static fl_color_estimate_t est;
     fl_pixel_format_t fmt = 0;
@@ -162,14 +166,15 @@ int cmd_scan(int argc, char **argv)
         else if (!strcmp(argv[k], "--colors") && k + 1 < argc) {
             if (colors_opt_parse("scan", argv[++k], &co) != 0)
                 return 2;
-        }
+        } else if (!strcmp(argv[k], "--field") && k + 1 < argc)
+            field_name = argv[++k];
         else if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
             usage();
             return 0;
         } else if (argv[k][0] == '-' || in)
             return arg_unknown("scan", argv[k],
                                "--picture=1 --format=1 --step=2 --run=1 --camera=1 --head=2 "
-                               "--neck=1 --repeat=1 --colors=1");
+                               "--neck=1 --repeat=1 --colors=1 --field=1");
         else
             in = argv[k];
     }
@@ -223,10 +228,14 @@ int cmd_scan(int argc, char **argv)
         }
         use_cam = 1;
     }
-    if (uva)
-        colors_opt_resolve(&co, fl_field_find("uva2013"), in);
-    colors_opt_resolve(&co, NULL, in);
-    if (colors_opt_setup(&co, &colors, NULL, view, use_cam ? &cam : NULL, &est) < 0) {
+    if (field_name != NULL && (field = fl_field_find(field_name)) == NULL) {
+        fprintf(stderr, "scan: unknown field %s (see: fieldloc fields)\n", field_name);
+        return 2;
+    }
+    if (uva && field == NULL)
+        field = fl_field_find("uva2013");
+    colors_opt_resolve(&co, field, in);
+    if (colors_opt_setup(&co, &colors, field, view, use_cam ? &cam : NULL, &est) < 0) {
         fprintf(stderr, "scan: colour classes refused\n");
         return 2;
     }

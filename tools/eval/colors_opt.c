@@ -70,7 +70,8 @@ int colors_opt_setup(const colors_opt_t *o, fl_color_table_t *t, const fl_field_
         if (e == NULL)
             return -1;
         fl_color_params_default(&p);
-        p.auto_yellow = (uint8_t)(field == NULL || colors_goals_coloured(field));
+        /* no field: today's SPL field, white goals */
+        p.auto_yellow = (uint8_t)(field != NULL && colors_goals_coloured(field));
         if (img == NULL || fl_color_estimate(img, cam, e) != FL_OK ||
             fl_color_auto_params(e, &p) != FL_OK) {
             fl_color_params_default(&p);

@@ -48,7 +48,8 @@ void colors_opt_resolve(colors_opt_t *o, const fl_field_t *field, const char *im
 
 /* Build t for the first frame: the defaults, the file's params, or (auto)
  * the estimate of img below cam's horizon (cam may be NULL) with
- * auto_yellow from the field's goal colour.  est (may be NULL) receives
+ * auto_yellow from the field's goal colour (field NULL: today's SPL field,
+ * white goals, no yellow class).  est (may be NULL) receives
  * the estimate.  0; -1 when the tables were refused (cannot happen for a
  * parsed file); 1 when auto found no carpet (default boxes used). */
 int colors_opt_setup(const colors_opt_t *o, fl_color_table_t *t, const fl_field_t *field,
