@@ -11,6 +11,7 @@ T_SUITE(sim);
 T_SUITE(realdata);
 T_SUITE(color);
 T_SUITE(color_file);
+T_SUITE(color_auto);
 T_SUITE(scan);
 T_SUITE(fuzzy);
 T_SUITE(localizer);

@@ -120,6 +120,17 @@ static void test_malformed(void)
         {H "adapt_max_hue 3 4\n", FL_ERR_FORMAT, 2, "adapt_max_hue N"},
         {H "adapt_max_hue 3\nadapt_max_hue 4\n", FL_ERR_FORMAT, 3, "repeated key"},
         {H H, FL_ERR_FORMAT, 2, "repeated header"},
+        /* the field_auto keys */
+        {H "field_auto 2\n", FL_ERR_RANGE, 2, "field_auto 0 or 1"},
+        {H "field_auto 1\n# c\nfield_hue 180\n", FL_ERR_RANGE, 4, "field_hue above 179"},
+        {H "field_val 0\n", FL_ERR_RANGE, 2, "field_val 0"},
+        {H "auto_margin 31\n", FL_ERR_RANGE, 2, "auto_margin above 30"},
+        {H "auto_shadow_pct 9\n", FL_ERR_RANGE, 2, "auto_shadow_pct 10..100"},
+        {H "auto_shadow_pct 101\n", FL_ERR_RANGE, 2, "auto_shadow_pct 10..100"},
+        {H "auto_yellow 3\n", FL_ERR_RANGE, 2, "auto_yellow 0 or 1"},
+        {H "field_auto yes\n", FL_ERR_FORMAT, 2, "not an integer"},
+        {H "field_hue 60 70\n", FL_ERR_FORMAT, 2, "field_hue N"},
+        {H "auto_yellow 0\nauto_yellow 1\n", FL_ERR_FORMAT, 3, "repeated key"},
     };
 #undef H
     size_t i;
@@ -220,6 +231,12 @@ static void random_params(t_rng_t *r, fl_color_params_t *p)
     p->white_contrast_pct = (uint8_t)t_rng_range(r, 0, 200);
     p->white_line_pct = (uint8_t)(t_rng_range(r, 0, 3) == 0 ? 0 : t_rng_range(r, 100, 255));
     p->adapt_max_hue = (uint8_t)t_rng_range(r, 0, 30);
+    p->field_auto = (uint8_t)t_rng_range(r, 0, 1);
+    p->field_hue = (uint8_t)t_rng_range(r, 0, 179);
+    p->field_val = (uint8_t)t_rng_range(r, 1, 255);
+    p->auto_margin = (uint8_t)t_rng_range(r, 0, 30);
+    p->auto_shadow_pct = (uint8_t)t_rng_range(r, 10, 100);
+    p->auto_yellow = (uint8_t)t_rng_range(r, 0, 1);
 }
 
 static void test_round_trip(void)
@@ -240,7 +257,13 @@ static void test_round_trip(void)
                       "white_contrast_pct 25\n"
                       "white_line_pct 180\n"
                       "yellow 15 40 90 255 50 255\n"
-                      "adapt_max_hue 16\n") == 0);
+                      "adapt_max_hue 16\n"
+                      "field_auto 0\n"
+                      "field_hue 64\n"
+                      "field_val 131\n"
+                      "auto_margin 4\n"
+                      "auto_shadow_pct 25\n"
+                      "auto_yellow 1\n") == 0);
     /* parsed over params that differ in every field: p exactly */
     t_rng_seed(&r, 11);
     for (i = 0; i < 2000; i++) {
@@ -281,7 +304,7 @@ static void test_check_is_init(void)
         const char *why = NULL;
         fl_status_t c, s;
         random_params(&r, &p);
-        switch (t_rng_range(&r, 0, 7)) {
+        switch (t_rng_range(&r, 0, 10)) {
         case 0: p.green.h_hi = (uint8_t)t_rng_range(&r, 170, 255); break;
         case 1: p.white.s_lo = (uint8_t)(p.white.s_hi + t_rng_range(&r, 0, 2)); break;
         case 2: p.yellow.v_hi = (uint8_t)(p.yellow.v_lo - t_rng_range(&r, 0, 2)); break;
@@ -289,6 +312,9 @@ static void test_check_is_init(void)
         case 4: p.adapt_max_hue = (uint8_t)t_rng_range(&r, 28, 32); break;
         case 5: p.green_sat_ref = (uint8_t)t_rng_range(&r, 0, 1); break;
         case 6: p.white_line_pct = (uint8_t)t_rng_range(&r, 0, 101); break;
+        case 7: p.field_hue = (uint8_t)t_rng_range(&r, 178, 181); break;
+        case 8: p.auto_shadow_pct = (uint8_t)t_rng_range(&r, 8, 11); break;
+        case 9: p.field_auto = (uint8_t)t_rng_range(&r, 0, 2); break;
         default: break;
         }
         c = fl_color_params_check(&p, &why);

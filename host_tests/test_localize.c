@@ -417,7 +417,11 @@ static void t_physar(void)
         ph_opts_t o;
         char err[256] = "";
         int k, rc;
+        colors_opt_t c;
+        /* the floors were measured with the 2013 boxes */
+        CHECK_EQ(colors_opt_parse("test", "default", &c), 0);
         memset(&o, 0, sizeof o);
+        o.colors = &c;
         o.repeat = PH_REPEAT_DEFAULT;
         o.imu = runs[r].imu;
         rc = ph_run(fl_localizer_find(runs[r].loc), &o, res, err, (int)sizeof err);

@@ -143,6 +143,22 @@ typedef struct {
     fl_hsv_box_t yellow;
     uint8_t adapt_max_hue;      /* largest hue re-centring, 0..30 units
                                    (0: fl_color_adapt never moves hues) */
+    /* Field colour from the frame (color_auto.h).  Ignored while
+     * field_auto is 0, which is what fl_color_params_default gives. */
+    uint8_t field_auto;         /* 1: the boxes above are relative to the
+                                   carpet (field_hue, field_val,
+                                   green_sat_ref) and fl_color_track moves
+                                   them with the measured carpet; 0..1 */
+    uint8_t field_hue;          /* carpet hue the boxes were made for, 0..179 */
+    uint8_t field_val;          /* carpet median V they were made for, 1..255 */
+    uint8_t auto_margin;        /* hue units fl_color_auto_params adds on
+                                   each side of the carpet's hue spread,
+                                   0..30 */
+    uint8_t auto_shadow_pct;    /* green V_LO = this % of the carpet's
+                                   dark end (hard shadows), 10..100 */
+    uint8_t auto_yellow;        /* 1: yellow goals (a yellow box kept clear
+                                   of the carpet hue); 0: white goals, no
+                                   yellow class at all (auto mode only) */
 } fl_color_params_t;
 
 /* The measured defaults described at the top of this file. */
@@ -166,6 +182,12 @@ fl_status_t fl_color_params_check(const fl_color_params_t *p, const char **why);
  *     white_line_pct N
  *     yellow H_LO H_HI S_LO S_HI V_LO V_HI
  *     adapt_max_hue N
+ *     field_auto N                     0 fixed boxes, 1 carpet-relative
+ *     field_hue N
+ *     field_val N
+ *     auto_margin N
+ *     auto_shadow_pct N
+ *     auto_yellow N
  * (the fl_color_params_t fields of the same names; N and the box bounds
  * are decimal integers 0..255 with an optional '+').  Every key but the
  * header is optional and may appear at most once; '#' starts a comment
@@ -208,7 +230,7 @@ fl_status_t fl_color_params_parse(const char *text, size_t len, fl_color_params_
 /* Write p as text in the format above: the header, then every key in the
  * order listed, one per line.  Parsing it over any params gives p back
  * exactly.  Returns the length written (a NUL follows it), or 0 when cap is
- * too small (FL_COLOR_TEXT_MAX always suffices; 256 does for this
+ * too small (FL_COLOR_TEXT_MAX always suffices; 384 does for this
  * version), an argument is NULL, or p breaks a rule of
  * fl_color_params_check. */
 size_t fl_color_params_format(const fl_color_params_t *p, char *buf, size_t cap);
@@ -237,7 +259,17 @@ typedef struct {
     uint8_t exact;              /* 1: YCbCr tables exact (see file top) */
     uint16_t n_patterns;        /* YCbCr patterns in use */
     uint8_t d_quant;            /* D bucket size used for the patterns */
-    uint8_t reserved[3];
+    uint8_t yellow_off;         /* 1: no yellow class (field_auto with
+                                   auto_yellow 0) */
+    uint8_t track_wait;         /* frames before fl_color_track may
+                                   rebuild again */
+    uint8_t reserved[1];
+    /* fl_color_track's state (color_auto.h): the carpet as tracked (hue
+     * in 1/16 units, S, V) and what the tables were last built for */
+    int16_t track_hue_q4;
+    uint8_t track_sat, track_val;
+    uint32_t track_frames;      /* frames tracked */
+    uint32_t track_rebuilds;    /* table rebuilds by fl_color_track */
     /* private */
     uint16_t chroma[65536];     /* (Cb << 8 | Cr) -> pattern index - ... + M */
     uint8_t pattern[FL_COLOR_PATTERN_BYTES];

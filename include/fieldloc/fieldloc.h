@@ -12,6 +12,7 @@
 #include "fieldloc/text.h"
 #include "fieldloc/image.h"
 #include "fieldloc/color.h"
+#include "fieldloc/color_auto.h"
 #include "fieldloc/scan.h"
 #include "fieldloc/camera.h"
 #include "fieldloc/calib.h"

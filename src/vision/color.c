@@ -207,6 +207,37 @@ uint8_t fl_luma_from_rgb(uint8_t r, uint8_t g, uint8_t b)
                       7471 * (int32_t)b + 32768) >> 16);
 }
 
+/* Rules of the field_auto keys: the key broken (-1: none), *why. */
+static int32_t fl_color_int_auto_fault(const fl_color_params_t *p, const char **why)
+{
+    if (p->field_auto > 1) {
+        *why = "field_auto 0 or 1";
+        return FL_COLOR_KEY_FIELD_AUTO;
+    }
+    if (p->field_hue > 179) {
+        *why = "field_hue above 179";
+        return FL_COLOR_KEY_FIELD_HUE;
+    }
+    if (p->field_val == 0) {
+        *why = "field_val 0 (1..255)";
+        return FL_COLOR_KEY_FIELD_VAL;
+    }
+    if (p->auto_margin > 30) {
+        *why = "auto_margin above 30";
+        return FL_COLOR_KEY_AUTO_MARGIN;
+    }
+    if (p->auto_shadow_pct < 10 || p->auto_shadow_pct > 100) {
+        *why = "auto_shadow_pct 10..100";
+        return FL_COLOR_KEY_AUTO_SHADOW;
+    }
+    if (p->auto_yellow > 1) {
+        *why = "auto_yellow 0 or 1";
+        return FL_COLOR_KEY_AUTO_YELLOW;
+    }
+    *why = "";
+    return -1;
+}
+
 /* ---- boxes ----------------------------------------------------------------- */
 
 bool fl_hsv_box_has_hue(const fl_hsv_box_t *b, int32_t h)
@@ -238,6 +269,13 @@ void fl_color_params_default(fl_color_params_t *p)
     p->white_line_pct = 180;
     p->yellow = yellow;
     p->adapt_max_hue = 16;
+    /* field_auto 0: the numbers below only matter once a colour file or
+     * fl_color_auto_params switches it on (UvA carpet: hue 64, V 131) */
+    p->field_hue = 64;
+    p->field_val = 131;
+    p->auto_margin = 4;
+    p->auto_shadow_pct = 25;
+    p->auto_yellow = 1;
 }
 
 /* Rule of a box: 0 valid, 1 a hue above 179, 2 S lo > hi, 3 V lo > hi. */
@@ -278,6 +316,8 @@ int32_t fl_color_int_fault(const fl_color_params_t *p, const char **why)
     } else if (p->white_line_pct > 0 && p->white_line_pct < 100) {
         k = FL_COLOR_KEY_WHITE_LINE;
         w = "white_line_pct 1..99 (0: off, or 100..255)";
+    } else {
+        k = fl_color_int_auto_fault(p, &w);
     }
     if (why != NULL)
         *why = w;
@@ -315,7 +355,7 @@ static int32_t hue_set(const fl_color_table_t *t, int32_t h)
 {
     return (fl_hsv_box_has_hue(&t->green, h) ? HS_G : 0) |
            (fl_hsv_box_has_hue(&t->white, h) ? HS_W : 0) |
-           (fl_hsv_box_has_hue(&t->yellow, h) ? HS_Y : 0);
+           (!t->yellow_off && fl_hsv_box_has_hue(&t->yellow, h) ? HS_Y : 0);
 }
 
 fl_color_class_t fl_color_class_hsv(const fl_color_table_t *t, fl_hsv_t hsv)
@@ -617,7 +657,7 @@ static void rgb_cell_range(int32_t c, int32_t *lo, int32_t *hi)
     *hi = c < 0 ? -a : b;
 }
 
-static void build(fl_color_table_t *t)
+void fl_color_int_build(fl_color_table_t *t)
 {
     uint16_t (*base)[256] = t->build_base;
     int16_t *step_t = t->build_step;
@@ -778,7 +818,8 @@ fl_status_t fl_color_init_cfg(fl_color_table_t *t, const fl_color_params_t *p,
         return FL_ERR_RANGE;
     t->params = *p;
     apply(t, 0, p->green.s_lo, p->white.s_hi);
-    build(t);
+    fl_color_int_track_reset(t);
+    fl_color_int_build(t);
     return FL_OK;
 }
 
@@ -787,7 +828,8 @@ fl_status_t fl_color_reset(fl_color_table_t *t)
     if (t == NULL)
         return FL_ERR_NULL;
     apply(t, 0, t->params.green.s_lo, t->params.white.s_hi);
-    build(t);
+    fl_color_int_track_reset(t);
+    fl_color_int_build(t);
     return FL_OK;
 }
 
@@ -828,8 +870,8 @@ int fl_color_adapt(fl_color_table_t *t, const fl_field_color_t *field)
     int32_t ref, shift, lim, s_lo, s_nom, w_hi;
     if (t == NULL || field == NULL)
         return FL_ERR_NULL;
-    if (field->n < 16 || field->hue > 179)
-        return 0;
+    if (field->n < 16 || field->hue > 179 || t->params.field_auto)
+        return 0;   /* carpet-relative boxes follow fl_color_track instead */
     /* centre of the nominal green hue range (wrapping ranges included) */
     ref = t->params.green.h_lo +
           ((t->params.green.h_hi - t->params.green.h_lo + 180) % 180) / 2;
@@ -857,6 +899,6 @@ int fl_color_adapt(fl_color_table_t *t, const fl_field_color_t *field)
         iabs(w_hi - t->white.s_hi) < 3)
         return 0;
     apply(t, shift, s_lo, w_hi);
-    build(t);
+    fl_color_int_build(t);
     return 1;
 }

@@ -39,6 +39,12 @@ static const fl_color_key_def_t fl_color_keys[FL_COLOR_KEYS] = {
     {"white_line_pct", 1, "expected: white_line_pct N"},
     {"yellow", 6, "expected: yellow H_LO H_HI S_LO S_HI V_LO V_HI"},
     {"adapt_max_hue", 1, "expected: adapt_max_hue N"},
+    {"field_auto", 1, "expected: field_auto N"},
+    {"field_hue", 1, "expected: field_hue N"},
+    {"field_val", 1, "expected: field_val N"},
+    {"auto_margin", 1, "expected: auto_margin N"},
+    {"auto_shadow_pct", 1, "expected: auto_shadow_pct N"},
+    {"auto_yellow", 1, "expected: auto_yellow N"},
 };
 
 static fl_color_err_t fl_color_fail(fl_status_t s, const char *why)
@@ -61,6 +67,12 @@ static uint8_t *fl_color_number(fl_color_params_t *q, int32_t k)
     case FL_COLOR_KEY_GREEN_SAT_REF: return &q->green_sat_ref;
     case FL_COLOR_KEY_WHITE_CONTRAST: return &q->white_contrast_pct;
     case FL_COLOR_KEY_WHITE_LINE: return &q->white_line_pct;
+    case FL_COLOR_KEY_FIELD_AUTO: return &q->field_auto;
+    case FL_COLOR_KEY_FIELD_HUE: return &q->field_hue;
+    case FL_COLOR_KEY_FIELD_VAL: return &q->field_val;
+    case FL_COLOR_KEY_AUTO_MARGIN: return &q->auto_margin;
+    case FL_COLOR_KEY_AUTO_SHADOW: return &q->auto_shadow_pct;
+    case FL_COLOR_KEY_AUTO_YELLOW: return &q->auto_yellow;
     default: return &q->adapt_max_hue;
     }
 }

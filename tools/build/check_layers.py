@@ -37,7 +37,7 @@ HEADER_LAYER = {
     "obs.h": "obs",              # the seam between vision and localization
     "color.h": "vision", "scan.h": "vision", "lines.h": "vision",
     "crossings.h": "vision", "circle.h": "vision", "goal.h": "vision",
-    "beacon.h": "vision", "vision.h": "vision",
+    "beacon.h": "vision", "vision.h": "vision", "color_auto.h": "vision",
     "fuzzy.h": "loc", "localizer.h": "loc", "mcl.h": "loc",
     # future localizers: "upf.h": "loc", "grid.h": "loc",
     "fieldloc.h": "umbrella",    # users only: never included from src/, include/

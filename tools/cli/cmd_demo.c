@@ -345,6 +345,7 @@ static int demo_usage(void)
             "                     [--seconds S] [--out DIR] [--picture-every-s S] [--no-png]\n"
             "                     [--localizer NAME (default fuzzy)] [--param NAME=VALUE]...\n"
             "                     [--compare NAME [--compare-param NAME=VALUE]...]\n"
+            "                     [--colors default|auto|FILE]\n"
             "  --seed 0..2147483647, --every 1..1000, --seconds 0..86400 (0: the whole walk),\n"
             "  --picture-every-s 0..86400 (0: none)\n");
     return 2;
@@ -360,6 +361,7 @@ int cmd_demo(int argc, char **argv)
     char err[256], path[1100];
     lr_walk_opts_t o;
     lr_walk_result_t res;
+    colors_opt_t colors;
     const char *localizer = NULL, *param[64], *compare = NULL, *cparam[64];
     int n_param = 0, n_cparam = 0;
     const fl_localizer_t *loc_b = NULL;
@@ -370,9 +372,16 @@ int cmd_demo(int argc, char **argv)
     demo_final_t fin;
     sim_t *probe;
     FILE *f;
+    memset(&colors, 0, sizeof colors);
     for (k = 0; k < argc; k++) {
         if (!strcmp(argv[k], "--walk") && k + 1 < argc)
             walk = argv[++k];
+        else if (!strcmp(argv[k], "--colors") && k + 1 < argc) {
+            /* colour classes (eval/colors_opt.h): auto estimated on the
+             * first frame and tracked on every one */
+            if (colors_opt_parse("demo", argv[++k], &colors) != 0)
+                return 2;
+        }
         else if (!strcmp(argv[k], "--field") && k + 1 < argc)
             field = argv[++k];
         else if (!strcmp(argv[k], "--seed") && k + 1 < argc) {
@@ -415,7 +424,7 @@ int cmd_demo(int argc, char **argv)
             return arg_unknown("demo", argv[k],
                                "--walk=1 --field=1 --seed=1 --every=1 --seconds=1 --out=1 "
                                "--picture-every-s=1 --localizer=1 --param=1 --compare=1 "
-                               "--compare-param=1");
+                               "--compare-param=1 --colors=1");
     }
     if (every < 1 || every > 1000 || seconds < 0 || pic_s < 0)
         return demo_usage();
@@ -472,6 +481,8 @@ int cmd_demo(int argc, char **argv)
         }
     o.loc = loc;
     o.params = params;
+    colors_opt_resolve(&colors, sc.field, NULL);
+    o.colors = &colors;
     o.max_steps = seconds > 0 ? (long)floor(seconds * sc.frame_hz) + 1 : -1;
     o.steps = d.steps;
     fin.d = &d;

@@ -21,10 +21,12 @@
  * `fieldloc calibrate --out`; its camera must be --camera's) after the
  * defaults and before --neck; a file that does not parse is refused with
  * "FILE:LINE: reason" (exit status 2).
- * --colors FILE reads the colour classes from a colour file (fieldloc/color.h,
- * `fieldloc colors` writes the defaults): keys it leaves out keep their
- * defaults; a file that does not parse: "fieldloc detect: FILE:LINE:
- * reason", exit status 2.
+ * --colors default|auto|FILE: the colour classes (eval/colors_opt.h: the 2013
+ * boxes, the field colour from this frame, or a colour file whose keys
+ * override the defaults; a file that does not parse: "fieldloc detect:
+ * FILE:LINE: reason", exit status 2).  Without it: auto on fields with
+ * white goals and on real frames that are not the UvA 2013 set, else
+ * default.  With --stats the carpet estimate and the boxes are printed.
  * --stats prints the stage counters to stderr; --repeat N runs the path N
  * times (for callgrind: instructions per frame).
  * --picture OUT.ppm|.png draws the stages over the frame (det_draw) with a
@@ -39,6 +41,7 @@
  * --neck; |angle| <= 45 deg (0.7854 rad).
  */
 #include "cli/args.h"
+#include "eval/colors_opt.h"
 #include "eval/detect.h"
 #include "eval/calib_frames.h"
 #include "eval/picture.h"
@@ -55,13 +58,15 @@ static int detect_usage(void)
 {
     fprintf(stderr,
             "usage: fieldloc detect [--field NAME] [--camera NAME] [--head PITCH_RAD YAW_RAD]\n"
-            "                       [--neck MM] [--calib CALIB] [--colors FILE] [--picture OUT.ppm]\n"
+            "                       [--neck MM] [--calib CALIB] [--colors default|auto|FILE]\n"
+            "                       [--picture OUT.ppm]\n"
             "                       [--show border,classes] [--stats] [--repeat N] IMAGE.ppm\n"
             "  --head: NAO HeadPitch -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad\n"
             "  --neck 50..2000 mm, --repeat 1..1000000\n"
             "  --imu ANGLEX ANGLEY: torso roll and pitch, rad (NAO AngleX / AngleY)\n"
             "  --calib: a calibration file from `fieldloc calibrate --out`\n"
-            "  --colors: a colour file, see `fieldloc colors`\n"
+            "  --colors: default (2013 boxes), auto (from the frame) or a colour file\n"
+            "            (`fieldloc colors`, `fieldloc calibrate-colors`)\n"
             "  prints: kind<TAB>u<TAB>v<TAB>confidence<TAB>range_mm<TAB>bearing_deg\n"
             "  kind L T X G (post foot) U (post top) C (circle centre)\n");
     return 2;
@@ -132,9 +137,10 @@ static int detect_picture(const det_ctx_t *ctx, const render_frame_t *fr, const 
 int cmd_detect(int argc, char **argv)
 {
     const char *field_name = "uva2013", *cam_name = "uva2013", *path = NULL,
-               *picture = NULL, *calib_path = NULL, *colors_path = NULL;
+               *picture = NULL, *calib_path = NULL;
     fl_calib_t calib;
-    fl_color_params_t colors;
+    colors_opt_t colors;
+    fl_color_estimate_t est;
     double pitch = 0, yaw = 0;
     const char *head_text[2] = {NULL, NULL};
     int i, n, stats = 0, rc = 0, repeat = 1, head_given = 0, show_border = 0, show_classes = 0;
@@ -150,6 +156,8 @@ int cmd_detect(int argc, char **argv)
     det_feature_t feat[DET_MAX_FEATURES];
     fl_obs_list_t obs;
 
+    memset(&colors, 0, sizeof colors);
+    memset(&est, 0, sizeof est);
     for (i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--field") && i + 1 < argc)
             field_name = argv[++i];
@@ -173,8 +181,10 @@ int cmd_detect(int argc, char **argv)
             imu_given = 1;
         } else if (!strcmp(argv[i], "--calib") && i + 1 < argc)
             calib_path = argv[++i];
-        else if (!strcmp(argv[i], "--colors") && i + 1 < argc)
-            colors_path = argv[++i];
+        else if (!strcmp(argv[i], "--colors") && i + 1 < argc) {
+            if (colors_opt_parse("detect", argv[++i], &colors) != 0)
+                return 2;
+        }
         else if (!strcmp(argv[i], "--picture") && i + 1 < argc)
             picture = argv[++i];
         else if (!strcmp(argv[i], "--stats"))
@@ -223,10 +233,6 @@ int cmd_detect(int argc, char **argv)
                     m->name);
             return 2;
         }
-    }
-    if (colors_path && det_colors_load(colors_path, &colors, err, sizeof err) != 0) {
-        fprintf(stderr, "fieldloc detect: %s\n", err);
-        return 2;
     }
     if (render_read_frame(path, &fr, err, sizeof err) != 0) {
         fprintf(stderr, "detect: %s: %s\n", path, err);
@@ -283,15 +289,21 @@ int cmd_detect(int argc, char **argv)
         render_frame_free(&fr);
         return 1;
     }
-    if (colors_path && det_ctx_set_colors(&ctx, &colors) != 0) {  /* parsed: valid */
-        fprintf(stderr, "fieldloc detect: %s: colour classes refused\n", colors_path);
+    colors_opt_resolve(&colors, field, path);
+    if (colors_opt_setup(&colors, ctx.colors, field, &fr.view, &cam, &est) < 0) {
+        fprintf(stderr, "fieldloc detect: colour classes refused\n");
         det_ctx_free(&ctx);
         render_frame_free(&fr);
         return 2;
     }
-    /* --repeat N: run the path N times (callgrind: instructions per frame) */
-    for (i = 1; i < repeat; i++)
+    if (stats)
+        colors_print_stats(stderr, &colors, ctx.colors, &est);
+    /* --repeat N: run the path N times (callgrind: instructions per frame),
+     * tracking the field colour after each */
+    for (i = 1; i < repeat; i++) {
         fl_vision_frame(ctx.vis, ctx.colors, &fr.view, &cam, field, &obs);
+        colors_opt_track(ctx.colors, &ctx.vis->scan);
+    }
     n = det_run(&ctx, &fr.view, &cam, field, &obs, feat, DET_MAX_FEATURES);
     for (i = 0; i < n; i++)
         printf("%c\t%.1f\t%.1f\t%.2f\t%d\t%.1f\n", feat[i].kind, feat[i].u, feat[i].v,

@@ -27,15 +27,16 @@
  *       field border: the fraction of labelled columns (B) whose scanner
  *       border lies within 3 px of the labelled topmost carpet row, the
  *       mean and the worst.
- * --colors default|FILE: the colour classes of the vision path for every
- * block (default: the 2013 UvA boxes; FILE: a colour file, see `fieldloc
- * colors`).
  * The scoring is in tools/eval/eval_detect.c.  --pictures DIR writes one
  * picture per frame (stages, truth rings, legend strip).
+ * --colors default|auto|FILE (eval/colors_opt.h): the colour classes; auto
+ * estimates the carpet of each frame.  Without it: auto on the white-goal
+ * fixtures (spl2020), default on the others and the UvA 2013 frames.
  * Numbers are checked (tools/cli/args.h; the ranges of the vision
  * parameters, lines.h / crossings.h / scan.h); errors exit with status 2.
  */
 #include "cli/args.h"
+#include "eval/colors_opt.h"
 #include "eval/detect.h"
 #include "io/realdata.h"
 #include "cli/registry.h"
@@ -49,7 +50,7 @@ static int evd_usage(int rc)
     fprintf(stderr,
             "usage: fieldloc eval-detect [--fixtures DIR] [--realdata DIR] [--max-range MM]\n"
             "         [--only PREFIX] [--verbose] [--pictures DIR] [--no-real] [--no-fixtures]\n"
-            "         [--modern FILE] [--no-modern] [--colors default|FILE]\n"
+            "         [--modern FILE] [--no-modern] [--colors default|auto|FILE]\n"
             "  tuning: --run 1..255 px  --grid 1..16 px  --step 1..64 px  --err BASE POINT\n"
             "          (0..65535 each)  --white 0..100 %%  --white-s 0..254  --tol 1..45 deg\n"
             "          --minconf 0..255;  --max-range 100..20000 mm\n");
@@ -58,7 +59,7 @@ static int evd_usage(int rc)
 
 int cmd_eval_detect(int argc, char **argv)
 {
-    const char *fix = "fixtures", *real = NULL, *only = NULL, *modern = NULL, *colors = NULL;
+    const char *fix = "fixtures", *real = NULL, *only = NULL, *modern = NULL;
     double max_range = 6000;
     int i, verbose = 0, n, skip_real = 0, skip_fix = 0, skip_modern = 0;
     det_ctx_t ctx;
@@ -66,6 +67,8 @@ int cmd_eval_detect(int argc, char **argv)
     evd_border_t bs;
     fl_vision_params_t vp;
     static const char C[] = "eval-detect";
+    colors_opt_t colors;
+    memset(&colors, 0, sizeof colors);   /* unset: the policy per field */
     fl_vision_params_default(&vp);
     for (i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--fixtures") && i + 1 < argc)
@@ -91,8 +94,10 @@ int cmd_eval_detect(int argc, char **argv)
             modern = argv[++i];
         else if (!strcmp(argv[i], "--no-modern"))
             skip_modern = 1;
-        else if (!strcmp(argv[i], "--colors") && i + 1 < argc)
-            colors = argv[++i];
+        else if (!strcmp(argv[i], "--colors") && i + 1 < argc) {
+            if (colors_opt_parse(C, argv[++i], &colors) != 0)
+                return 2;
+        }
         /* tuning knobs (defaults: fl_vision_params_default) */
         else if (!strcmp(argv[i], "--run") && i + 1 < argc) {
             if (arg_int32(C, "--run", argv[++i], 1, 255, "px", &vp.scan.border_run_px))
@@ -135,20 +140,7 @@ int cmd_eval_detect(int argc, char **argv)
         fprintf(stderr, "eval-detect: bad parameters\n");
         return 1;
     }
-    if (colors && strcmp(colors, "default") != 0) {
-        fl_color_params_t cp;
-        char err[256];
-        if (det_colors_load(colors, &cp, err, sizeof err) != 0) {
-            fprintf(stderr, "fieldloc eval-detect: %s\n", err);
-            det_ctx_free(&ctx);
-            return 2;
-        }
-        if (det_ctx_set_colors(&ctx, &cp) != 0) {
-            fprintf(stderr, "fieldloc eval-detect: %s: colour classes refused\n", colors);
-            det_ctx_free(&ctx);
-            return 2;
-        }
-    }
+    ctx.colors_each = &colors;
     evd_stats_clear(&s);
     n = skip_fix ? -2 : evd_fixtures(&ctx, fix, max_range, verbose, &s, only);
     if (n == -2)

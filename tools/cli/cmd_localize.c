@@ -7,7 +7,7 @@
  *                     [--param NAME=VALUE]...
  *   fieldloc localize --uva-spots [--pictures DIR] [--write-seq DIR]
  *   fieldloc localize --physar [--localizer NAME] [--repeat N] [--imu angles|accel|off]
- *                     [--colors default|FILE] [--pictures DIR]
+ *                     [--colors default|auto|FILE] [--pictures DIR]
  *
  * Per frame, in file order: predict(odometry of the line, split and rounded
  * by lr_predict) ; read the image ; vision (fl_vision_frame, default color
@@ -37,10 +37,12 @@
  * pose after the model's defaults (fl_calib_apply: neck height, pitch and
  * roll offsets).  A file that does not parse ("FILE:LINE: reason") or is
  * for another camera than the sequence's: exit status 2.
- * --colors FILE (both modes): the colour classes of a colour file
- * (fieldloc/color.h; `fieldloc colors` writes the defaults) for every
- * frame's vision; one that does not parse: "fieldloc localize: FILE:LINE:
- * reason", exit status 2.
+ * --colors default|auto|FILE (both modes): the colour classes
+ * (eval/colors_opt.h) of every frame's vision: the 2013 boxes, the field
+ * colour estimated on the first frame and tracked frame by frame, or a
+ * colour file (one that does not parse: "fieldloc localize: FILE:LINE:
+ * reason", exit status 2).  Without it: auto for a white-goal field or
+ * real frames outside the UvA 2013 set, else default.
  *
  * --pictures DIR writes DIR/frame_NNNNN.ppm (+ .png): the frame
  * with the detected features and the field model seen from the estimate,
@@ -85,7 +87,8 @@
  * is about 0.087 rad below it at every point: tools/loc/physar.h), "off"
  * none (head angles only).  Absent folder:
  * one "physar: skipped: ..." line, exit status 0.
- * --colors default is the built-in colour classes (as without --colors).
+ * Without --colors the frames take the policy of eval/colors_opt.h (auto
+ * on these frames).
  */
 #include "loc/locrun.h"
 #include "loc/physar.h"
@@ -114,7 +117,8 @@ static int lz_usage(void)
             "                                  [--imu angles|accel|off] [--pictures DIR]\n"
             "       (both: [--param NAME=VALUE]... localizer parameters,\n"
             "        [--calib CALIB] per-robot calibration from `fieldloc calibrate --out`,\n"
-            "        [--colors default|FILE] colour classes, see `fieldloc colors`)\n"
+            "        [--colors default|auto|FILE] colour classes: the 2013 boxes, from the\n"
+            "        frames (tracked), or a file from `fieldloc colors|calibrate-colors`)\n"
             "  SEQUENCE.txt: 'field NAME', 'camera NAME', optional 'prior X_MM Y_MM THETA_DEG',\n"
             "  then per frame 'frame IMAGE.ppm odo DX_MM DY_MM DTHETA_DEG head PITCH_RAD YAW_RAD'\n"
             "  prints per frame: pose X_MM Y_MM THETA_DEG RELIABILITY STATE sd X Y DEG mirror M\n"
@@ -132,7 +136,7 @@ typedef struct {
 
 static int lz_uva_spots(const char *pictures, const char *write_seq,
                         const fl_localizer_t *loc, const void *params, const fl_calib_t *calib,
-                        const fl_color_params_t *colors)
+                        const colors_opt_t *colors)
 {
     const char *dir = rd_dir();
     char path[1200], err[256];
@@ -290,7 +294,7 @@ static int lz_uva_spots(const char *pictures, const char *write_seq,
 /* ---- physar black1 points --------------------------------------------------- */
 
 static int lz_physar(const char *pictures, const fl_localizer_t *only, const void *params,
-                     int repeat, ph_imu_t imu, const fl_color_params_t *colors)
+                     int repeat, ph_imu_t imu, const colors_opt_t *colors)
 {
     ph_opts_t o;
     ph_result_t *res;
@@ -342,12 +346,13 @@ int cmd_localize(int argc, char **argv)
     lr_seq_t seq;
     lr_seq_opts_t o;
     char err[512];
-    const char *localizer = NULL, *param[64], *calib_path = NULL, *colors_path = NULL;
+    const char *localizer = NULL, *param[64], *calib_path = NULL;
     fl_calib_t calib;
-    fl_color_params_t colors;
+    colors_opt_t colors;
     int n_param = 0;
     const fl_localizer_t *loc;
     void *params;
+    memset(&colors, 0, sizeof colors);   /* COLORS_UNSET: the policy decides */
     for (k = 0; k < argc; k++) {
         if (!strcmp(argv[k], "--pictures") && k + 1 < argc)
             pictures = argv[++k];
@@ -382,8 +387,10 @@ int cmd_localize(int argc, char **argv)
         }
         else if (!strcmp(argv[k], "--calib") && k + 1 < argc)
             calib_path = argv[++k];
-        else if (!strcmp(argv[k], "--colors") && k + 1 < argc)
-            colors_path = argv[++k];
+        else if (!strcmp(argv[k], "--colors") && k + 1 < argc) {
+            if (colors_opt_parse("localize", argv[++k], &colors) != 0)
+                return 2;
+        }
         else if (!strcmp(argv[k], "--localizer") && k + 1 < argc)
             localizer = argv[++k];
         else if (!strcmp(argv[k], "--param") && k + 1 < argc) {
@@ -404,17 +411,6 @@ int cmd_localize(int argc, char **argv)
     }
     if (calib_path != NULL && cf_calib_load(calib_path, &calib, err, (int)sizeof err) != 0) {
         fprintf(stderr, "localize: %s\n", err);
-        return 2;
-    }
-    if (colors_path != NULL && !strcmp(colors_path, "default"))
-        colors_path = NULL;   /* the built-in classes */
-    else if (colors_path != NULL && !strcmp(colors_path, "auto")) {
-        fprintf(stderr, "fieldloc localize: --colors auto (field colour from the frame) is not "
-                        "available in this build; use --colors default or a colour file\n");
-        return 2;
-    }
-    if (colors_path != NULL && det_colors_load(colors_path, &colors, err, (int)sizeof err) != 0) {
-        fprintf(stderr, "fieldloc localize: %s\n", err);
         return 2;
     }
     if (uva + physar > 1 || ((repeat_given || imu_given) && !physar) ||
@@ -440,14 +436,14 @@ int cmd_localize(int argc, char **argv)
     }
     if (physar) {
         rc = lz_physar(pictures, localizer != NULL ? loc : NULL, localizer != NULL ? params : NULL,
-                       repeat, (ph_imu_t)imu, colors_path ? &colors : NULL);
+                       repeat, (ph_imu_t)imu, &colors);
         free(params);
         return rc;
     }
     if (uva) {
         rc = seq_path != NULL ? lz_usage() : lz_uva_spots(pictures, write_seq, loc, params,
                                                            calib_path ? &calib : NULL,
-                                                           colors_path ? &colors : NULL);
+                                                           &colors);
         free(params);
         return rc;
     }
@@ -472,7 +468,7 @@ int cmd_localize(int argc, char **argv)
         mkdir(pictures, 0777);
     memset(&o, 0, sizeof o);
     o.calib = calib_path != NULL ? &calib : NULL;
-    o.colors = colors_path != NULL ? &colors : NULL;
+    o.colors = &colors;
     o.out = stdout;
     o.name = seq_path;
     o.pictures = pictures;

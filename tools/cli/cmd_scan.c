@@ -6,15 +6,21 @@
  *   fieldloc scan IMAGE.ppm|FRAME.raw [--picture OUT.ppm|OUT.png]
  *        [--format rgb|yuyv|planar] [--step COL ROW] [--full]
  *        [--run N] [--camera NAME --head PITCH_RAD YAW_RAD [--neck MM]]
- *        [--uva] [--adapt] [--repeat N] [--quiet] [--colors FILE]
+ *        [--uva] [--adapt] [--repeat N] [--quiet] [--colors default|auto|FILE]
+ *        [--field NAME]
  * --full is --step 1 1.  --uva takes the camera from the UvA 2013 labels
  * (camera "uva2013", the record of the image's file name).  --adapt re-scans
  * once after fl_color_adapt when the field color moved.  --repeat scans
  * the same frame N times (for callgrind: instructions per frame =
- * difference of two N / difference of N).  --colors FILE: the colour
- * classes of a colour file (fieldloc/color.h; `fieldloc colors` writes the
- * defaults); one that does not parse: "fieldloc scan: FILE:LINE: reason",
- * exit status 2.
+ * difference of two N / difference of N), tracking the field colour after
+ * each scan.  --colors default|auto|FILE: the colour classes
+ * (eval/colors_opt.h; a file that does not parse: "fieldloc scan:
+ * FILE:LINE: reason", exit status 2); without it, auto for real frames
+ * that are not the UvA 2013 set, else default.  --field NAME gives the
+ * goal colour for auto (yellow goals keep a yellow class clear of the
+ * carpet); without it, and without --uva, white goals: no yellow class.  Besides the counts over
+ * the whole grid, the classes of the cells below the border (the lower
+ * half in columns without one) are printed as fractions.
  * The picture has a legend strip below the frame (picture.h).  Numbers are
  * checked (tools/cli/args.h): --step 1..16 each, --run 1..255 px, --head
  * within the NAO head joints (the camera's limit otherwise), --neck
@@ -22,6 +28,7 @@
  */
 #include "eval/scan_tool.h"
 #include "cli/args.h"
+#include "eval/colors_opt.h"
 #include "eval/detect.h"
 #include "eval/picture.h"
 
@@ -41,7 +48,7 @@ static int usage(void)
             "usage: fieldloc scan IMAGE.ppm|FRAME.raw [--picture OUT.ppm|.png]\n"
             "         [--format rgb|yuyv|planar] [--step COL ROW] [--full] [--run N]\n"
             "         [--camera NAME --head PITCH_RAD YAW_RAD [--neck MM]] [--uva]\n"
-            "         [--adapt] [--repeat N] [--quiet] [--colors FILE]\n"
+            "         [--adapt] [--repeat N] [--quiet] [--colors default|auto|FILE] [--field NAME]\n"
             "  --step 1..16 1..16, --run 1..255 px, --neck 50..2000 mm, --repeat 1..1000000,\n"
             "  --head: NAO HeadPitch -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad\n");
     return 2;
@@ -78,12 +85,31 @@ static int uva_camera(const char *path, fl_camera_t *cam)
     return found;
 }
 
+/* Class fractions of the cells below the border (the lower half of the
+ * grid in columns without one): the carpet where the scanner sees it. */
+static void scan_print_below(const fl_scan_t *s)
+{
+    int32_t i, j, n[4] = {0, 0, 0, 0}, tot = 0;
+    for (i = 0; i < s->cols; i++) {
+        int32_t j0 = s->border_v[i] < s->height ? s->first_row[i] : s->rows / 2;
+        for (j = j0; j < s->rows; j++) {
+            n[fl_scan_class_at(s, i, j)]++;
+            tot++;
+        }
+    }
+    printf("below border: %d cells, green %.3f white %.3f yellow %.3f other %.3f\n", (int)tot,
+           tot ? n[FL_CLASS_GREEN] / (double)tot : 0.0, tot ? n[FL_CLASS_WHITE] / (double)tot : 0.0,
+           tot ? n[FL_CLASS_YELLOW] / (double)tot : 0.0, tot ? n[FL_CLASS_OTHER] / (double)tot : 0.0);
+}
+
 int cmd_scan(int argc, char **argv)
 {
-    const char *in = NULL, *picture = NULL, *camname = NULL, *colors_path = NULL;
+    const char *in = NULL, *picture = NULL, *camname = NULL, *field_name = NULL;
+    const fl_field_t *field = NULL;
+    colors_opt_t co;
+    static fl_color_estimate_t est;
     fl_pixel_format_t fmt = 0;
     fl_scan_params_t sp;
-    fl_color_params_t cp;
     static fl_color_table_t colors;
     static fl_scan_t scan;
     fl_camera_t cam;
@@ -98,7 +124,7 @@ int cmd_scan(int argc, char **argv)
     char err[256];
 
     fl_scan_params_default(&sp);
-    fl_color_params_default(&cp);
+    memset(&co, 0, sizeof co);
     for (k = 0; k < argc; k++) {
         if (!strcmp(argv[k], "--picture") && k + 1 < argc)
             picture = argv[++k];
@@ -137,15 +163,18 @@ int cmd_scan(int argc, char **argv)
                 return 2;
         } else if (!strcmp(argv[k], "--quiet"))
             quiet = 1;
-        else if (!strcmp(argv[k], "--colors") && k + 1 < argc)
-            colors_path = argv[++k];
+        else if (!strcmp(argv[k], "--colors") && k + 1 < argc) {
+            if (colors_opt_parse("scan", argv[++k], &co) != 0)
+                return 2;
+        } else if (!strcmp(argv[k], "--field") && k + 1 < argc)
+            field_name = argv[++k];
         else if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
             usage();
             return 0;
         } else if (argv[k][0] == '-' || in)
             return arg_unknown("scan", argv[k],
                                "--picture=1 --format=1 --step=2 --run=1 --camera=1 --head=2 "
-                               "--neck=1 --repeat=1 --colors=1");
+                               "--neck=1 --repeat=1 --colors=1 --field=1");
         else
             in = argv[k];
     }
@@ -155,11 +184,6 @@ int cmd_scan(int argc, char **argv)
         fprintf(stderr, "scan: bad --step or --run\n");
         return 2;
     }
-    if (colors_path && det_colors_load(colors_path, &cp, err, sizeof err) != 0) {
-        fprintf(stderr, "fieldloc scan: %s\n", err);
-        return 2;
-    }
-    fl_color_init(&colors, &cp);
     if (render_read_frame(in, &fr, err, sizeof err) != 0) {
         fprintf(stderr, "scan: %s\n", err);
         return 1;
@@ -204,8 +228,22 @@ int cmd_scan(int argc, char **argv)
         }
         use_cam = 1;
     }
-    for (k = 0; k < repeat; k++)
+    if (field_name != NULL && (field = fl_field_find(field_name)) == NULL) {
+        fprintf(stderr, "scan: unknown field %s (see: fieldloc fields)\n", field_name);
+        return 2;
+    }
+    if (uva && field == NULL)
+        field = fl_field_find("uva2013");
+    colors_opt_resolve(&co, field, in);
+    if (colors_opt_setup(&co, &colors, field, view, use_cam ? &cam : NULL, &est) < 0) {
+        fprintf(stderr, "scan: colour classes refused\n");
+        return 2;
+    }
+    for (k = 0; k < repeat; k++) {
         fl_scan_frame(&scan, &colors, view, use_cam ? &cam : NULL);
+        if (k + 1 < repeat)
+            colors_opt_track(&colors, &scan);
+    }
     if (adapt && fl_color_adapt(&colors, &scan.field) == 1) {
         printf("adapted: hue shift %d, green s_lo %d; re-scanned\n", colors.hue_shift,
                colors.green.s_lo);
@@ -227,6 +265,9 @@ int cmd_scan(int argc, char **argv)
         printf("cells green %d white %d yellow %d other %d\n",
                fl_scan_count(&scan, FL_CLASS_GREEN), fl_scan_count(&scan, FL_CLASS_WHITE),
                fl_scan_count(&scan, FL_CLASS_YELLOW), fl_scan_count(&scan, FL_CLASS_OTHER));
+        scan_print_below(&scan);
+        if (co.mode != COLORS_DEFAULT)
+            colors_print_stats(stdout, &co, &colors, &est);
         printf("white runs rejected %d, checks skipped %d, feet dropped %d\n",
                scan.white_rejected, scan.checks_skipped, scan.feet_dropped);
         printf("feet %d:", scan.n_feet);

@@ -7,6 +7,7 @@
  *                     --seed N [--features | --frames] [--steps N] [--quiet]
  *                     [--scenario FILE.walk] [--every N] [--param NAME=V]...
  *                     [--obs-cache FILE] [--print-obs] [--kidnaps N]
+ *                     [--colors default|auto|FILE]
  *                     [--export-stream FILE]
  *
  * The walk is the built-in scenario of the field (fixtures/walks/NAME.walk:
@@ -160,13 +161,14 @@ static void usage(void)
             "                         --seed N [--features | --frames] [--steps N] [--quiet]\n"
             "                         [--scenario FILE.walk] [--every N] [--param NAME=V]...\n"
             "                         [--obs-cache FILE] [--print-obs] [--kidnaps N]\n"
-            "                         [--export-stream FILE]\n"
+            "                         [--export-stream FILE] [--colors default|auto|FILE]\n"
             "  --frames: render each frame at the true pose and run the vision path;\n"
             "            vision on every Nth step (--every, default 3 = 10 Hz at 30 Hz)\n"
             "  --seed 0..2147483647, --steps 0..100000000, --every 1..1000, --post-sides 0|1,\n"
             "  --kidnaps 0..16 (default: the walk's own)\n"
             "  --export-stream FILE: the localizer's inputs and the truth (docs/STREAM.md;\n"
-            "            fieldloc replay --stream FILE runs any localizer on them)\n");
+            "            fieldloc replay --stream FILE runs any localizer on them)\n"
+            "  --colors: frames mode colour classes (default: auto on white-goal fields)\n");
 }
 
 int cmd_simulate(int argc, char **argv)
@@ -179,6 +181,7 @@ int cmd_simulate(int argc, char **argv)
     lr_walk_result_t res;
     char err[256];
     const char *obs_cache = NULL, *param[64], *stream_path = NULL;
+    colors_opt_t colors;
     long kidnaps = -1;
     FILE *stream = NULL;
     int n_param = 0;
@@ -186,9 +189,16 @@ int cmd_simulate(int argc, char **argv)
     void *params = NULL, *defaults = NULL;
     int rc;
 
+    memset(&colors, 0, sizeof colors);
     for (k = 0; k < argc; k++) {
         if (!strcmp(argv[k], "--field") && k + 1 < argc)
             field_name = argv[++k];
+        else if (!strcmp(argv[k], "--colors") && k + 1 < argc) {
+            /* frames mode: colour classes (eval/colors_opt.h), auto
+             * estimated on the first frame and tracked on every one */
+            if (colors_opt_parse("simulate", argv[++k], &colors) != 0)
+                return 2;
+        }
         else if (!strcmp(argv[k], "--localizer") && k + 1 < argc)
             localizer = argv[++k];
         else if (!strcmp(argv[k], "--seed") && k + 1 < argc) {
@@ -230,7 +240,7 @@ int cmd_simulate(int argc, char **argv)
             return arg_unknown("simulate", argv[k],
                                "--field=1 --localizer=1 --seed=1 --steps=1 --every=1 --param=1 "
                                "--obs-cache=1 --scenario=1 --post-sides=1 --export-stream=1 "
-                               "--kidnaps=1");
+                               "--kidnaps=1 --colors=1");
     }
     if (scen_path == NULL && field_name == NULL) {
         usage();
@@ -309,6 +319,8 @@ int cmd_simulate(int argc, char **argv)
     o.params = params;
     o.obs_cache = obs_cache;
     o.stream = stream;
+    colors_opt_resolve(&colors, sc.field, NULL);
+    o.colors = &colors;
     printf("# simulate field %s localizer %s seed %llu %s, %.0f s at %.0f Hz\n",
            sc.field->name, loc->name, (unsigned long long)sc.seed, frames ? "frames" : "features",
            sc.duration_s, sc.frame_hz);

@@ -23,6 +23,7 @@
     X(fixtures, "regenerate the fixture set (make fixtures)")                \
     X(calibrate, "fit the UvA 2013 camera to the hand labels")                \
     X(colors, "[--out FILE]: the default colour file, commented (edit; --colors)") \
+    X(calibrate_colors, "IMAGE... [--field F] [--camera C --head P Y] --out FILE: colour file from frames") \
     X(scan, "IMAGE.ppm [--picture OUT.ppm]: column scanner")                  \
     X(detect, "[--field F] [--camera C] [--head P Y] IMAGE.ppm: features")    \
     X(eval_detect, "score detections against ground truth")                   \

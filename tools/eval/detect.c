@@ -32,6 +32,7 @@ int det_ctx_init_params(det_ctx_t *c, const fl_vision_params_t *p)
         return -1;
     }
     c->params = *p;
+    c->colors_built = COLORS_DEFAULT;
     return 0;
 }
 
@@ -95,6 +96,20 @@ static const char *const det_colors_help[][2] = {
     {"adapt_max_hue",
      "\n# largest hue re-centring of green and yellow, hue units (0: never).\n"
      "# 0..30\n"},
+    {"field_auto",
+     "\n# 1: the boxes above are relative to the carpet below (field_hue,\n"
+     "# field_val, green_sat_ref) and follow it frame by frame; what\n"
+     "# `fieldloc calibrate-colors` writes.  0: fixed boxes.  0..1\n"},
+    {"field_hue", "# carpet hue the boxes were made for.  0..179\n"},
+    {"field_val", "# carpet median V (brightness) they were made for.  1..255\n"},
+    {"auto_margin",
+     "# hue units added on each side of the measured carpet hue spread when\n"
+     "# the boxes are derived from a frame (--colors auto).  0..30\n"},
+    {"auto_shadow_pct",
+     "# green V_LO as % of the carpet's darkest V (hard shadows).  10..100\n"},
+    {"auto_yellow",
+     "# 1: yellow goals (yellow box kept clear of the carpet hue); 0: white\n"
+     "# goals, no yellow class (with field_auto 1).  0..1\n"},
 };
 
 size_t det_colors_text(const fl_color_params_t *p, char *buf, size_t cap)
@@ -166,6 +181,15 @@ int det_run(det_ctx_t *c, const fl_image_t *img, const fl_camera_t *cam,
     fl_obs_list_t local;
     const fl_vision_t *v = c->vis;
     int n = 0, i;
+    if (c->colors_each != NULL) {
+        colors_opt_t o = *c->colors_each;
+        colors_opt_resolve(&o, field, NULL);
+        if (o.mode == COLORS_AUTO || (int)o.mode != c->colors_built) {
+            if (colors_opt_setup(&o, c->colors, field, img, cam, NULL) < 0)
+                return 0;
+            c->colors_built = (int)o.mode;
+        }
+    }
     fl_vision_frame(c->vis, c->colors, img, cam, field, obs ? obs : &local);
     for (i = 0; i < v->crossings.n; i++) {
         const fl_crossing_t *x = &v->crossings.c[i];

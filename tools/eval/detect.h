@@ -15,6 +15,7 @@
 
 #include "fieldloc/fieldloc.h"
 #include "fieldloc/vision.h"
+#include "eval/colors_opt.h"
 
 #include <stdint.h>
 
@@ -33,6 +34,13 @@ typedef struct {
     fl_color_table_t *colors;
     fl_vision_t *vis;
     fl_vision_params_t params;
+    /* When set, det_run sets the colour tables up for each image: the
+     * option resolved for the frame's field (colors_opt_resolve), then
+     * colors_opt_setup when it resolves to auto (the carpet of that
+     * image) or to another mode than the tables hold.  NULL: the tables
+     * are left as they are (det_ctx_init: the defaults). */
+    const colors_opt_t *colors_each;
+    int colors_built;   /* colors_mode_t the tables hold (init: default) */
 } det_ctx_t;
 
 /* Experiment knob: when >= 0, the color tables use white S <= this and

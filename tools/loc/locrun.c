@@ -179,7 +179,15 @@ int lr_frame(lr_t *r, const fl_image_t *img, const fl_camera_pose_t *pose)
         return -1;
     if (fl_camera_init(&r->cam, r->model, pose) != FL_OK)
         return -1;
+    if (r->colors != NULL && !r->colors_ready) {
+        /* start-up: --colors auto estimates the carpet of this frame */
+        if (colors_opt_setup(r->colors, r->det.colors, r->field, img, &r->cam, NULL) < 0)
+            return -1;
+        r->colors_ready = 1;
+    }
     fl_vision_frame(r->det.vis, r->det.colors, img, &r->cam, r->field, &r->obs);
+    if (r->colors != NULL)
+        (void)colors_opt_track(r->det.colors, &r->det.vis->scan);
     r->frames++;
     lr_filter(r);
     fl_vision_view(&r->cam, &r->view);
@@ -537,6 +545,7 @@ static void lr_seq_picture(const lr_seq_opts_t *o, lr_t *lr, const render_frame_
 int lr_seq_run(const lr_seq_t *seq, const lr_seq_opts_t *o, lr_frame_result_t *res)
 {
     lr_t lr;
+    colors_opt_t colors;
     char err[256];
     int k, skipped = 0;
     const char *name = o->name != NULL ? o->name : "sequence";
@@ -544,10 +553,10 @@ int lr_seq_run(const lr_seq_t *seq, const lr_seq_opts_t *o, lr_frame_result_t *r
         fprintf(stderr, "localize: %s\n", err);
         return -1;
     }
-    if (o->colors != NULL && det_ctx_set_colors(&lr.det, o->colors) != 0) {
-        fprintf(stderr, "localize: colour classes refused\n");
-        lr_free(&lr);
-        return -1;
+    if (o->colors != NULL) {
+        colors = *o->colors;
+        colors_opt_resolve(&colors, seq->field, seq->n > 0 ? seq->frame[0].image : NULL);
+        lr.colors = &colors;
     }
     if (seq->has_prior) {
         int32_t x = (int32_t)lround(seq->prior_x_mm), y = (int32_t)lround(seq->prior_y_mm);
@@ -1109,6 +1118,7 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
         free(job);
         return -1;
     }
+    lr.colors = o->colors;
     if (lr_metrics_init(&met, sc->field->symmetric) != 0) {
         lr_free(&lr);
         free(sim);

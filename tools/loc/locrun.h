@@ -36,6 +36,7 @@
 #ifndef FL_TOOLS_LOCRUN_H
 #define FL_TOOLS_LOCRUN_H
 
+#include "eval/colors_opt.h"
 #include "eval/detect.h"
 #include "fieldloc/fieldloc.h"
 #include "fieldloc/vision.h"
@@ -67,6 +68,11 @@ typedef struct {
                                    lr_predict / lr_frame / lr_frame_obs make
                                    is written to it (tools/loc/stream.h
                                    format, docs/STREAM.md); NULL: off */
+    const colors_opt_t *colors; /* colour classes (eval/colors_opt.h), set
+                                   up on the first lr_frame from its image
+                                   and tracked after every one; NULL: the
+                                   defaults, untouched */
+    int colors_ready;           /* the first frame set them up */
 } lr_t;
 
 /* loc NULL: "fuzzy".  params (loc->params_size bytes) NULL: the
@@ -196,8 +202,10 @@ typedef struct {
     const fl_calib_t *calib;     /* per-robot calibration applied to every
                                     frame's camera pose (fl_calib_apply), or
                                     NULL: the model's defaults */
-    const fl_color_params_t *colors; /* colour classes (a colour file, parsed:
-                                    valid), or NULL: the defaults */
+    const colors_opt_t *colors;  /* colour classes (--colors, resolved by
+                                    colors_opt_resolve for the sequence's
+                                    field and first image), or NULL: the
+                                    defaults */
 } lr_seq_opts_t;
 
 /* res (may be NULL) gets one entry per frame.  Returns the number of
@@ -254,6 +262,10 @@ typedef struct {
     /* called after every record (frames mode: every vision step) */
     void (*hook)(void *user, const struct lr_walk_step *ws);
     void *user;
+    const colors_opt_t *colors;   /* frames mode: colour classes (lr_t.colors;
+                                     an obs_cache holds the observations of
+                                     the colours it was written with); NULL:
+                                     the defaults */
 } lr_walk_opts_t;
 
 typedef struct lr_walk_step {

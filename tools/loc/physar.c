@@ -175,6 +175,8 @@ static int ph_point(const fl_localizer_t *loc, const ph_opts_t *o, const char *d
                     const fl_camera_model_t *m, ph_point_t *p, char *err, int err_len)
 {
     lr_t lr;
+    colors_opt_t colors;
+    char ipath[1400];
     host_image_t img;
     fl_image_t view;
     fl_camera_pose_t pose;
@@ -189,11 +191,15 @@ static int ph_point(const fl_localizer_t *loc, const ph_opts_t *o, const char *d
     p->truth_heading_deg = ph_wrap_deg(r->nominal_heading_deg);
     if (lr_init(&lr, loc, field, m, o->params, err, err_len) != 0)
         return -1;
-    if (o->colors != NULL && det_ctx_set_colors(&lr.det, o->colors) != 0) {
-        snprintf(err, (size_t)err_len, "colour classes refused");
-        lr_free(&lr);
-        return -1;
-    }
+    /* the colour classes: set up from the first frame (auto) and tracked
+     * after every one by lr_frame */
+    memset(&colors, 0, sizeof colors);
+    if (o->colors != NULL)
+        colors = *o->colors;
+    if (rd_path(ipath, sizeof ipath, dir, r->image_top) != 0)
+        ipath[0] = '\0';
+    colors_opt_resolve(&colors, field, ipath);
+    lr.colors = &colors;
     rd_physar_camera_pose(r, m, &pose);
     p->torso_roll_rad = r->imu_anglex_rad;
     p->torso_pitch_rad = r->imu_angley_rad;

@@ -67,7 +67,10 @@ typedef struct {
     int repeat;                         /* frames per point, >= 1 */
     const void *params;                 /* the localizer's parameters; NULL:
                                            its vision preset (lr_params_frames) */
-    const fl_color_params_t *colors;    /* NULL: the default colour classes */
+    const colors_opt_t *colors;         /* --colors (eval/colors_opt.h),
+                                           resolved per point by its policy
+                                           (auto on these frames when unset);
+                                           NULL: as unset */
     const char *pictures;               /* folder for one picture per point
                                            (last frame), or NULL */
     ph_imu_t imu;                       /* where torso roll / pitch come from */
