@@ -22,15 +22,15 @@
 /* Release version of the sources (not an option).  FL_VERSION_STRING is
  * "MAJOR.MINOR.PATCH"; the installed fieldloc.pc carries the same. */
 #define FL_VERSION_MAJOR 0
-#define FL_VERSION_MINOR 15
+#define FL_VERSION_MINOR 17
 #define FL_VERSION_PATCH 0
-#define FL_VERSION_STRING "0.15.0"
+#define FL_VERSION_STRING "0.17.0"
 
 /* Layout version of the public structs (not an option): raise it whenever
  * a public struct that an init function takes changes shape (a field
  * added, removed, retyped or moved), so that a caller compiled against
  * the old headers gets FL_ERR_CONFIG instead of a wrong layout. */
-#define FL_ABI_VERSION 2
+#define FL_ABI_VERSION 3
 
 /* Largest image width or height accepted, pixels.  Default 1280 (NAO v6
  * full resolution is 1280x960).  Range 16..4096. */
