@@ -25,8 +25,9 @@
  * Memory: the caller's fl_posts_t; stack 696 B at the deepest (`make stack`:
  * through the camera's foot projection).
  * Cost: see goal.h (fl_goal_find_white): per grid column 7 pixel reads,
- * then at most WG_MAX_CAND candidates, each bounded by the expected width
- * and height of a post at its foot's range.
+ * then at most WG_MAX_STRETCH candidates, WG_MAX_CAND of them climbed,
+ * each bounded by the expected width and height of a post at its foot's
+ * range.
  *
  * Scaling and overflow.  Pixels Q4 (< 2^17); ground mm < 2^15; the
  * distance from the camera sqrt(r^2 + h^2) in int64; expected sizes
@@ -36,7 +37,14 @@
 
 #include <string.h>
 
+/* Candidates climbed (past the foot, width and carpet tests: the walk up
+ * the post and the crossbar), and white stretches examined at all (each
+ * at most up to those tests: a few runs bounded by the expected width and
+ * two camera projections).  Most stretches of a cluttered frame (robots,
+ * banners, the hall behind the field) end at the foot test; with one cap
+ * for both they used it up before a post further right was reached. */
 #define WG_MAX_CAND (8 * FL_GOAL_MAX_POSTS)
+#define WG_MAX_STRETCH (4 * WG_MAX_CAND)
 
 /* What every candidate of a frame shares. */
 typedef struct {
@@ -47,6 +55,7 @@ typedef struct {
     int32_t diam, post_h;
     int32_t thr_hi, thr_lo;     /* strict / soft white luma of a candidate */
     int32_t thr_ft;             /* white of a shaded foot */
+    int32_t climbed;            /* candidates past the carpet test */
 } wg_ctx_t;
 
 /* Luma and chroma distance |Cb - 128| + |Cr - 128| of one pixel (the
@@ -451,6 +460,7 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
         out->rejected_border++;
         return;
     }
+    c->climbed++;
     /* the height a post has here */
     dist = wg_dist(cam, p.range_mm, c->post_h / 2);
     h_exp = dist > 0 ? (int32_t)((int64_t)cam->model.focal_q4 * c->post_h / (16 * dist)) : 0;
@@ -551,7 +561,7 @@ static void wg_flush(wg_ctx_t *c, int32_t start, int32_t last, int32_t vb, int32
             a = u;
         if (wh || a < 0)
             continue;
-        if (c->out->candidates >= WG_MAX_CAND) {
+        if (c->out->candidates >= WG_MAX_STRETCH || c->climbed >= WG_MAX_CAND) {
             c->out->dropped++;
             return;
         }
