@@ -115,7 +115,11 @@ int32_t fl_goal_find(fl_posts_t *out, const fl_scan_t *scan,
  *    (the foot's range errs with the body's tilt) or at 0.8 of it with
  *    white on both sides (a white background).  A white end with no bar
  *    beside it is a robot (jersey, head: 0.72 of a post) or clutter; the
- *    ball and lines are flat.
+ *    ball and lines are flat;
+ *  - somewhere 0.6-1.6 of that height above its bottom a row is wider
+ *    than 2.5 widths (the crossbar, or a white wall behind it): an upright
+ *    as narrow as a post all the way up is a door or window frame (asked
+ *    where 1.2 of the height lies in the image).
  * White is relative to the carpet under the candidate: luma >= carpet +
  * max(40, (255 - carpet) * 2 / 5) (strict) or + max(20, 1/5 of that)
  * (soft: candidates, widths), chroma |Cb - 128| + |Cr - 128| <= 48.

@@ -269,6 +269,28 @@ static int32_t wg_bar(const wg_ctx_t *c, int32_t u, int32_t vt, int32_t w, fl_si
     return (n[0] >= 2 && n[1] >= 2) || n[0] - bar[0] >= 2 || n[1] - bar[1] >= 2 ? 0 : -1;
 }
 
+/* Step of wg_candidate: a post carries the crossbar at its top, so soft
+ * white wider than 2.5 widths (the bar, or a white wall behind it) shows
+ * somewhere 0.6-1.6 expected heights h_exp above its bottom row pb; an
+ * upright that stays as narrow as the post there (at least 4 of the
+ * measured rows, every 2nd, white) is a door or window frame.  Asked only
+ * where that band lies in the image up to 1.2 h_exp (a near post's bar
+ * may be above the image).  True: such a frame. */
+static bool wg_frame(const wg_ctx_t *c, int32_t u, int32_t pb, int32_t w, int32_t h_exp)
+{
+    int32_t v, ab[2], n = 0;
+    if (pb - h_exp * 12 / 10 < 0)
+        return false;
+    for (v = pb - h_exp * 6 / 10; v >= pb - h_exp * 16 / 10 && v >= 0; v -= 2) {
+        int32_t rw = wg_hrun(c, u, v, 4 * w + 8, c->thr_lo, ab);
+        if (rw * 2 > w * 5)
+            return false;
+        if (rw > 0)
+            n++;
+    }
+    return n >= 4;
+}
+
 /* Step of wg_candidate: the lowest row of the post above the goal line
  * beside its foot (which joins its lowest rows).  From the white's lowest
  * row foot_v up to vb: rows wider than 1.6 w0 + 2 (w0: the post's width
@@ -488,6 +510,10 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
         return;
     }
     if (cl[2] * 4 < cl[3]) {      /* the lower part as narrow as the foot */
+        out->rejected_shape++;
+        return;
+    }
+    if (wg_frame(c, u, pb, w, h_exp)) {
         out->rejected_shape++;
         return;
     }
