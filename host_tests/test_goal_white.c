@@ -8,7 +8,8 @@
  *   - no post from robots (alone in front of the border, or around the
  *     circle with the ball: only the far goal's posts there) nor from a
  *     near line seen end-on;
- *   - a drawn single post: the crossbar to one side gives its side;
+ *   - a drawn single post: the crossbar to one side gives its side; a
+ *     drawn upright with no crossbar running to the image's top is none;
  *   - bad input: NULL camera or scan, no posts.
  */
 #include "test.h"
@@ -138,7 +139,8 @@ static void test_no_false_posts(void)
 
 /* A drawn post: a grey room above row 100, carpet below, one white post
  * 100 mm wide and 800 mm tall at 2.5 m ahead (sizes through the camera)
- * with a crossbar to one side (dir +1 right, -1 left) and dark above it.
+ * with a crossbar to one side (dir +1 right, -1 left) and dark above it;
+ * dir 0: no crossbar, the upright runs to the image's top (a door frame).
  * Returns the side found for the single post, or -1. */
 static int gw_drawn(int dir)
 {
@@ -165,8 +167,8 @@ static int gw_drawn(int dir)
     for (v = 0; v < 240; v++)
         for (u = 0; u < 320; u++) {
             uint8_t *p = rgb + 3 * (v * 320 + u);
-            bool post = u >= fu - w / 2 && u < fu - w / 2 + w && v <= fv && v > fv - h;
-            bool bar = v <= fv - h + w && v > fv - h &&
+            bool post = u >= fu - w / 2 && u < fu - w / 2 + w && v <= fv && (v > fv - h || dir == 0);
+            bool bar = dir != 0 && v <= fv - h + w && v > fv - h &&
                        (dir > 0 ? u >= fu && u < fu + 6 * w : u <= fu && u > fu - 6 * w);
             if (post || bar)
                 p[0] = p[1] = p[2] = 235;
@@ -195,6 +197,19 @@ static void test_crossbar_side(void)
     CHECK_EQ(gw_drawn(-1), (int)FL_SIDE_RIGHT);
 }
 
+/* A white upright as wide as a post at its foot's range but with no
+ * crossbar, running on far above a post's height (a door or window frame
+ * standing on the carpet's edge) is no post. */
+static void test_door_frame(void)
+{
+    CHECK(gw_run("spl2020_goal_both", "ppm") == 0);
+    if (!G)
+        return;
+    CHECK_EQ(gw_drawn(0), -1);
+    CHECK_EQ(G->vis.posts.n, 0);
+    CHECK(G->vis.posts.candidates > 0);     /* it was examined */
+}
+
 static void test_bad_input(void)
 {
     fl_posts_t out;
@@ -211,6 +226,7 @@ void suite_goal_white(void)
     t_run("goal_white.goals", test_goals);
     t_run("goal_white.no_false_posts", test_no_false_posts);
     t_run("goal_white.crossbar_side", test_crossbar_side);
+    t_run("goal_white.door_frame", test_door_frame);
     t_run("goal_white.bad_input", test_bad_input);
     free(G);
     G = NULL;

@@ -115,7 +115,11 @@ int32_t fl_goal_find(fl_posts_t *out, const fl_scan_t *scan,
  *    (the foot's range errs with the body's tilt) or at 0.8 of it with
  *    white on both sides (a white background).  A white end with no bar
  *    beside it is a robot (jersey, head: 0.72 of a post) or clutter; the
- *    ball and lines are flat.
+ *    ball and lines are flat;
+ *  - somewhere 0.6-1.6 of that height above its bottom a row is wider
+ *    than 2.5 widths (the crossbar, or a white wall behind it): an upright
+ *    as narrow as a post all the way up is a door or window frame (asked
+ *    where 1.2 of the height lies in the image).
  * White is relative to the carpet under the candidate: luma >= carpet +
  * max(40, (255 - carpet) * 2 / 5) (strict) or + max(20, 1/5 of that)
  * (soft: candidates, widths), chroma |Cb - 128| + |Cr - 128| <= 48.
@@ -126,13 +130,15 @@ int32_t fl_goal_find(fl_posts_t *out, const fl_scan_t *scan,
  * unknown and two posts take their sides from their order in the image.
  * Needs the camera (NULL: no posts).
  * Cost: 7 pixel reads per grid column (luma only, the chroma of bright
- * ones), then at most 8 * FL_GOAL_MAX_POSTS candidates (the rest counted
- * in dropped; white stretches wider than 1/6 of the image are rejected
- * unexamined), each: a run across its stretch, two foot walks (at most
- * to 6 px below the border), runs cut at 1.7 expected widths + 2 px each
- * way on the rows from the foot to the probe row and on 6 rows, a climb
- * (at most 1.6 post heights + 2 widths, a run of at most 2 widths + 4 px
- * each way on every 2nd row of its lower 40 %) and 12 probes.  Measured
+ * ones), then at most 32 * FL_GOAL_MAX_POSTS white stretches (the rest
+ * counted in dropped; stretches wider than 1/6 of the image are rejected
+ * unexamined), each: a run across it, two foot walks (at most to 6 px
+ * below the border), runs cut at 1.7 expected widths + 2 px each way on
+ * the rows from the foot to the probe row and on 6 rows; of those, at
+ * most 8 * FL_GOAL_MAX_POSTS that pass the foot, width and carpet tests
+ * (then the rest are dropped) also: a climb (at most 1.6 post heights + 2
+ * widths, a run of at most 2 widths + 4 px each way on every 2nd row of
+ * its lower 40 %) and 12 probes.  Measured
  * (callgrind): 0.34 M instructions on a 320x240 frame with a goal, 0.03-
  * 0.2 M on the noise frames of `make bench`, 0.5-0.9 M on real 640x480
  * frames.  Returns n. */

@@ -25,8 +25,9 @@
  * Memory: the caller's fl_posts_t; stack 696 B at the deepest (`make stack`:
  * through the camera's foot projection).
  * Cost: see goal.h (fl_goal_find_white): per grid column 7 pixel reads,
- * then at most WG_MAX_CAND candidates, each bounded by the expected width
- * and height of a post at its foot's range.
+ * then at most WG_MAX_STRETCH candidates, WG_MAX_CAND of them climbed,
+ * each bounded by the expected width and height of a post at its foot's
+ * range.
  *
  * Scaling and overflow.  Pixels Q4 (< 2^17); ground mm < 2^15; the
  * distance from the camera sqrt(r^2 + h^2) in int64; expected sizes
@@ -36,7 +37,14 @@
 
 #include <string.h>
 
+/* Candidates climbed (past the foot, width and carpet tests: the walk up
+ * the post and the crossbar), and white stretches examined at all (each
+ * at most up to those tests: a few runs bounded by the expected width and
+ * two camera projections).  Most stretches of a cluttered frame (robots,
+ * banners, the hall behind the field) end at the foot test; with one cap
+ * for both they used it up before a post further right was reached. */
 #define WG_MAX_CAND (8 * FL_GOAL_MAX_POSTS)
+#define WG_MAX_STRETCH (4 * WG_MAX_CAND)
 
 /* What every candidate of a frame shares. */
 typedef struct {
@@ -47,6 +55,7 @@ typedef struct {
     int32_t diam, post_h;
     int32_t thr_hi, thr_lo;     /* strict / soft white luma of a candidate */
     int32_t thr_ft;             /* white of a shaded foot */
+    int32_t climbed;            /* candidates past the carpet test */
 } wg_ctx_t;
 
 /* Luma and chroma distance |Cb - 128| + |Cr - 128| of one pixel (the
@@ -260,6 +269,28 @@ static int32_t wg_bar(const wg_ctx_t *c, int32_t u, int32_t vt, int32_t w, fl_si
     return (n[0] >= 2 && n[1] >= 2) || n[0] - bar[0] >= 2 || n[1] - bar[1] >= 2 ? 0 : -1;
 }
 
+/* Step of wg_candidate: a post carries the crossbar at its top, so soft
+ * white wider than 2.5 widths (the bar, or a white wall behind it) shows
+ * somewhere 0.6-1.6 expected heights h_exp above its bottom row pb; an
+ * upright that stays as narrow as the post there (at least 4 of the
+ * measured rows, every 2nd, white) is a door or window frame.  Asked only
+ * where that band lies in the image up to 1.2 h_exp (a near post's bar
+ * may be above the image).  True: such a frame. */
+static bool wg_frame(const wg_ctx_t *c, int32_t u, int32_t pb, int32_t w, int32_t h_exp)
+{
+    int32_t v, ab[2], n = 0;
+    if (pb - h_exp * 12 / 10 < 0)
+        return false;
+    for (v = pb - h_exp * 6 / 10; v >= pb - h_exp * 16 / 10 && v >= 0; v -= 2) {
+        int32_t rw = wg_hrun(c, u, v, 4 * w + 8, c->thr_lo, ab);
+        if (rw * 2 > w * 5)
+            return false;
+        if (rw > 0)
+            n++;
+    }
+    return n >= 4;
+}
+
 /* Step of wg_candidate: the lowest row of the post above the goal line
  * beside its foot (which joins its lowest rows).  From the white's lowest
  * row foot_v up to vb: rows wider than 1.6 w0 + 2 (w0: the post's width
@@ -451,6 +482,7 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
         out->rejected_border++;
         return;
     }
+    c->climbed++;
     /* the height a post has here */
     dist = wg_dist(cam, p.range_mm, c->post_h / 2);
     h_exp = dist > 0 ? (int32_t)((int64_t)cam->model.focal_q4 * c->post_h / (16 * dist)) : 0;
@@ -478,6 +510,10 @@ static void wg_candidate(wg_ctx_t *c, int32_t u0, int32_t u1, int32_t vb, int32_
         return;
     }
     if (cl[2] * 4 < cl[3]) {      /* the lower part as narrow as the foot */
+        out->rejected_shape++;
+        return;
+    }
+    if (wg_frame(c, u, pb, w, h_exp)) {
         out->rejected_shape++;
         return;
     }
@@ -551,7 +587,7 @@ static void wg_flush(wg_ctx_t *c, int32_t start, int32_t last, int32_t vb, int32
             a = u;
         if (wh || a < 0)
             continue;
-        if (c->out->candidates >= WG_MAX_CAND) {
+        if (c->out->candidates >= WG_MAX_STRETCH || c->climbed >= WG_MAX_CAND) {
             c->out->dropped++;
             return;
         }
