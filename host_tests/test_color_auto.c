@@ -510,10 +510,50 @@ static void test_realdata_modern(void)
     }
 }
 
+/* A weak second population among the ground samples (a bluish wall
+ * below the horizon, 1/12 of them, 24 hue units above the carpet) does
+ * not widen the green box to itself: the spread comes from the 10th /
+ * 90th percentiles (times 3/2), so the carpet (hues 56..64, 11/12 of the
+ * samples) is green and the wall is not; the 3rd / 97th percentiles would
+ * have carried the box out to the wall. */
+static void test_weak_population(void)
+{
+    enum { W = 96, H = 64 };
+    static uint8_t px[W * H * 3];
+    static fl_color_estimate_t e;
+    static fl_color_table_t t;
+    fl_color_params_t p;
+    fl_image_t img;
+    uint8_t rgb[3];
+    int u, v, h;
+    for (v = 0; v < H; v++)
+        for (u = 0; u < W; u++) {
+            double hue = u < W / 12 ? 84 : 56 + u % 9;
+            hsv_to_rgb(v < H / 2 ? 20 : hue, 150, 130, px + 3 * (v * W + u));
+        }
+    CHECK_EQ(fl_image_init_packed(&img, FL_FMT_RGB888, px, W, H, W * 3), FL_OK);
+    CHECK_EQ(fl_color_estimate(&img, NULL, &e), FL_OK);
+    t_info("carpet hue %d (%d..%d)", e.hue, e.hue_lo, e.hue_hi);
+    CHECK(e.hue >= 56 && e.hue <= 64);
+    CHECK(e.hue_lo >= 50 && e.hue_hi <= 70);
+    fl_color_params_default(&p);
+    p.auto_yellow = 0;
+    CHECK_EQ(fl_color_auto_params(&e, &p), FL_OK);
+    CHECK_EQ(fl_color_init(&t, &p), FL_OK);
+    for (h = 56; h <= 64; h++) {
+        hsv_to_rgb(h, 150, 130, rgb);
+        CHECK_EQ(fl_color_class_rgb_exact(&t, rgb[0], rgb[1], rgb[2]), FL_CLASS_GREEN);
+    }
+    hsv_to_rgb(84, 150, 130, rgb);
+    CHECK(fl_color_class_rgb_exact(&t, rgb[0], rgb[1], rgb[2]) != FL_CLASS_GREEN);
+    CHECK(fl_color_class_rgb(&t, rgb[0], rgb[1], rgb[2]) != FL_CLASS_GREEN);
+}
+
 void suite_color_auto(void)
 {
     t_run("color_auto.hue_rotated", test_hue_rotated);
     t_run("color_auto.sun_shade", test_sun_shade);
+    t_run("color_auto.weak_population", test_weak_population);
     t_run("color_auto.track", test_track);
     t_run("color_auto.track_scanner", test_track_scanner);
     t_run("color_auto.bad_input", test_bad_input);

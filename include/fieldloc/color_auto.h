@@ -10,8 +10,10 @@
  * the samples with S >= 40 and V >= 24, mode over 5 bins among the hues
  * 30..100 (60..200 degrees: any green carpet; the 2013 UvA carpet at ~60,
  * the physar one 37..53, scarrix and HTWK frames 75..89; a yellow post or
- * an orange ball filling the view is not taken), spread = the 3rd and
- * 97th percentile of the samples within +-30 of the mode.  Pass 2: S and V
+ * an orange ball filling the view is not taken), spread = 3/2 of the
+ * 10th / 90th percentile's distance from the mode, of the samples within
+ * +-30 of it (the 3rd / 97th percentile of a normal spread; a weak second
+ * population, a bluish wall below the horizon, moves it little).  Pass 2: S and V
  * histograms of the samples inside that spread with S >= 16 (sunlit
  * carpet is paler: its S falls, V rises; shadows keep hue and S, lower V).
  * From that, fl_color_auto_params derives (green_sat_ref, field_hue and
@@ -81,7 +83,7 @@ typedef struct {
     int32_t n_sat;      /* samples in the hue histogram (pass 1) */
     int32_t n;          /* carpet samples (pass 2); 0: no estimate */
     uint8_t hue;        /* mode, 0..179 */
-    uint8_t hue_lo;     /* spread: 3rd / 97th percentile (may wrap) */
+    uint8_t hue_lo;     /* spread: 10th / 90th percentile x 3/2 (may wrap) */
     uint8_t hue_hi;
     uint8_t s_p5, s_med;
     uint8_t v_p2, v_med, v_p98;
