@@ -18,7 +18,10 @@
  *   marks    clusters of points off long segments within the projected
  *            mark size (bucket search from lines.c), isolated out to 2.5
  *            mark sizes, a ring of 16 samples at 1.6 mark sizes that must
- *            be green.
+ *            be green, and (white-goal fields) inside that ring at most
+ *            1 dark (OTHER or YELLOW) class-map cell in 16 (a white spot
+ *            on a robot or a ball passes the sparse ring; bare carpet has
+ *            no dark).
  *   border   per segment (not a circle chord) whose upper end runs up to
  *            the field border: walk the paint past the end, place the T
  *            half a (ground) line width before its stop, find the border
@@ -47,7 +50,8 @@
  * Cost: segments^2 / 2 cheap pair tests; per surviving pair 4 probes of at
  * most 64 samples and 3-5 camera projections; per segment at most one
  * border test (3 walks of at most 64 samples, 4-8 projections); marks: one
- * bucket search per cluster and 16 map reads per candidate.
+ * bucket search per cluster, 16 map reads per candidate and at most
+ * 17 x 17 more per candidate that passed its ring.
  *
  * Scaling and overflow.  Pixel positions Q4 (|u|, |v| < 2^17 for images up
  * to 4096 px).  Segment direction vectors in Q4 (< 2^17 each); the
