@@ -38,6 +38,10 @@
  *            and a T at its foot (see fl_cr_close).
  *   circle   the centre mark and the halfway-line x circle X's of a found
  *            circle, projected back and checked white in the class map.
+ *   objects  (before circle) crossings on a standing object or above the
+ *            carpet removed; on white-goal fields also those with more
+ *            than 1 in 10 dark class-map cells of the carpet within 3 line
+ *            widths (a robot's body, a goal's foot).
  *
  * Invariant.  Every stored crossing has 2..4 arms (marks from blobs: 0,
  * until merged), no two stored crossings are closer than the merge
@@ -162,6 +166,8 @@ typedef struct {
 bool fl_cr_ground_dir(const fl_camera_t *cam, cr_ray_t *r);
 void fl_cr_orient(fl_crossing_t *x, const fl_angle_t *garm, bool ground);
 bool fl_cr_type(fl_crossing_t *x);
+void fl_cr_dark(const fl_scan_t *s, int32_t cu, int32_t cv, int32_t ru, int32_t rv,
+                bool carpet, int32_t *n, int32_t *dark);
 void fl_cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
                    const cr_item_t *it, int32_t merge_q4,
                    const fl_lines_t *l);

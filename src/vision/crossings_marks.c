@@ -64,38 +64,6 @@ static void cr_mark_census(const fl_lines_t *l, cr_census_t *k, uint32_t *vis)
     }
 }
 
-/* Dark cells (OTHER or YELLOW in the class map) in the ellipse of
- * half-axes (ru, rv) around (cu, cv), all Q4: *n samples inside the image,
- * *dark of them dark.  A grid of at most 17 x 17 samples, no finer than
- * the class map's cells.  Half-axes capped at 1024 px: the ellipse test's
- * products stay below 2^57. */
-static void cr_mark_dark(const fl_scan_t *s, int32_t cu, int32_t cv, int32_t ru, int32_t rv,
-                         int32_t *n, int32_t *dark)
-{
-    int32_t du = 16 * s->params.col_step, dv = 16 * s->params.row_step, a, b;
-    int64_t ru2, rv2;
-    ru = ru > 16 * 1024 ? 16 * 1024 : ru;
-    rv = rv > 16 * 1024 ? 16 * 1024 : rv;
-    ru2 = (int64_t)ru * ru;
-    rv2 = (int64_t)rv * rv;
-    if (du < ru / 8)
-        du = ru / 8;
-    if (dv < rv / 8)
-        dv = rv / 8;
-    *n = *dark = 0;
-    for (b = -(rv / dv) * dv; b <= rv; b += dv)
-        for (a = -(ru / du) * du; a <= ru; a += du) {
-            int32_t u = cu + a, v = cv + b, c;
-            if ((int64_t)a * a * rv2 + (int64_t)b * b * ru2 > ru2 * rv2 || u < 0 || v < 0 ||
-                u > 16 * (s->width - 1) || v > 16 * (s->height - 1))
-                continue;
-            c = cr_class_px(s, u, v);
-            (*n)++;
-            if (c == FL_CLASS_OTHER || c == FL_CLASS_YELLOW)
-                (*dark)++;
-        }
-}
-
 void fl_cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
                      const fl_lines_t *l, const fl_scan_t *scan,
                      const fl_camera_t *cam, const fl_field_t *field)
@@ -199,7 +167,7 @@ void fl_cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
          * test drops one false mark of 34) */
         if (field->goal_color[0] == FL_COLOR_WHITE) {
             int32_t n_s, n_dark;
-            cr_mark_dark(scan, cu, cv, ru, rv, &n_s, &n_dark);
+            fl_cr_dark(scan, cu, cv, ru, rv, false, &n_s, &n_dark);
             if (n_dark >= 2 && 16 * n_dark > n_s)
                 continue;
         }
