@@ -374,6 +374,44 @@ bool fl_cr_end_ray(const cr_ctx_t *ctx, fl_angle_t ain, int32_t w, bool beside, 
  * grid (the AIBO's 208x160 frames, as LN_RIDGE_NEAR in lines.c): there it
  * found no fixture crossing and moved the localizer's heading on simulate
  * aibo2004 seed 6 from 2.96 to 3.02 degrees. */
+/* Dark cells (OTHER or YELLOW in the class map) in the ellipse of
+ * half-axes (ru, rv) around (cu, cv), all Q4: *n samples inside the image
+ * (carpet: and not above the field border of their column), *dark of them
+ * dark.  A grid of at most 17 x 17 samples, no finer than
+ * the class map's cells.  Half-axes capped at 1024 px: the ellipse test's
+ * products stay below 2^57. */
+void fl_cr_dark(const fl_scan_t *s, int32_t cu, int32_t cv, int32_t ru, int32_t rv,
+                bool carpet, int32_t *n, int32_t *dark)
+{
+    int32_t du = 16 * s->params.col_step, dv = 16 * s->params.row_step, a, b;
+    int64_t ru2, rv2;
+    ru = ru > 16 * 1024 ? 16 * 1024 : ru;
+    rv = rv > 16 * 1024 ? 16 * 1024 : rv;
+    ru2 = (int64_t)ru * ru;
+    rv2 = (int64_t)rv * rv;
+    if (du < ru / 8)
+        du = ru / 8;
+    if (dv < rv / 8)
+        dv = rv / 8;
+    *n = *dark = 0;
+    for (b = -(rv / dv) * dv; b <= rv; b += dv)
+        for (a = -(ru / du) * du; a <= ru; a += du) {
+            int32_t u = cu + a, v = cv + b, c;
+            if ((int64_t)a * a * rv2 + (int64_t)b * b * ru2 > ru2 * rv2 || u < 0 || v < 0 ||
+                u > 16 * (s->width - 1) || v > 16 * (s->height - 1))
+                continue;
+            if (carpet) {
+                int32_t i = (u >> 4) / s->params.col_step;
+                if (i >= s->cols || (v >> 4) < s->border_v[i])
+                    continue;
+            }
+            c = cr_class_px(s, u, v);
+            (*n)++;
+            if (c == FL_CLASS_OTHER || c == FL_CLASS_YELLOW)
+                (*dark)++;
+        }
+}
+
 /* Above the field border of its column and of the columns 4 cells to one
  * side by more than 8 cells and 4 line widths: the vertex is not on the
  * carpet (an object in front of the border makes a dip there, as wide as
@@ -397,14 +435,41 @@ static bool cr_above_border(const fl_lines_t *lines, const fl_scan_t *scan, int3
     return false;
 }
 
+/* Among dark cells: more than 1 in 10 (at least 2) of the class-map cells
+ * within 3 line widths of a crossing of lines (an ellipse of 3 projected
+ * widths across and 3 along the rows, about 150 mm on the ground) are
+ * OTHER or YELLOW.  Painted lines cross on bare carpet; where two edges
+ * of a robot's body, a goal's foot against its net or a cable on the floor
+ * beyond the border meet, the dark is close by.  Marks have their own
+ * test (crossings_marks.c). */
+static bool cr_among_dark(const fl_lines_t *lines, const fl_scan_t *scan, const fl_crossing_t *x)
+{
+    int32_t wh, wv, n_s, n_dark;
+    if (!scan || x->kind == FL_LM_PENALTY_MARK || x->kind == FL_LM_CENTRE_MARK)
+        return false;
+    wh = fl_lines_width_q4(lines, (x->v_q4 + 8) >> 4, false);
+    wv = fl_lines_width_q4(lines, (x->v_q4 + 8) >> 4, true);
+    if (wh <= 0 || wv <= 0)
+        return false;
+    fl_cr_dark(scan, x->u_q4, x->v_q4, 3 * wh, 3 * wv, true, &n_s, &n_dark);
+    return n_dark >= 2 && 10 * n_dark > n_s;
+}
+
 /* Crossings on a standing object (a robot's legs and arms) or above the
- * carpet are no field feature: removed, order kept. */
-static void cr_drop_objects(fl_crossings_t *c, const fl_lines_t *lines, const fl_scan_t *scan)
+ * carpet are no field feature: removed, order kept.  On white-goal fields
+ * (today's SPL, colours from the frame) also those among dark cells
+ * (cr_among_dark); the coloured-goal fields keep their outputs
+ * bit-identical (their walks' stored observations are compared as they
+ * are, and a yellow goal's foot is dark by class there). */
+static void cr_drop_objects(fl_crossings_t *c, const fl_lines_t *lines, const fl_scan_t *scan,
+                            const fl_field_t *field)
 {
     int32_t i, n = 0;
+    bool white_goals = field && field->goal_color[0] == FL_COLOR_WHITE;
     for (i = 0; i < c->n; i++) {
         int32_t u = (c->c[i].u_q4 + 8) >> 4, v = (c->c[i].v_q4 + 8) >> 4;
-        if (fl_lines_on_object(lines, scan, u, v) || cr_above_border(lines, scan, u, v)) {
+        if (fl_lines_on_object(lines, scan, u, v) || cr_above_border(lines, scan, u, v) ||
+            (white_goals && cr_among_dark(lines, scan, &c->c[i]))) {
             c->robot_rejected++;
             continue;
         }
@@ -477,7 +542,7 @@ int32_t fl_crossings_find(fl_crossings_t *c, const fl_lines_t *lines,
                 fl_cr_close(&ctx, i, false);
                 fl_cr_close(&ctx, i, true);
             }
-    cr_drop_objects(c, lines, scan);
+    cr_drop_objects(c, lines, scan, field);
     return c->n;
 }
 

@@ -18,7 +18,10 @@
  *   marks    clusters of points off long segments within the projected
  *            mark size (bucket search from lines.c), isolated out to 2.5
  *            mark sizes, a ring of 16 samples at 1.6 mark sizes that must
- *            be green.
+ *            be green, and (white-goal fields) inside that ring at most
+ *            1 dark (OTHER or YELLOW) class-map cell in 16 (a white spot
+ *            on a robot or a ball passes the sparse ring; bare carpet has
+ *            no dark).
  *   border   per segment (not a circle chord) whose upper end runs up to
  *            the field border: walk the paint past the end, place the T
  *            half a (ground) line width before its stop, find the border
@@ -35,6 +38,10 @@
  *            and a T at its foot (see fl_cr_close).
  *   circle   the centre mark and the halfway-line x circle X's of a found
  *            circle, projected back and checked white in the class map.
+ *   objects  (before circle) crossings on a standing object or above the
+ *            carpet removed; on white-goal fields also those with more
+ *            than 1 in 10 dark class-map cells of the carpet within 3 line
+ *            widths (a robot's body, a goal's foot).
  *
  * Invariant.  Every stored crossing has 2..4 arms (marks from blobs: 0,
  * until merged), no two stored crossings are closer than the merge
@@ -47,7 +54,8 @@
  * Cost: segments^2 / 2 cheap pair tests; per surviving pair 4 probes of at
  * most 64 samples and 3-5 camera projections; per segment at most one
  * border test (3 walks of at most 64 samples, 4-8 projections); marks: one
- * bucket search per cluster and 16 map reads per candidate.
+ * bucket search per cluster, 16 map reads per candidate and at most
+ * 17 x 17 more per candidate that passed its ring.
  *
  * Scaling and overflow.  Pixel positions Q4 (|u|, |v| < 2^17 for images up
  * to 4096 px).  Segment direction vectors in Q4 (< 2^17 each); the
@@ -158,6 +166,8 @@ typedef struct {
 bool fl_cr_ground_dir(const fl_camera_t *cam, cr_ray_t *r);
 void fl_cr_orient(fl_crossing_t *x, const fl_angle_t *garm, bool ground);
 bool fl_cr_type(fl_crossing_t *x);
+void fl_cr_dark(const fl_scan_t *s, int32_t cu, int32_t cv, int32_t ru, int32_t rv,
+                bool carpet, int32_t *n, int32_t *dark);
 void fl_cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
                    const cr_item_t *it, int32_t merge_q4,
                    const fl_lines_t *l);

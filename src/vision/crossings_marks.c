@@ -157,6 +157,20 @@ void fl_cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
         }
         if (outside > 8 || 16 * green < 13 * (16 - outside) || white > 0)
             continue;
+        /* a painted mark lies on bare carpet: dark cells inside the ring
+         * (more than 1 in 16, at least 2) are a ball's patches, a robot's
+         * joints and jersey, furniture beyond the border, where a white
+         * spot passed the sparse ring of samples.  Only on white-goal
+         * fields (today's SPL, colours from the frame): the coloured-goal
+         * fields keep their outputs bit-identical, their walks' stored
+         * observations are compared as they are (on spl2013 seed 1 this
+         * test drops one false mark of 34) */
+        if (field->goal_color[0] == FL_COLOR_WHITE) {
+            int32_t n_s, n_dark;
+            fl_cr_dark(scan, cu, cv, ru, rv, false, &n_s, &n_dark);
+            if (n_dark >= 2 && 16 * n_dark > n_s)
+                continue;
+        }
         green += outside;
         if (!fl_camera_pixel_to_ground(cam, cu, cv, &g))
             continue;
