@@ -909,12 +909,18 @@ static double ratio_d(int a, int b) { return b > 0 ? (double)a / b : 0.0; }
  * precision 0.167, recall 0.276; field border 0.339 of the 118 labelled
  * columns within 3 px); no white post is found yet, so the feet have no
  * floor.  Targets: crossings 0.85 / 0.7, feet 0.9 / 0.8, border 0.95. */
+#define MODERN_CROSS_P 0.15
+#define MODERN_CROSS_R 0.28
+#define MODERN_FOOT_P 0.30
+#define MODERN_FOOT_R 0.20
+#define MODERN_BORDER 0.50
 static void t_modern_eval(void)
 {
     const char *dir = t_realdata_dir(), *csv = rd_modern_csv();
     det_ctx_t dc;
     evd_stats_t s;
     evd_border_t b;
+    colors_opt_t co;
     int n;
     if (skip_if_absent())
         return;
@@ -924,17 +930,24 @@ static void t_modern_eval(void)
     }
     CHECK(csv != NULL);
     CHECK_EQ(det_ctx_init(&dc), 0);
+    /* the colour policy of `fieldloc eval-detect` without --colors: each
+     * frame's own carpet (auto), as a user gets it */
+    memset(&co, 0, sizeof co);
+    dc.colors_each = &co;
     evd_stats_clear(&s);
     evd_border_clear(&b);
     n = evd_modern(&dc, dir, csv, 0, &s, &b);
     det_ctx_free(&dc);
     CHECK_EQ(n, 19);
-    modern_floor("crossings precision", ratio_d(s.cross_tp, s.cross_tp + s.cross_fp), 0.15);
-    modern_floor("crossings recall", ratio_d(s.cross_tp, s.cross_tp + s.cross_fn), 0.25);
-    modern_floor("field border within 3 px", ratio_d(b.within, b.n), 0.31);
-    t_info("modern post feet precision %.3f recall %.3f; border mean %.1f px, worst %.1f px",
-           ratio_d(s.foot_tp, s.foot_tp + s.foot_fp), ratio_d(s.foot_tp, s.foot_tp + s.foot_fn),
-           b.n ? b.sum / b.n : 0.0, b.worst);
+    /* floors a little below what the merged vision measures (the issue's
+     * targets, far above: crossings 0.85 / 0.7, feet 0.9 / 0.8, border
+     * 0.95; docs/RESULTS.md has the numbers) */
+    modern_floor("crossings precision", ratio_d(s.cross_tp, s.cross_tp + s.cross_fp), MODERN_CROSS_P);
+    modern_floor("crossings recall", ratio_d(s.cross_tp, s.cross_tp + s.cross_fn), MODERN_CROSS_R);
+    modern_floor("post feet precision", ratio_d(s.foot_tp, s.foot_tp + s.foot_fp), MODERN_FOOT_P);
+    modern_floor("post feet recall", ratio_d(s.foot_tp, s.foot_tp + s.foot_fn), MODERN_FOOT_R);
+    modern_floor("field border within 3 px", ratio_d(b.within, b.n), MODERN_BORDER);
+    t_info("modern border mean %.1f px, worst %.1f px", b.n ? b.sum / b.n : 0.0, b.worst);
 }
 
 /* Marks and crossings on robots in the modern real frames (auto colours,
