@@ -375,13 +375,13 @@ bool fl_cr_end_ray(const cr_ctx_t *ctx, fl_angle_t ain, int32_t w, bool beside, 
  * found no fixture crossing and moved the localizer's heading on simulate
  * aibo2004 seed 6 from 2.96 to 3.02 degrees. */
 /* Dark cells (OTHER or YELLOW in the class map) in the ellipse of
- * half-axes (ru, rv) around (cu, cv), all Q4: *n samples inside the image
- * (carpet: and not above the field border of their column), *dark of them
+ * half-axes (ru, rv) around (cu, cv), all Q4: d->n samples inside the image
+ * (d->carpet: and not above the field border of their column), d->dark of them
  * dark.  A grid of at most 17 x 17 samples, no finer than
  * the class map's cells.  Half-axes capped at 1024 px: the ellipse test's
  * products stay below 2^57. */
 void fl_cr_dark(const fl_scan_t *s, int32_t cu, int32_t cv, int32_t ru, int32_t rv,
-                bool carpet, int32_t *n, int32_t *dark)
+                cr_dark_t *d)
 {
     int32_t du = 16 * s->params.col_step, dv = 16 * s->params.row_step, a, b;
     int64_t ru2, rv2;
@@ -393,22 +393,22 @@ void fl_cr_dark(const fl_scan_t *s, int32_t cu, int32_t cv, int32_t ru, int32_t 
         du = ru / 8;
     if (dv < rv / 8)
         dv = rv / 8;
-    *n = *dark = 0;
+    d->n = d->dark = 0;
     for (b = -(rv / dv) * dv; b <= rv; b += dv)
         for (a = -(ru / du) * du; a <= ru; a += du) {
             int32_t u = cu + a, v = cv + b, c;
             if ((int64_t)a * a * rv2 + (int64_t)b * b * ru2 > ru2 * rv2 || u < 0 || v < 0 ||
                 u > 16 * (s->width - 1) || v > 16 * (s->height - 1))
                 continue;
-            if (carpet) {
+            if (d->carpet) {
                 int32_t i = (u >> 4) / s->params.col_step;
                 if (i >= s->cols || (v >> 4) < s->border_v[i])
                     continue;
             }
             c = cr_class_px(s, u, v);
-            (*n)++;
+            d->n++;
             if (c == FL_CLASS_OTHER || c == FL_CLASS_YELLOW)
-                (*dark)++;
+                d->dark++;
         }
 }
 
@@ -444,15 +444,17 @@ static bool cr_above_border(const fl_lines_t *lines, const fl_scan_t *scan, int3
  * test (crossings_marks.c). */
 static bool cr_among_dark(const fl_lines_t *lines, const fl_scan_t *scan, const fl_crossing_t *x)
 {
-    int32_t wh, wv, n_s, n_dark;
+    int32_t wh, wv;
+    cr_dark_t d;
     if (!scan || x->kind == FL_LM_PENALTY_MARK || x->kind == FL_LM_CENTRE_MARK)
         return false;
     wh = fl_lines_width_q4(lines, (x->v_q4 + 8) >> 4, false);
     wv = fl_lines_width_q4(lines, (x->v_q4 + 8) >> 4, true);
     if (wh <= 0 || wv <= 0)
         return false;
-    fl_cr_dark(scan, x->u_q4, x->v_q4, 3 * wh, 3 * wv, true, &n_s, &n_dark);
-    return n_dark >= 2 && 10 * n_dark > n_s;
+    d.carpet = true;
+    fl_cr_dark(scan, x->u_q4, x->v_q4, 3 * wh, 3 * wv, &d);
+    return d.dark >= 2 && 10 * d.dark > d.n;
 }
 
 /* Crossings on a standing object (a robot's legs and arms) or above the

@@ -166,8 +166,16 @@ typedef struct {
 bool fl_cr_ground_dir(const fl_camera_t *cam, cr_ray_t *r);
 void fl_cr_orient(fl_crossing_t *x, const fl_angle_t *garm, bool ground);
 bool fl_cr_type(fl_crossing_t *x);
+/* fl_cr_dark's count: carpet (in) limits it to cells below the field
+ * border; n samples, dark of them OTHER or YELLOW (out).  A struct keeps
+ * the call at six arguments: a seventh is passed on the stack, a frame
+ * `make stack` cannot bound statically. */
+typedef struct {
+    bool carpet;
+    int32_t n, dark;
+} cr_dark_t;
 void fl_cr_dark(const fl_scan_t *s, int32_t cu, int32_t cv, int32_t ru, int32_t rv,
-                bool carpet, int32_t *n, int32_t *dark);
+                cr_dark_t *d);
 void fl_cr_add(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
                    const cr_item_t *it, int32_t merge_q4,
                    const fl_lines_t *l);

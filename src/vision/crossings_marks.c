@@ -166,9 +166,10 @@ void fl_cr_marks(fl_crossings_t *c, fl_angle_t (*garm_store)[4],
          * observations are compared as they are (on spl2013 seed 1 this
          * test drops one false mark of 34) */
         if (field->goal_color[0] == FL_COLOR_WHITE) {
-            int32_t n_s, n_dark;
-            fl_cr_dark(scan, cu, cv, ru, rv, false, &n_s, &n_dark);
-            if (n_dark >= 2 && 16 * n_dark > n_s)
+            cr_dark_t d;
+            d.carpet = false;
+            fl_cr_dark(scan, cu, cv, ru, rv, &d);
+            if (d.dark >= 2 && 16 * d.dark > d.n)
                 continue;
         }
         green += outside;
