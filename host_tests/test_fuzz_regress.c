@@ -6,6 +6,7 @@
  */
 #include "test.h"
 #include "io/realdata.h"
+#include "world/sim.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -42,7 +43,26 @@ static void test_uva_csv_huge_number(void)
     }
 }
 
+/* fuzz_walk found: a walk whose start heading was 7.8e37 deg passed the
+ * scenario check, and sim_init's angle wrap converted 2e38 to long long
+ * (undefined).  The check must refuse start and kidnap poses beyond
+ * +-20000 mm / +-360 deg, naming the key. */
+static void test_walk_huge_start_heading(void)
+{
+    static sim_scenario_t sc;
+    char err[256] = "";
+    size_t n;
+    char *text = t_read_file("host_tests/fuzz/regress/walk/huge_start_heading_1.walk", &n);
+    CHECK(text != NULL);
+    if (!text)
+        return;
+    CHECK(sim_scenario_parse(&sc, text, err, sizeof err) != 0);
+    CHECK(strstr(err, "start outside") != NULL);
+    free(text);
+}
+
 void suite_fuzz_regress(void)
 {
+    t_run("fuzz_regress.walk_huge_start_heading", test_walk_huge_start_heading);
     t_run("fuzz_regress.uva_csv_huge_number", test_uva_csv_huge_number);
 }

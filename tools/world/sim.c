@@ -53,7 +53,12 @@
 /* Round to nearest, ties away from zero (exact: no libm). */
 static double sim_round(double x)
 {
-    long long k = (long long)(x >= 0 ? x + 0.5 : x - 0.5);
+    long long k;
+    /* |x| >= 2^52 is a whole number already (and NaN stays NaN): the
+     * conversion below would be undefined beyond the range of long long */
+    if (!(x > -4503599627370496.0 && x < 4503599627370496.0))
+        return x;
+    k = (long long)(x >= 0 ? x + 0.5 : x - 0.5);
     return (double)k;
 }
 
@@ -398,10 +403,16 @@ static int sim_scenario_check(const sim_scenario_t *sc, const char **why)
                sc->fp_per_frame <= 4 && sc->fov_margin_px >= 0 &&
                sc->fov_margin_px < 50))
         *why = "observation noise out of range";
+    else if (!(sim_abs(sc->start_x_mm) <= 20000 && sim_abs(sc->start_y_mm) <= 20000 &&
+               sim_abs(sc->start_heading_deg) <= 360))
+        *why = "start outside +-20000 mm or heading outside +-360 deg";
     for (i = 0; *why == NULL && i < sc->n_events; i++)
         if (!(sc->event[i].t_s >= 0 && sc->event[i].duration_s >= 0 &&
               sc->event[i].duration_s <= 3600))
             *why = "event time or duration out of range";
+        else if (!(sim_abs(sc->event[i].x_mm) <= 20000 && sim_abs(sc->event[i].y_mm) <= 20000 &&
+                   sim_abs(sc->event[i].heading_deg) <= 360))
+            *why = "event pose outside +-20000 mm or heading outside +-360 deg";
     for (i = 0; *why == NULL && i < sc->n_others; i++)
         if (!(sim_abs(sc->other[i].x_mm) <= 20000 && sim_abs(sc->other[i].y_mm) <= 20000 &&
               sim_abs(sc->other[i].heading_deg) <= 360))
