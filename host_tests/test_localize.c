@@ -389,14 +389,14 @@ static void t_picture(void)
  * never above the plain one, the truth pose seeing map landmarks) and
  * floors on the points that meet the goal (<= 300 mm modulo symmetry where
  * vision reports two or more features), set at what the vision path and
- * the localizers give today, for each source of the torso angles (the
- * records' AngleX / AngleY, the accelerometer's tilt, none).  Skipped without ../shared/realdata and
+ * the localizers give today, with the accelerometer tilt (the default of
+ * `localize --physar`).  Skipped without ../shared/realdata and
  * under --quick (ten 640x480 frames per point and localizer). */
 /* With the default (accelerometer) tilt: a floor on the points meeting the
  * goal and a ceiling on the symmetric position RMSE, both at what the
  * vision path and the localizers measure (fuzzy 0 of 5 points, 2493 mm;
  * mcl 2 of 5, 1972 mm; the goal is every point with two features).  The
- * other two tilts are reported; their structural checks still apply. */
+ * other two tilts (`--imu angles|off`) are measured by `make results`. */
 #define PHYSAR_FLOOR_FUZZY 0
 #define PHYSAR_FLOOR_MCL 2
 #define PHYSAR_RMSE_FUZZY 2700.0
@@ -407,9 +407,7 @@ static void t_physar(void)
         const char *loc;
         ph_imu_t imu;
         int floor;
-    } runs[] = {{"fuzzy", PH_IMU_ACCEL, PHYSAR_FLOOR_FUZZY}, {"mcl", PH_IMU_ACCEL, PHYSAR_FLOOR_MCL},
-                  {"fuzzy", PH_IMU_ANGLES, 0}, {"mcl", PH_IMU_ANGLES, 0},
-                  {"fuzzy", PH_IMU_OFF, 0},    {"mcl", PH_IMU_OFF, 0}};
+    } runs[] = {{"fuzzy", PH_IMU_ACCEL, PHYSAR_FLOOR_FUZZY}, {"mcl", PH_IMU_ACCEL, PHYSAR_FLOOR_MCL}};
     ph_result_t *res;
     size_t r;
     if (t_quick)
