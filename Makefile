@@ -4,6 +4,8 @@ SHELL := /bin/bash
 #   make            library build/libfieldloc.a and the host CLI build/fieldloc
 #   make demo       the main job: a simulated walk through vision into the grid
 #   make test       host unit and fixture tests; ends with "N passed, N failed"
+#                   (suites spread over TEST_JOBS processes, default: the
+#                   number of cores; the output is the serial run's order)
 #   make check      firmware rules: strict C99 warnings as errors, no FP
 #                   (-mgeneral-regs-only), no allocator symbols, fl_ prefix,
 #                   no mutable file-scope state, allowed libc headers only;
@@ -154,11 +156,12 @@ $(RUNNER): $(TEST_OBJ) $(TOOL_LIB_OBJ) $(LIB)
 $(CLI): $(CLI_OBJ) $(TOOL_LIB_OBJ) $(LIB)
 	$(LINK) $(HOST_CFLAGS) -o $@ $^ $(HOST_LIBS) $(CV_LIBS)
 
+TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 1)
 test: $(RUNNER) $(CLI) check
-	@$(RUNNER) | tee $(BUILD)/test.log; exit $${PIPESTATUS[0]}
+	@$(RUNNER) -j $(TEST_JOBS) | tee $(BUILD)/test.log; exit $${PIPESTATUS[0]}
 
 test-quick: $(RUNNER)
-	@$(RUNNER) --quick
+	@$(RUNNER) --quick -j $(TEST_JOBS)
 
 test-exhaustive: $(RUNNER)
 	@$(RUNNER) --exhaustive

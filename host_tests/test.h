@@ -14,6 +14,12 @@
  * t_quick is set by --quick (used under qemu): exhaustive sweeps run a
  * documented subset.  Outputs printed in quick mode must not depend on the
  * architecture.
+ *
+ * `-j N` (make test) runs the suites in N worker processes, so a suite must
+ * not depend on another one (state, files): it may run alone, before or
+ * after any other, or at the same time; its scratch files and folders are
+ * its own.  The output keeps suites.h order.  --times prints the wall
+ * time of every case on stderr.
  */
 #ifndef FL_HOST_TEST_H
 #define FL_HOST_TEST_H

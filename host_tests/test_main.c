@@ -1,13 +1,27 @@
 /* host_tests/test_main.c - runner and harness implementation. */
 #include "test.h"
 
+#include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <time.h>
 
 int t_quick = 0;
 int t_exhaustive = 0;
+/* --times: the wall time of every case on stderr (stdout stays comparable) */
+static int t_times = 0;
+
+static double t_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
 
 /* -k filters: a case runs when its name contains any of them (none given:
  * every case runs). */
@@ -228,12 +242,16 @@ const char *t_realdata_dir(void)
 
 void t_run(const char *name, t_fn fn)
 {
+    double t0;
     if (!t_selected(name))
         return;
     t_cur_name = name;
     t_cur_failed = 0;
     fflush(stdout);
+    t0 = t_now();
     fn();
+    if (t_times)
+        fprintf(stderr, "time %8.3f s %s\n", t_now() - t0, name);
     if (t_cur_failed) {
         printf("FAIL %s (%d failed checks)\n", name, t_cur_failed);
         t_failed++;
@@ -245,33 +263,210 @@ void t_run(const char *name, t_fn fn)
     t_cur_name = NULL;
 }
 
+/* The suites in run (and output) order, from suites.h; fn is NULL for a
+ * listed suite without its test file (weak symbol). */
+#define T_SUITES_MAX 128
+struct t_suite { const char *name; void (*fn)(void); };
+static struct t_suite t_suites[T_SUITES_MAX];
+static int t_nsuites = 0;
+
+static void t_add_suite(const char *name, void (*fn)(void))
+{
+    if (t_nsuites < T_SUITES_MAX) {
+        t_suites[t_nsuites].name = name;
+        t_suites[t_nsuites].fn = fn;
+    }
+    t_nsuites++;
+}
+
+static void t_list_suites(void)
+{
+#undef T_SUITE
+#define T_SUITE(name) t_add_suite(#name, suite_##name)
+#include "suites.h"
+}
+
+static void t_run_suite(const struct t_suite *s)
+{
+    if (s->fn)
+        s->fn();
+    else if (t_nfilters == 0) {
+        printf("FAIL suite %s missing (no host_tests/test_%s.c)\n", s->name, s->name);
+        t_failed++;
+    }
+}
+
+/* -j N: the suites run in N worker processes (a suite is the unit: its cases
+ * share fixtures and scratch folders), each suite's stdout captured in its
+ * own temporary file and copied out in suites.h order as soon as every
+ * earlier suite is done, so the output is the serial run's, line for line.
+ * The workers take suites from a queue, the long ones first (t_long_first:
+ * a hint for the balance only, a suite missing from it just starts later).
+ * A suite whose worker dies fails with its output so far. */
+static const char *const t_long_first[] = {
+    "camera_vision", "rules", "scan", "cli", "calib", "render", "walks", "fuzzy",
+    "sim", "confidence", "localize", "color", "color_auto",
+};
+
+struct t_done { int suite, passed, failed; };
+
+static int t_write_all(int fd, const void *p, size_t n)
+{
+    const char *b = p;
+    while (n > 0) {
+        ssize_t w = write(fd, b, n);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0)
+            return -1;
+        b += w;
+        n -= (size_t)w;
+    }
+    return 0;
+}
+
+static void t_copy_out(int fd)
+{
+    char buf[65536];
+    off_t off = 0;
+    ssize_t r;
+    fflush(stdout);
+    while ((r = pread(fd, buf, sizeof buf, off)) > 0) {
+        if (t_write_all(STDOUT_FILENO, buf, (size_t)r) != 0)
+            break;
+        off += r;
+    }
+}
+
+static void t_cloexec(int fd) { fcntl(fd, F_SETFD, fcntl(fd, F_GETFD) | FD_CLOEXEC); }
+
+static int t_run_parallel(int jobs)
+{
+    int order[T_SUITES_MAX], out[T_SUITES_MAX], state[T_SUITES_MAX];
+    int work[2], done[2], n = 0, i, k, next = 0, status;
+    size_t h;
+    pid_t pid;
+    struct t_done d;
+    for (h = 0; h < sizeof t_long_first / sizeof t_long_first[0]; h++)
+        for (i = 0; i < t_nsuites; i++)
+            if (!strcmp(t_suites[i].name, t_long_first[h]))
+                order[n++] = i;
+    for (i = 0; i < t_nsuites; i++) {
+        for (k = 0; k < n && order[k] != i; k++)
+            ;
+        if (k == n)
+            order[n++] = i;
+    }
+    for (i = 0; i < t_nsuites; i++) {
+        FILE *f = tmpfile();
+        if (!f) {
+            perror("run_tests: tmpfile");
+            return -1;
+        }
+        out[i] = fileno(f);
+        t_cloexec(out[i]);
+        state[i] = 0;
+    }
+    if (pipe(work) != 0 || pipe(done) != 0) {
+        perror("run_tests: pipe");
+        return -1;
+    }
+    t_cloexec(work[0]);
+    t_cloexec(work[1]);
+    t_cloexec(done[0]);
+    t_cloexec(done[1]);
+    /* the whole queue fits in the pipe; a worker's read of one int is atomic */
+    if (t_write_all(work[1], order, (size_t)n * sizeof order[0]) != 0)
+        return -1;
+    close(work[1]);
+    fflush(stdout);
+    fflush(stderr);
+    for (k = 0; k < jobs; k++) {
+        pid = fork();
+        if (pid < 0) {
+            perror("run_tests: fork");
+            if (k == 0)
+                return -1;
+            break;
+        }
+        if (pid == 0) {
+            close(done[0]);
+            while (read(work[0], &i, sizeof i) == (ssize_t)sizeof i) {
+                fflush(stdout);
+                if (dup2(out[i], STDOUT_FILENO) < 0)
+                    _exit(1);
+                t_passed = t_failed = 0;
+                t_run_suite(&t_suites[i]);
+                fflush(stdout);
+                d.suite = i;
+                d.passed = t_passed;
+                d.failed = t_failed;
+                if (t_write_all(done[1], &d, sizeof d) != 0)
+                    _exit(1);
+            }
+            _exit(0);
+        }
+    }
+    close(work[0]);
+    close(done[1]);
+    t_passed = t_failed = 0;
+    for (;;) {
+        ssize_t r = read(done[0], &d, sizeof d);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r != (ssize_t)sizeof d)
+            break;
+        state[d.suite] = 1;
+        t_passed += d.passed;
+        t_failed += d.failed;
+        while (next < t_nsuites && state[next]) {
+            t_copy_out(out[next]);
+            next++;
+        }
+    }
+    while (wait(&status) > 0 || errno == EINTR)
+        ;
+    for (; next < t_nsuites; next++) {
+        t_copy_out(out[next]);
+        if (!state[next]) {
+            printf("FAIL suite %s did not finish (its worker process died)\n",
+                   t_suites[next].name);
+            fflush(stdout);
+            t_failed++;
+        }
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
-    int i;
+    int i, jobs = 1;
     for (i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--quick"))
             t_quick = 1;
         else if (!strcmp(argv[i], "--exhaustive"))
             t_exhaustive = 1;
+        else if (!strcmp(argv[i], "--times"))
+            t_times = 1;
+        else if (!strcmp(argv[i], "-j") && i + 1 < argc && atoi(argv[i + 1]) >= 1)
+            jobs = atoi(argv[++i]);
         else if (!strcmp(argv[i], "-k") && i + 1 < argc && t_nfilters < T_FILTER_MAX)
             t_filters[t_nfilters++] = argv[++i];
         else {
-            fprintf(stderr, "usage: %s [--quick | --exhaustive] [-k SUBSTRING]...\n", argv[0]);
+            fprintf(stderr, "usage: %s [--quick | --exhaustive] [--times] [-j JOBS] "
+                    "[-k SUBSTRING]...\n", argv[0]);
             return 2;
         }
     }
-#undef T_SUITE
-#define T_SUITE(name)                                                     \
-    do {                                                                  \
-        if (suite_##name)                                                 \
-            suite_##name();                                               \
-        else if (t_nfilters == 0) {                                             \
-            printf("FAIL suite %s missing (no host_tests/test_%s.c)\n",   \
-                   #name, #name);                                         \
-            t_failed++;                                                   \
-        }                                                                 \
-    } while (0)
-#include "suites.h"
+    t_list_suites();
+    if (t_nsuites > T_SUITES_MAX) {
+        printf("FAIL more suites than T_SUITES_MAX (%d)\n", T_SUITES_MAX);
+        t_failed++;
+        t_nsuites = T_SUITES_MAX;
+    }
+    if (jobs < 2 || t_run_parallel(jobs) != 0)
+        for (i = 0; i < t_nsuites; i++)
+            t_run_suite(&t_suites[i]);
     printf("%d passed, %d failed\n", t_passed, t_failed);
     return t_failed ? 1 : 0;
 }
