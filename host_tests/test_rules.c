@@ -34,25 +34,14 @@ static int write_file(const char *dir, const char *rel, const char *text)
     return 0;
 }
 
-/* Build build/rules/<name>: a copy of include/, empty tools/ and host_tests/,
- * an empty long-function list, then the planted files; run the checker on
- * it.  Returns the shell status, or -1 when the tree cannot be made. */
-static int run_tree(const char *name, const struct planted *files, size_t nfiles,
-                    char *log, size_t n)
+/* Run the checker on the tree in dir (its build output in dir/build);
+ * the shell status, its output in log. */
+static int check_tree(const char *dir, char *log, size_t n)
 {
-    char dir[256], path[512], cmd[2048];
+    char path[512], cmd[2048];
     FILE *f;
     int rc;
-    size_t got, i;
-    snprintf(dir, sizeof dir, "build/rules/%s", name);
-    snprintf(cmd, sizeof cmd,
-             "rm -rf %s && mkdir -p %s/src %s/tools %s/host_tests && cp -r include %s/ "
-             "&& : > %s/long.txt", dir, dir, dir, dir, dir, dir);
-    if (system(cmd) != 0)
-        return -1;
-    for (i = 0; i < nfiles; i++)
-        if (write_file(dir, files[i].path, files[i].text) != 0)
-            return -1;
+    size_t got;
     snprintf(cmd, sizeof cmd,
              "SRC_DIR=%s/src INC_DIR=%s/include TOOLS_DIR=%s/tools TESTS_DIR=%s/host_tests "
              "LONG_FUNCTIONS=%s/long.txt BUILD=%s/build CC=${CC:-cc} "
@@ -65,6 +54,26 @@ static int run_tree(const char *name, const struct planted *files, size_t nfiles
     if (f)
         fclose(f);
     return rc;
+}
+
+/* Build build/rules/<name>: a copy of include/, empty tools/ and host_tests/,
+ * an empty long-function list, then the planted files; run the checker on
+ * it.  Returns the shell status, or -1 when the tree cannot be made. */
+static int run_tree(const char *name, const struct planted *files, size_t nfiles,
+                    char *log, size_t n)
+{
+    char dir[256], cmd[2048];
+    size_t i;
+    snprintf(dir, sizeof dir, "build/rules/%s", name);
+    snprintf(cmd, sizeof cmd,
+             "rm -rf %s && mkdir -p %s/src %s/tools %s/host_tests && cp -r include %s/ "
+             "&& : > %s/long.txt", dir, dir, dir, dir, dir, dir);
+    if (system(cmd) != 0)
+        return -1;
+    for (i = 0; i < nfiles; i++)
+        if (write_file(dir, files[i].path, files[i].text) != 0)
+            return -1;
+    return check_tree(dir, log, n);
 }
 
 static int run_checker(const char *name, const char *source, char *log, size_t n)
@@ -295,6 +304,45 @@ static void test_function_length(void)
                 "vision/long.c:fl_t_long is no longer longer than 150 lines");
 }
 
+/* The strict compile is cached by content (BUILD/check-cache): a rerun on
+ * the same tree reuses the object, and a change in a header the source
+ * includes (not in the source itself) is compiled and judged afresh, both
+ * ways: a violation planted in the header fails, taking it out passes. */
+static void test_cache(void)
+{
+    static char log[16384];
+    const char *dir = "build/rules/cache";
+    struct planted t[1];
+    size_t len = 0;
+    char *hdr = t_read_file("include/fieldloc/fixed.h", &len), *bad;
+    CHECK(hdr != NULL);
+    if (!hdr)
+        return;
+    bad = malloc(len + 64);
+    CHECK(bad != NULL);
+    if (!bad) {
+        free(hdr);
+        return;
+    }
+    snprintf(bad, len + 64, "%sint32_t fl_t_hidden_state;\n", hdr);
+    t[0].path = "src/base/t.c";
+    t[0].text = "#include \"fieldloc/fixed.h\"\n"
+                "int32_t fl_t_twice(int32_t x) { return fl_sat32((int64_t)x * 2); }\n";
+    CHECK_EQ(run_tree("cache", t, 1, log, sizeof log), 0);
+    CHECK(strstr(log, "(0 unchanged,") != NULL);
+    CHECK_EQ(check_tree(dir, log, sizeof log), 0);
+    CHECK(strstr(log, "1 sources compiled") != NULL && strstr(log, "(1 unchanged,") != NULL);
+    CHECK_EQ(write_file(dir, "include/fieldloc/fixed.h", bad), 0);
+    CHECK(check_tree(dir, log, sizeof log) != 0);
+    CHECK(strstr(log, "(0 unchanged,") != NULL);
+    CHECK(strstr(log, "mutable file-scope state") != NULL);
+    CHECK_EQ(write_file(dir, "include/fieldloc/fixed.h", hdr), 0);
+    CHECK_EQ(check_tree(dir, log, sizeof log), 0);
+    CHECK(strstr(log, "all firmware rules hold") != NULL);
+    free(bad);
+    free(hdr);
+}
+
 void suite_rules(void)
 {
     if (t_quick)
@@ -314,4 +362,5 @@ void suite_rules(void)
     t_run("rules.include_circles", test_include_circle);
     t_run("rules.function_length", test_function_length);
     t_run("rules.tools_through_localizer_interface", test_tools_through_interface);
+    t_run("rules.check_cache_follows_headers", test_cache);
 }

@@ -53,12 +53,48 @@ command -v "$OBJDUMP" >/dev/null 2>&1 || OBJDUMP=objdump
 # 1. strict compile, no floating point
 n=0
 fw_src=$(find "$SRC" -name '*.c' | sort)
+flags="-std=c99 -pedantic -Werror -Wall -Wextra -Wconversion -Wshadow -O2 -fno-common $nofp"
+# A compile that succeeded is kept in $BUILD/check-cache under a hash of
+# everything it read: the compiler's identity ($CC -v), the flags, the
+# source path, the list of files the preprocessor opens ($CC -M: the
+# source, every header, system ones too, as resolved through the include
+# path now, so a new header shadowing an old one changes the list) and the
+# bytes of each.  A hit copies the object and its (empty) diagnostics
+# instead of compiling; a failed compile is never cached, nor anything when
+# -M fails or sha1sum is missing.  After a run where every source compiled,
+# the entries it did not use are removed.
+cache="$BUILD/check-cache"
+ccid=
+if command -v sha1sum >/dev/null 2>&1; then
+  ccid=$($CC -v 2>&1) || ccid=
+  mkdir -p "$cache" || ccid=
+fi
+compile_one() {  # $1 source, $2 object; leaves $2.failed on failure, $2.key on a cacheable key
+  key=
+  if [ -n "$ccid" ] && deps=$($CC $flags -I"$INC" -M "$1" 2>/dev/null); then
+    files=$(printf '%s\n' "$deps" | sed -e 's/\\$//' -e 's/^[^:]*: *//' | tr -s ' \t' '\n\n' | grep .)
+    if { printf '%s\n' "$ccid" "$flags" "-I$INC" "$1" $files; cat $files; } > "$2.keyin" 2>/dev/null; then
+      key=$(sha1sum < "$2.keyin" | cut -c1-40)
+    fi
+    rm -f "$2.keyin"
+  fi
+  if [ -n "$key" ] && [ -f "$cache/$key.o" ] && [ -f "$cache/$key.err" ] &&
+     cp "$cache/$key.o" "$2" && cp "$cache/$key.err" "$2.err"; then
+    echo "$key" > "$2.key"; : > "$2.hit"; return
+  fi
+  if $CC $flags -I"$INC" -c "$1" -o "$2" 2>"$2.err"; then
+    if [ -n "$key" ] && cp "$2" "$cache/$key.o.tmp$$" && cp "$2.err" "$cache/$key.err.tmp$$"; then
+      mv "$cache/$key.o.tmp$$" "$cache/$key.o" && mv "$cache/$key.err.tmp$$" "$cache/$key.err" &&
+        echo "$key" > "$2.key"
+    fi
+  else
+    : > "$2.failed"
+  fi
+}
 # the compiles run in parallel (all at once: a few dozen small files); the
 # failures are reported afterwards in source order
 for f in $fw_src; do
-  o="$out/$(basename "$f" .c).o"
-  ( $CC -std=c99 -pedantic -Werror -Wall -Wextra -Wconversion -Wshadow \
-        -O2 -fno-common $nofp -I"$INC" -c "$f" -o "$o" 2>"$o.err" || : > "$o.failed" ) &
+  compile_one "$f" "$out/$(basename "$f" .c).o" &
 done
 wait
 for f in $fw_src; do
@@ -68,8 +104,18 @@ for f in $fw_src; do
   fi
   n=$((n + 1))
 done
-say "$n sources compiled with -std=c99 -pedantic -Werror -Wall -Wextra -Wconversion -Wshadow ${nofp:-(no -mgeneral-regs-only for this target)}"
-
+if [ -n "$ccid" ] && [ $fail -eq 0 ]; then
+  used=$(cat "$out"/*.o.key 2>/dev/null)
+  for e in "$cache"/*.o; do
+    [ -e "$e" ] || continue
+    k=$(basename "$e" .o)
+    case " $(echo $used) " in *" $k "*) ;; *) rm -f "$cache/$k.o" "$cache/$k.err" ;; esac
+  done
+fi
+rm -f "$cache"/*.tmp* "$out"/*.o.key
+hits=$(ls "$out" | grep -c '\.hit$')
+rm -f "$out"/*.hit
+say "$n sources compiled with -std=c99 -pedantic -Werror -Wall -Wextra -Wconversion -Wshadow ${nofp:-(no -mgeneral-regs-only for this target)} ($hits unchanged, from $cache)"
 objs=$(ls "$out"/*.o 2>/dev/null)
 [ -n "$objs" ] || { bad "no objects"; exit 1; }
 
