@@ -582,13 +582,22 @@ static int hit_aabb(const group_t *g, const double o[3], const double d[3], doub
     return 1;
 }
 
+/* uv: the pixel whose ray from the camera centre d is (world_ray), or NULL
+ * for any other ray; with it, the groups behind the camera or whose pixel
+ * box (group_t) lies away from the pixel are skipped: their hit_aabb would
+ * be 0 (the ray misses the box by 10 mm or a pixel, orders of magnitude
+ * above rounding), so the result is the same, bit for bit. */
 static int hit_objects_n(const world_t *w, const double o[3], const double d[3], double tmin,
-                         double tmax, int skip_landmark, double *t_out, double n_out[3])
+                         double tmax, int skip_landmark, double *t_out, double n_out[3],
+                         const double *uv)
 {
     int gi, i, best = -1;
     double tb = tmax, t, n[3];
     for (gi = 0; gi < w->ng; gi++) {
         const group_t *g = &w->groups[gi];
+        if (uv && g->on_screen &&
+            (g->on_screen == 2 || uv[0] < g->u0 || uv[0] > g->u1 || uv[1] < g->v0 || uv[1] > g->v1))
+            continue;
         if (!hit_aabb(g, o, d, tmin, tb))
             continue;
         for (i = g->first; i < g->first + g->count; i++) {
@@ -611,7 +620,7 @@ static int hit_objects_n(const world_t *w, const double o[3], const double d[3],
 int world_hit_objects(const world_t *w, const double o[3], const double d[3], double tmin,
                       double tmax, int skip_landmark, double *t_out)
 {
-    return hit_objects_n(w, o, d, tmin, tmax, skip_landmark, t_out, NULL);
+    return hit_objects_n(w, o, d, tmin, tmax, skip_landmark, t_out, NULL, NULL);
 }
 
 /* ---- world: paint ------------------------------------------------------------------ */
@@ -1144,6 +1153,79 @@ static void world_tilt(const render_scene_t *sc, double R[3][3], double c[3])
     memcpy(c, v, sizeof v);
 }
 
+/* The pixel box of every group (group_t.on_screen).  The corners are
+ * mapped to ray coordinates e = M^-1 (corner - P), exactly inverting
+ * world_ray (a pixel's ray is M (f, cx - u, cy - v); M is orthonormal only
+ * to the precision of the angle tables), so a point of the box and the
+ * pixel whose ray passes through it agree to rounding: the point's pixel
+ * is u = cx - f e1 / e0, v = cy - f e2 / e0, reached when e0 > 0.
+ *  - every corner at e0 >= 10 mm: the box of the corners' pixels, 1 px
+ *    wider on each side;
+ *  - every corner at e0 <= -10 mm: behind the camera, never reached;
+ *  - otherwise, when the camera is 10 mm or more outside the box and the
+ *    box lies wholly beyond a line 2 px outside the image (a linear
+ *    function of e, positive at the 8 corners, so on the whole box), the
+ *    pixels up to 1 px outside the image skip it (a half-plane box). */
+static void group_screens(world_t *w)
+{
+    double A[3][3], det, e[8][3], W = w->W, H = w->H;
+    int gi, c, j, k;
+    for (j = 0; j < 3; j++)
+        for (k = 0; k < 3; k++)
+            A[j][k] = w->M[(k + 1) % 3][(j + 1) % 3] * w->M[(k + 2) % 3][(j + 2) % 3] -
+                      w->M[(k + 1) % 3][(j + 2) % 3] * w->M[(k + 2) % 3][(j + 1) % 3];
+    det = w->M[0][0] * A[0][0] + w->M[0][1] * A[1][0] + w->M[0][2] * A[2][0];
+    for (gi = 0; gi < w->ng; gi++) {
+        group_t *g = &w->groups[gi];
+        int front = 0, behind = 0, away = 0, side[4] = {0, 0, 0, 0};
+        g->on_screen = 0;
+        if (!(fabs(det) > 0.5) || !(w->f > 0.0))
+            continue;
+        for (c = 0; c < 8; c++) {
+            double q[3];
+            for (k = 0; k < 3; k++)
+                q[k] = ((c >> k) & 1 ? g->hi[k] : g->lo[k]) - w->P[k];
+            for (j = 0; j < 3; j++)
+                e[c][j] = (A[j][0] * q[0] + A[j][1] * q[1] + A[j][2] * q[2]) / det;
+            front += e[c][0] >= 10.0;
+            behind += e[c][0] <= -10.0;
+            /* beyond u = -2, u = W + 2, v = -2, v = H + 2 */
+            side[0] += w->f * e[c][1] - (w->cx + 2.0) * e[c][0] > 0.0;
+            side[1] += (w->cx - W - 2.0) * e[c][0] - w->f * e[c][1] > 0.0;
+            side[2] += w->f * e[c][2] - (w->cy + 2.0) * e[c][0] > 0.0;
+            side[3] += (w->cy - H - 2.0) * e[c][0] - w->f * e[c][2] > 0.0;
+        }
+        for (k = 0; k < 3; k++)
+            away |= w->P[k] <= g->lo[k] - 10.0 || w->P[k] >= g->hi[k] + 10.0;
+        if (front == 8) {
+            for (c = 0; c < 8; c++) {
+                double u = w->cx - w->f * e[c][1] / e[c][0], v = w->cy - w->f * e[c][2] / e[c][0];
+                if (c == 0 || u < g->u0)
+                    g->u0 = u;
+                if (c == 0 || u > g->u1)
+                    g->u1 = u;
+                if (c == 0 || v < g->v0)
+                    g->v0 = v;
+                if (c == 0 || v > g->v1)
+                    g->v1 = v;
+            }
+            g->u0 -= 1.0;
+            g->u1 += 1.0;
+            g->v0 -= 1.0;
+            g->v1 += 1.0;
+            g->on_screen = 1;
+        } else if (behind == 8) {
+            g->on_screen = 2;
+        } else if (away && (side[0] == 8 || side[1] == 8 || side[2] == 8 || side[3] == 8)) {
+            g->u0 = side[1] == 8 ? W + 1.0 : -HUGE_VAL;
+            g->u1 = side[0] == 8 ? -1.0 : HUGE_VAL;
+            g->v0 = side[3] == 8 ? H + 1.0 : -HUGE_VAL;
+            g->v1 = side[2] == 8 ? -1.0 : HUGE_VAL;
+            g->on_screen = 1;
+        }
+    }
+}
+
 int world_build(world_t *w, const render_scene_t *sc)
 {
     fl_camera_t fc;
@@ -1273,6 +1355,7 @@ int world_build(world_t *w, const render_scene_t *sc)
         world_free(w);
         return -1;
     }
+    group_screens(w);
     return 0;
 }
 
@@ -1420,7 +1503,7 @@ static void shade_object(const world_t *w, const prim_t *p, const double h[3], c
 void world_trace(const world_t *w, double u, double v, sample_t *s)
 {
     double d[3], tg = 1e30, te, tx, ty, tz, to;
-    double n[3];
+    double n[3], uv[2];
     int pi, c, wall = 0;
 
     memset(s, 0, sizeof *s);
@@ -1450,7 +1533,9 @@ void world_trace(const world_t *w, double u, double v, sample_t *s)
         te = tg;
         wall = 1;
     }
-    pi = hit_objects_n(w, w->P, d, 1e-9, te, -1, &to, n);
+    uv[0] = u;
+    uv[1] = v;
+    pi = hit_objects_n(w, w->P, d, 1e-9, te, -1, &to, n, uv);
     if (pi >= 0) {
         double h[3];
         for (c = 0; c < 3; c++)

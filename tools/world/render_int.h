@@ -46,6 +46,13 @@ typedef struct {
 typedef struct {
     double lo[3], hi[3];  /* bounding box */
     int first, count;
+    /* on_screen 1: every corner of the box is at least 10 mm in front of
+     * the camera and u0..u1 x v0..v1 holds their pixels with a 1 px margin,
+     * so a pixel's ray outside it misses the box (world_trace skips the
+     * group); 2: every corner is at least 10 mm behind the camera (no
+     * pixel's ray meets the box); 0: neither */
+    int on_screen;
+    double u0, u1, v0, v1;
 } group_t;
 
 typedef struct {
