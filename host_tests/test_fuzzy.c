@@ -208,8 +208,8 @@ static void test_trap_envelope(void)
         h = t_hash_i32(h, (int32_t)e.bias_q16);
         for (k = 0; k < 1442; k++) {
             double th = k < 1440 ? -32768.0 + k * (65536.0 / 1440.0) : (k == 1440 ? a.centre : b.centre);
-            double p = mu(&a, th) * mu(&b, th), ev = mu(&e, th);
-            double mx = fmax(mu(&a, th), mu(&b, th));
+            double ma = mu(&a, th), mb = mu(&b, th);
+            double p = ma * mb, ev = mu(&e, th), mx = fmax(ma, mb);
             if (ev + 3.0 / 65536.0 < p)
                 bad++;
             if (mu(&ec, th) + 3.0 / 65536.0 < p)
