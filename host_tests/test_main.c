@@ -300,15 +300,88 @@ static void t_run_suite(const struct t_suite *s)
  * share fixtures and scratch folders), each suite's stdout captured in its
  * own temporary file and copied out in suites.h order as soon as every
  * earlier suite is done, so the output is the serial run's, line for line.
- * The workers take suites from a queue, the long ones first (t_long_first:
- * a hint for the balance only, a suite missing from it just starts later).
- * A suite whose worker dies fails with its output so far. */
+ * The workers take suites from a queue, the long ones first: by the wall
+ * times of the last complete parallel full run (suite_times.txt beside the
+ * runner; a suite it lacks goes first), else by t_long_first (a suite
+ * missing from it starts after those).  The order only balances the
+ * workers.  A suite whose worker dies fails with its output so far. */
 static const char *const t_long_first[] = {
     "camera_vision", "rules", "scan", "cli", "calib", "render", "walks", "fuzzy",
     "sim", "confidence", "localize", "color", "color_auto",
 };
 
-struct t_done { int suite, passed, failed; };
+/* suite_times.txt in the runner's folder (NULL when unknown) */
+static const char *t_times_path(void)
+{
+    static char path[1100];
+    char self[1024];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    char *slash;
+    if (n <= 0)
+        return NULL;
+    self[n] = 0;
+    slash = strrchr(self, '/');
+    if (!slash)
+        return NULL;
+    *slash = 0;
+    snprintf(path, sizeof path, "%s/suite_times.txt", self);
+    return path;
+}
+
+/* The queue order into order[] (t_nsuites entries). */
+static void t_queue_order(int *order)
+{
+    double key[T_SUITES_MAX];
+    const char *path = t_times_path();
+    FILE *f = path ? fopen(path, "r") : NULL;
+    char name[128];
+    double sec;
+    int i, k, n = 0;
+    size_t h;
+    if (f) {
+        for (i = 0; i < t_nsuites; i++)
+            key[i] = 1e9;                      /* not measured yet: first */
+        while (fscanf(f, "%127s %lf", name, &sec) == 2)
+            for (i = 0; i < t_nsuites; i++)
+                if (!strcmp(t_suites[i].name, name))
+                    key[i] = sec;
+        fclose(f);
+    } else {
+        for (i = 0; i < t_nsuites; i++)
+            key[i] = 0;
+        for (h = 0; h < sizeof t_long_first / sizeof t_long_first[0]; h++)
+            for (i = 0; i < t_nsuites; i++)
+                if (!strcmp(t_suites[i].name, t_long_first[h]))
+                    key[i] = 1000.0 - (double)h;
+    }
+    /* stable: equal keys keep suites.h order */
+    for (i = 0; i < t_nsuites; i++) {
+        for (k = n; k > 0 && key[order[k - 1]] < key[i]; k--)
+            order[k] = order[k - 1];
+        order[k] = i;
+        n++;
+    }
+}
+
+static void t_times_save(const double *sec)
+{
+    const char *path = t_times_path();
+    char tmp[1200];
+    FILE *f;
+    int i;
+    if (!path)
+        return;
+    snprintf(tmp, sizeof tmp, "%s.%ld", path, (long)getpid());
+    f = fopen(tmp, "w");
+    if (!f)
+        return;
+    for (i = 0; i < t_nsuites; i++)
+        fprintf(f, "%s %.3f\n", t_suites[i].name, sec[i]);
+    if (fclose(f) != 0 || rename(tmp, path) != 0)
+        remove(tmp);
+}
+
+struct t_done { int suite, passed, failed; double sec; };
 
 static int t_write_all(int fd, const void *p, size_t n)
 {
@@ -343,20 +416,11 @@ static void t_cloexec(int fd) { fcntl(fd, F_SETFD, fcntl(fd, F_GETFD) | FD_CLOEX
 static int t_run_parallel(int jobs)
 {
     int order[T_SUITES_MAX], out[T_SUITES_MAX], state[T_SUITES_MAX];
-    int work[2], done[2], n = 0, i, k, next = 0, status;
-    size_t h;
+    int work[2], done[2], n = t_nsuites, i, k, next = 0, status, all = 1;
+    double sec[T_SUITES_MAX];
     pid_t pid;
     struct t_done d;
-    for (h = 0; h < sizeof t_long_first / sizeof t_long_first[0]; h++)
-        for (i = 0; i < t_nsuites; i++)
-            if (!strcmp(t_suites[i].name, t_long_first[h]))
-                order[n++] = i;
-    for (i = 0; i < t_nsuites; i++) {
-        for (k = 0; k < n && order[k] != i; k++)
-            ;
-        if (k == n)
-            order[n++] = i;
-    }
+    t_queue_order(order);
     for (i = 0; i < t_nsuites; i++) {
         FILE *f = tmpfile();
         if (!f) {
@@ -395,9 +459,11 @@ static int t_run_parallel(int jobs)
                 fflush(stdout);
                 if (dup2(out[i], STDOUT_FILENO) < 0)
                     _exit(1);
+                double t0 = t_now();
                 t_passed = t_failed = 0;
                 t_run_suite(&t_suites[i]);
                 fflush(stdout);
+                d.sec = t_now() - t0;
                 d.suite = i;
                 d.passed = t_passed;
                 d.failed = t_failed;
@@ -417,6 +483,7 @@ static int t_run_parallel(int jobs)
         if (r != (ssize_t)sizeof d)
             break;
         state[d.suite] = 1;
+        sec[d.suite] = d.sec;
         t_passed += d.passed;
         t_failed += d.failed;
         while (next < t_nsuites && state[next]) {
@@ -433,8 +500,12 @@ static int t_run_parallel(int jobs)
                    t_suites[next].name);
             fflush(stdout);
             t_failed++;
+            all = 0;
         }
     }
+    /* the times of a complete run order the next one */
+    if (all && t_nfilters == 0 && !t_quick && !t_exhaustive)
+        t_times_save(sec);
     return 0;
 }
 
