@@ -645,14 +645,14 @@ double world_paint_sd(const world_t *w, double x, double y)
     int i;
     for (i = 0; i < f->n_lines; i++) {
         const fl_field_line_t *l = &f->lines[i];
-        double dx = l->x1_mm - l->x0_mm, dy = l->y1_mm - l->y0_mm;
-        double len = sqrt(dx * dx + dy * dy);
+        double dx = l->x1_mm - l->x0_mm, dy = l->y1_mm - l->y0_mm, len;
         double cxl = 0.5 * (l->x0_mm + l->x1_mm), cyl = 0.5 * (l->y0_mm + l->y1_mm);
-        if (len <= 0.0)
-            continue;
-        /* quick reject */
+        /* quick reject (before the square root: most lines are far) */
         if (fabs(x - cxl) > 0.5 * fabs(dx) + w->lw2 + best + 1.0 ||
             fabs(y - cyl) > 0.5 * fabs(dy) + w->lw2 + best + 1.0)
+            continue;
+        len = sqrt(dx * dx + dy * dy);
+        if (len <= 0.0)
             continue;
         sd = rect_sd(x, y, cxl, cyl, dx / len, dy / len, 0.5 * len + w->lw2, w->lw2);
         if (sd < best)
