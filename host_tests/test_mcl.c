@@ -250,11 +250,11 @@ static void test_hostile(void)
         CHECK(fl_mcl_check(s));
         for (i = 0; i < s->n; i++) {
             const fl_mcl_particle_t *p = &s->buf[s->cur][i];
-            if (abs(p->x_mm) > s->half_x_mm + pp.margin_mm ||
-                abs(p->y_mm) > s->half_y_mm + pp.margin_mm)
+            if (abs(p->x_mm) > s->core.half_x_mm + pp.margin_mm ||
+                abs(p->y_mm) > s->core.half_y_mm + pp.margin_mm)
                 in_box = false;
         }
-        CHECK(abs(e.x_mm) <= s->half_x_mm && abs(e.y_mm) <= s->half_y_mm);
+        CHECK(abs(e.x_mm) <= s->core.half_x_mm && abs(e.y_mm) <= s->core.half_y_mm);
     }
     CHECK(in_box);
     CHECK(s->stats.odo_rejected > 0);
@@ -378,7 +378,7 @@ static void test_priors(void)
         CHECK(abs(fl_angle_sub(p->heading, (fl_angle_t)(l ? -16384 : 16384))) < 3000);
     }
     CHECK(left > s->n / 3 && left < 2 * s->n / 3);
-    CHECK(s->half_known && s->prior == FL_MCL_PRIOR_HALF && s->prior_half == -1);
+    CHECK(s->core.half_known && s->core.prior == FL_MCL_PRIOR_HALF && s->core.prior_half == -1);
     fl_mcl_set_prior_pose(s, 1000, 500, 0, 300);
     fl_mcl_reset_ignorance(s);
     for (i = 0; i < s->n; i++) {

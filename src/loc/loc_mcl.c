@@ -65,7 +65,7 @@ static fl_status_t mc_init(void *state, const fl_field_t *field, const void *par
 static void *mc_params_of(void *state)
 {
     fl_mcl_t *s = (fl_mcl_t *)state;
-    return s == NULL || s->field == NULL ? NULL : (void *)&s->params;
+    return s == NULL || s->core.field == NULL ? NULL : (void *)&s->params;
 }
 
 static void mc_predict(void *state, int32_t dx_mm, int32_t dy_mm, fl_angle_t dtheta)
@@ -194,7 +194,7 @@ static bool mc_belief_cell(const void *state, int ix, int iy, fl_loc_cell_t *out
 static uint16_t mc_belief_samples(const void *state)
 {
     const fl_mcl_t *s = (const fl_mcl_t *)state;
-    return s == NULL || s->field == NULL ? 0 : s->n;
+    return s == NULL || s->core.field == NULL ? 0 : s->n;
 }
 
 /* Weight relative to the heaviest particle (the update normalises the
@@ -207,16 +207,16 @@ static bool mc_belief_sample(const void *state, uint16_t i, fl_loc_sample_t *out
     if (out == NULL)
         return false;
     memset(out, 0, sizeof *out);
-    if (s == NULL || s->field == NULL || i >= s->n)
+    if (s == NULL || s->core.field == NULL || i >= s->n)
         return false;
     p = &s->buf[s->cur & 1u][i];
     out->x_mm = p->x_mm;
     out->y_mm = p->y_mm;
     out->heading = p->heading;
     out->weight_q16 = p->weight;
-    if (s->track_valid) {
-        int32_t dx = p->x_mm - s->track_x_mm, dy = p->y_mm - s->track_y_mm;
-        int32_t dh = fl_angle_sub(p->heading, s->track_heading);
+    if (s->core.track_valid) {
+        int32_t dx = p->x_mm - s->core.track_x_mm, dy = p->y_mm - s->core.track_y_mm;
+        int32_t dh = fl_angle_sub(p->heading, s->core.track_heading);
         int64_t r = s->params.cluster_mm;
         out->in_mode = (int64_t)dx * dx + (int64_t)dy * dy <= r * r && dh <= FL_ANGLE_90 &&
                        dh >= -FL_ANGLE_90;

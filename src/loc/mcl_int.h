@@ -28,7 +28,7 @@ static inline int32_t mcl_asr(int64_t v, unsigned n)
 
 static inline bool mcl_ready(const fl_mcl_t *s)
 {
-    return s != NULL && s->field != NULL;
+    return s != NULL && s->core.field != NULL;
 }
 
 static inline uint32_t mcl_sat_inc(uint32_t v)
@@ -66,19 +66,100 @@ static inline int32_t mcl_absang(fl_angle_t a)
     return a < 0 ? -(int32_t)a : (int32_t)a;
 }
 
+/* ---- the particle core (fl_mcl_core_t), shared with the unscented
+ * particle filter (src/loc/upf*.c) ---- */
+
 /* mcl.c */
-bool fl_mcl_internal_allowed(const fl_mcl_t *s, int32_t x, int32_t y, fl_angle_t h);
-void fl_mcl_internal_uniform(fl_mcl_t *s, fl_mcl_particle_t *p);
-void fl_mcl_internal_clamp(const fl_mcl_t *s, int32_t *x, int32_t *y);
-void fl_mcl_internal_drop_prior(fl_mcl_t *s);
+/* Index the field's landmarks, the carpet box (carpet + margin), the
+ * random generator from seed; the prior none.  FL_ERR_SIZE, FL_ERR_RANGE
+ * as fl_mcl_init (c then zeroed, field NULL). */
+fl_status_t fl_mcl_internal_core_init(fl_mcl_core_t *c, const fl_field_t *field,
+                                      int32_t margin_mm, int32_t seed);
+bool fl_mcl_internal_allowed(const fl_mcl_core_t *c, int32_t x, int32_t y, fl_angle_t h);
+void fl_mcl_internal_uniform(fl_mcl_core_t *c, fl_mcl_particle_t *p);
+void fl_mcl_internal_clamp(const fl_mcl_core_t *c, int32_t *x, int32_t *y);
+void fl_mcl_internal_drop_prior(fl_mcl_core_t *c);
 
 /* mcl_update.c */
 uint32_t fl_mcl_internal_exp_q16(uint32_t nll_q8);
+
+/* The sensor model, per observation (fl_mcl_internal_prepare: usable?
+ * and its constants) and per pose (fl_mcl_internal_obs_nll: the Gaussian
+ * part q in Q8 nats, the associated landmark in at->best), and the outlier
+ * floor: fl_mcl_internal_mixture(tab, q) = -ln((1 - eps) e^-q + eps) from
+ * a table that fl_mcl_internal_mixture_table fills (FL_MCL_MIX_N
+ * entries).  The unscented particle filter's p(z | x) is this one. */
+typedef struct {
+    const fl_obs_t *o;
+    int32_t ox, oy;              /* robot-frame vector, mm */
+    int32_t cb, sb;              /* its direction, Q15 */
+    int32_t sd_r, sd_a;          /* along and across sds, mm */
+    uint64_t k_r, k_a;           /* 128 * 2^32 / sd^2 */
+    uint8_t cand[FL_MCL_MAX_LANDMARKS];  /* candidate landmarks (field ids) */
+    int16_t cx[FL_MCL_MAX_LANDMARKS], cy[FL_MCL_MAX_LANDMARKS];  /* their
+                                                                    positions */
+    uint8_t n_cand;
+} fl_mcl_obs_c_t;
+
+/* The pose an observation is weighed at: position, cos and sin (Q15) of
+ * the heading, the heading; best: out, the associated landmark. */
+typedef struct {
+    int32_t x, y, c, s;
+    fl_angle_t h;
+    int best;
+} fl_mcl_at_t;
+
+#define FL_MCL_MIX_N 65
+bool fl_mcl_internal_prepare(const fl_mcl_core_t *pc, const fl_mcl_params_t *p,
+                             const fl_obs_t *o, fl_mcl_obs_c_t *c);
+uint32_t fl_mcl_internal_obs_nll(const fl_mcl_core_t *pc, const fl_mcl_params_t *p,
+                                 const fl_mcl_obs_c_t *c, fl_mcl_at_t *at);
+void fl_mcl_internal_mixture_table(uint16_t eps_q16, uint16_t *tab);
+uint32_t fl_mcl_internal_mixture(const uint16_t *tab, uint32_t q);
+/* Keep an applied observation for sensor resetting (the first
+ * FL_MCL_RESET_OBS of a frame; the caller sets n_reset 0 first). */
+void fl_mcl_internal_keep_reset_obs(fl_mcl_core_t *c, const fl_obs_t *o);
 
 /* mcl_resample.c */
 void fl_mcl_internal_resample(fl_mcl_t *s);
 /* One injected particle: sensor-reset from a kept observation, else
  * uniform over the allowed region (counted). */
 void fl_mcl_internal_inject(fl_mcl_t *s, fl_mcl_particle_t *out);
+/* The same on a particle core with the sensor model's parameters p (not
+ * counted): true when the pose came from an observation. */
+bool fl_mcl_internal_core_inject(fl_mcl_core_t *c, const fl_mcl_params_t *p,
+                                 fl_mcl_particle_t *out);
+
+/* mcl_estimate.c: the estimate of a set of weighted particles (the MCL's
+ * live buffer, or the unscented particle filter's samples). */
+typedef struct {
+    fl_mcl_core_t *core;
+    const fl_mcl_params_t *params;   /* cluster_mm, switch_q8 */
+    const fl_mcl_particle_t *p;
+    uint16_t n;
+} fl_mcl_set_t;
+
+static inline void mcl_set_of(fl_mcl_t *s, fl_mcl_set_t *set)
+{
+    set->core = &s->core;
+    set->params = &s->params;
+    set->p = mcl_live_c(s);
+    set->n = s->n;
+}
+
+/* Under total ignorance: the centre of the prior's region, its spread. */
+void fl_mcl_internal_ignorance_pose(const fl_mcl_core_t *c, fl_mcl_estimate_t *out);
+/* Steps 1-5 of the estimate (mcl_estimate.c): pose, spread, share, score,
+ * mirror, tracking; the track follows, a switch drops the prior (counted
+ * by the caller).  out zeroed by the caller; since_obs and the
+ * reliability are the caller's. */
+bool fl_mcl_internal_cluster(const fl_mcl_set_t *s, fl_mcl_estimate_t *out);
+/* Piecewise-linear calibration of the raw score through n_knots knots,
+ * then the not-tracking and mirror factors. */
+uint16_t fl_mcl_internal_calibrate(const fl_mcl_estimate_t *e, const uint16_t *cal_raw,
+                                   const uint16_t *cal_rel, int n_knots);
+uint64_t fl_mcl_internal_density(const fl_mcl_set_t *s, int32_t x, int32_t y, fl_angle_t h);
+uint32_t fl_mcl_internal_possibility(const fl_mcl_set_t *s, bool ignorance, uint32_t est_density,
+                                     int32_t x_mm, int32_t y_mm, fl_angle_t heading);
 
 #endif /* FIELDLOC_MCL_INT_H */
