@@ -130,29 +130,29 @@ static void test_injection_rate(void)
     fl_obs_list_push(&ol, &o);
     for (k = 0; k < 40; k++) {
         uint32_t before, ws, wf, pq;
-        s->w_slow_q24 = 1u << 24;     /* as if every observation fitted */
-        s->w_fast_q24 = 1u << 24;
+        s->aug.w_slow_q24 = 1u << 24;     /* as if every observation fitted */
+        s->aug.w_fast_q24 = 1u << 24;
         CHECK_EQ(fl_mcl_update(s, &ol), 1);
-        ws = s->w_slow_q24;
-        wf = s->w_fast_q24;
+        ws = s->aug.w_slow_q24;
+        wf = s->aug.w_fast_q24;
         pq = wf < ws ? 65536u - (uint32_t)(((uint64_t)wf << 16) / ws) : 0u;
-        CHECK_EQ(s->inject_q16, pq > 65535u ? 65535u : pq);
+        CHECK_EQ(s->aug.inject_q16, pq > 65535u ? 65535u : pq);
         before = s->stats.injected;
         fl_mcl_predict(s, 0, 0, 0);             /* resamples */
         inj += (long)(s->stats.injected - before);
-        expect += (long)s->n * s->inject_q16 / 65536;
-        var += (long)(s->n * (s->inject_q16 / 65536.0) * (1 - s->inject_q16 / 65536.0));
+        expect += (long)s->n * s->aug.inject_q16 / 65536;
+        var += (long)(s->n * (s->aug.inject_q16 / 65536.0) * (1 - s->aug.inject_q16 / 65536.0));
     }
     t_info("injected %ld, expected %ld (sd %.1f)", inj, expect, sqrt((double)var));
     CHECK(expect > 100);
     CHECK(fabs((double)(inj - expect)) <= 4 * sqrt((double)var) + 40);
     /* w_fast at or above w_slow: no injection */
-    s->w_slow_q24 = 1u;
-    s->w_fast_q24 = 1u;
+    s->aug.w_slow_q24 = 1u;
+    s->aug.w_fast_q24 = 1u;
     pp.alpha_fast_q16 = 0;
     s->params = pp;
     CHECK_EQ(fl_mcl_update(s, &ol), 1);
-    CHECK_EQ(s->inject_q16, 0);
+    CHECK_EQ(s->aug.inject_q16, 0);
     free(s);
 }
 

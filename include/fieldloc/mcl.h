@@ -180,6 +180,13 @@ typedef struct {
     fl_mcl_reset_obs_t reset_obs[FL_MCL_RESET_OBS];
 } fl_mcl_core_t;
 
+/* Augmented MCL's likelihood averages (shared with upf.h). */
+typedef struct {
+    uint32_t w_slow_q24, w_fast_q24;     /* averages of the likelihood */
+    uint16_t inject_q16;                 /* injection probability at the
+                                            next resampling */
+} fl_mcl_aug_t;
+
 typedef struct {
     fl_mcl_core_t core;          /* core.field NULL: not initialized */
     fl_mcl_params_t params;
@@ -194,9 +201,7 @@ typedef struct {
     uint32_t nll[FL_MCL_MAX_PARTICLES];  /* update scratch, Q8 nats */
     int16_t trig[FL_MCL_MAX_PARTICLES][2];  /* update scratch: cos, sin of
                                                each particle's heading */
-    uint32_t w_slow_q24, w_fast_q24;     /* averages of the likelihood */
-    uint16_t inject_q16;                 /* injection probability at the
-                                            next resampling */
+    fl_mcl_aug_t aug;
     uint16_t since_obs;
     uint32_t est_density;                /* kernel density at the last
                                             estimate (possibility's peak) */

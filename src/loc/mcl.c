@@ -362,184 +362,216 @@ static void fresh(fl_mcl_t *s)
     if (s->n < 1 || s->n > FL_MCL_MAX_PARTICLES)
         s->n = FL_MCL_MAX_PARTICLES < 256 ? FL_MCL_MAX_PARTICLES : 256;
     s->weighted = false;
-    s->w_slow_q24 = 0;
-    s->w_fast_q24 = 0;
-    s->inject_q16 = 0;
+    s->aug.w_slow_q24 = 0;
+    s->aug.w_fast_q24 = 0;
+    s->aug.inject_q16 = 0;
     s->core.n_reset = 0;
     s->est_density = 0;
 }
 
-void fl_mcl_reset_ignorance(fl_mcl_t *s)
+/* ---- resets and priors on a particle core ---------------------------------------- */
+
+void fl_mcl_internal_core_ignorance(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n)
 {
     uint16_t i;
-    fl_mcl_particle_t *p;
-    if (!mcl_ready(s))
-        return;
-    fresh(s);
-    p = mcl_live(s);
-    for (i = 0; i < s->n; i++)
-        fl_mcl_internal_uniform(&s->core, &p[i]);
-    s->ignorance = true;
-    s->core.track_valid = false;
-    s->core.half_known = s->core.prior != FL_MCL_PRIOR_NONE;
-    s->stats.resets = mcl_sat_inc(s->stats.resets);
+    for (i = 0; i < n; i++)
+        fl_mcl_internal_uniform(c, &p[i]);
+    c->track_valid = false;
+    c->half_known = c->prior != FL_MCL_PRIOR_NONE;
 }
 
 /* Particles around one pose: Gaussian, sd pos_unc / 2 and heading_unc / 2
  * (most within the uncertainty; the fuzzy grid's cone falls to 1/2 there). */
-/* A pose with its uncertainty, to draw particles around (passed by
- * pointer: six arguments at most, so no call pushes arguments on the stack
- * and every frame stays static for `make stack`). */
-typedef struct {
-    int32_t x, y, pos_unc;
-    fl_angle_t h, heading_unc;
-} mcl_paint_t;
-
-static void paint_pose(fl_mcl_t *s, fl_mcl_particle_t *p, const mcl_paint_t *c)
+static void paint_pose(fl_mcl_core_t *k, fl_mcl_particle_t *p, const fl_mcl_paint_t *c)
 {
     int32_t sd = mcl_clamp(c->pos_unc, 1, 20000) / 2;
     int32_t sh = mcl_absang(c->heading_unc) / 2;
-    int32_t px = mcl_clamp(c->x, -s->core.half_x_mm, s->core.half_x_mm) + mcl_noise(&s->core.rng, sd);
-    int32_t py = mcl_clamp(c->y, -s->core.half_y_mm, s->core.half_y_mm) + mcl_noise(&s->core.rng, sd);
-    fl_mcl_internal_clamp(&s->core, &px, &py);
+    int32_t px = mcl_clamp(c->x, -k->half_x_mm, k->half_x_mm) + mcl_noise(&k->rng, sd);
+    int32_t py = mcl_clamp(c->y, -k->half_y_mm, k->half_y_mm) + mcl_noise(&k->rng, sd);
+    fl_mcl_internal_clamp(k, &px, &py);
     p->x_mm = (int16_t)px;
     p->y_mm = (int16_t)py;
-    p->heading = fl_angle_add(c->h, fl_angle_wrap(mcl_noise(&s->core.rng, sh)));
+    p->heading = fl_angle_add(c->h, fl_angle_wrap(mcl_noise(&k->rng, sh)));
     p->weight = 65535u;
 }
 
-void fl_mcl_reset_pose(fl_mcl_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t heading,
-                       int32_t pos_unc_mm, fl_angle_t heading_unc)
+void fl_mcl_internal_core_pose(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                               const fl_mcl_paint_t *pose)
 {
     uint16_t i;
-    fl_mcl_particle_t *p;
-    mcl_paint_t c;
-    if (!mcl_ready(s))
-        return;
-    fresh(s);
-    p = mcl_live(s);
-    c.x = x_mm;
-    c.y = y_mm;
-    c.pos_unc = pos_unc_mm;
-    c.h = heading;
-    c.heading_unc = heading_unc;
-    for (i = 0; i < s->n; i++)
-        paint_pose(s, &p[i], &c);
-    s->ignorance = false;
-    s->core.half_known = true;
-    s->core.track_valid = true;
-    s->core.track_x_mm = mcl_clamp(x_mm, -s->core.half_x_mm, s->core.half_x_mm);
-    s->core.track_y_mm = mcl_clamp(y_mm, -s->core.half_y_mm, s->core.half_y_mm);
-    s->core.track_heading = heading;
-    s->stats.resets = mcl_sat_inc(s->stats.resets);
+    for (i = 0; i < n; i++)
+        paint_pose(c, &p[i], pose);
+    c->half_known = true;
+    c->track_valid = true;
+    c->track_x_mm = mcl_clamp(pose->x, -c->half_x_mm, c->half_x_mm);
+    c->track_y_mm = mcl_clamp(pose->y, -c->half_y_mm, c->half_y_mm);
+    c->track_heading = pose->h;
 }
 
-void fl_mcl_reset_penalty(fl_mcl_t *s, int32_t x_mm, int32_t pos_unc_mm,
-                          fl_angle_t heading_unc)
+void fl_mcl_internal_core_penalty(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                                  const fl_mcl_paint_t *pose)
 {
+    fl_mcl_paint_t q = *pose;
+    int32_t hw = c->field->width_mm / 2;
     uint16_t i;
-    int32_t hw;
-    fl_mcl_particle_t *p;
-    mcl_paint_t c;
-    if (!mcl_ready(s))
-        return;
-    fresh(s);
-    p = mcl_live(s);
-    hw = s->core.field->width_mm / 2;
-    c.x = x_mm;
-    c.pos_unc = pos_unc_mm;
-    c.heading_unc = heading_unc;
-    for (i = 0; i < s->n; i++) {
+    for (i = 0; i < n; i++) {
         bool left = (i & 1u) == 0u;
-        c.y = left ? hw : -hw;
-        c.h = (fl_angle_t)(left ? -FL_ANGLE_90 : FL_ANGLE_90);
-        paint_pose(s, &p[i], &c);
+        q.y = left ? hw : -hw;
+        q.h = (fl_angle_t)(left ? -FL_ANGLE_90 : FL_ANGLE_90);
+        paint_pose(c, &p[i], &q);
     }
-    s->ignorance = false;
-    s->core.track_valid = false;
+    c->track_valid = false;
     /* the placement tells the half (unless the spots are on the halfway
      * line, where they are each other's mirror) */
-    if (x_mm != 0)
-        fl_mcl_set_prior_half(s, x_mm < 0 ? -1 : 1);
-    s->core.half_known = s->core.prior != FL_MCL_PRIOR_NONE;
-    s->stats.resets = mcl_sat_inc(s->stats.resets);
+    if (pose->x != 0)
+        fl_mcl_internal_core_prior_half(c, p, n, false, pose->x < 0 ? -1 : 1);
+    c->half_known = c->prior != FL_MCL_PRIOR_NONE;
 }
-
-/* ---- priors ------------------------------------------------------------------- */
 
 /* The prior changed: under ignorance the particles are drawn again from
  * its region; otherwise, on a symmetric field, particles outside the own
  * half move to their mirror pose (which explains the same observations). */
-static void apply_prior(fl_mcl_t *s)
+static void apply_prior(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n, bool ignorance)
 {
     uint16_t i;
-    fl_mcl_particle_t *p = mcl_live(s);
-    if (s->ignorance) {
-        for (i = 0; i < s->n; i++)
-            fl_mcl_internal_uniform(&s->core, &p[i]);
+    if (ignorance) {
+        for (i = 0; i < n; i++)
+            fl_mcl_internal_uniform(c, &p[i]);
         return;
     }
-    if (s->core.prior != FL_MCL_PRIOR_HALF || !s->core.field->symmetric)
+    if (c->prior != FL_MCL_PRIOR_HALF || !c->field->symmetric)
         return;
-    for (i = 0; i < s->n; i++)
-        if (s->core.prior_half < 0 ? p[i].x_mm > 0 : p[i].x_mm < 0) {
+    for (i = 0; i < n; i++)
+        if (c->prior_half < 0 ? p[i].x_mm > 0 : p[i].x_mm < 0) {
             p[i].x_mm = (int16_t)-p[i].x_mm;
             p[i].y_mm = (int16_t)-p[i].y_mm;
             p[i].heading = fl_angle_add(p[i].heading, FL_ANGLE_180);
         }
 }
 
+void fl_mcl_internal_core_prior_half(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                                     bool ignorance, int half)
+{
+    c->prior = half == 0 ? FL_MCL_PRIOR_NONE : FL_MCL_PRIOR_HALF;
+    c->prior_half = (int8_t)(half < 0 ? -1 : 1);
+    /* no half: a tracked mode still carries the half it was told */
+    c->half_known = half != 0 || (c->half_known && c->track_valid);
+    apply_prior(c, p, n, ignorance);
+}
+
+void fl_mcl_internal_core_prior_pose(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                                     bool ignorance, const fl_mcl_paint_t *pose)
+{
+    c->prior = FL_MCL_PRIOR_POSE;
+    c->prior_x_mm = mcl_clamp(pose->x, -100000, 100000);
+    c->prior_y_mm = mcl_clamp(pose->y, -100000, 100000);
+    c->prior_heading = pose->h;
+    c->prior_radius_mm = mcl_clamp(pose->pos_unc, 100, 20000);
+    c->half_known = true;
+    apply_prior(c, p, n, ignorance);
+}
+
+void fl_mcl_internal_core_clear_prior(fl_mcl_core_t *c)
+{
+    c->prior = FL_MCL_PRIOR_NONE;
+    c->half_known = c->half_known && c->track_valid;
+}
+
+bool fl_mcl_internal_core_check(const fl_mcl_core_t *c, const fl_mcl_particle_t *p, uint16_t n)
+{
+    uint16_t i;
+    int k;
+    if (c->field == NULL || c->rng == 0u || c->n_reset > FL_MCL_RESET_OBS ||
+        c->box_x_mm > 32767 || c->box_y_mm > 32767 ||
+        c->kind_start[FL_LM_KIND_COUNT] > FL_MCL_MAX_LANDMARKS)
+        return false;
+    for (k = 0; k < FL_LM_KIND_COUNT; k++)
+        if (c->kind_start[k] > c->kind_start[k + 1])
+            return false;
+    for (i = 0; i < n; i++)
+        if (p[i].x_mm < -c->box_x_mm || p[i].x_mm > c->box_x_mm || p[i].y_mm < -c->box_y_mm ||
+            p[i].y_mm > c->box_y_mm)
+            return false;
+    return true;
+}
+
+/* ---- the Monte Carlo filter's resets, priors and check ---------------------------- */
+
+void fl_mcl_reset_ignorance(fl_mcl_t *s)
+{
+    if (!mcl_ready(s))
+        return;
+    fresh(s);
+    fl_mcl_internal_core_ignorance(&s->core, mcl_live(s), s->n);
+    s->ignorance = true;
+    s->stats.resets = mcl_sat_inc(s->stats.resets);
+}
+
+void fl_mcl_reset_pose(fl_mcl_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t heading,
+                       int32_t pos_unc_mm, fl_angle_t heading_unc)
+{
+    fl_mcl_paint_t c;
+    if (!mcl_ready(s))
+        return;
+    fresh(s);
+    c.x = x_mm;
+    c.y = y_mm;
+    c.pos_unc = pos_unc_mm;
+    c.h = heading;
+    c.heading_unc = heading_unc;
+    fl_mcl_internal_core_pose(&s->core, mcl_live(s), s->n, &c);
+    s->ignorance = false;
+    s->stats.resets = mcl_sat_inc(s->stats.resets);
+}
+
+void fl_mcl_reset_penalty(fl_mcl_t *s, int32_t x_mm, int32_t pos_unc_mm,
+                          fl_angle_t heading_unc)
+{
+    fl_mcl_paint_t c;
+    if (!mcl_ready(s))
+        return;
+    fresh(s);
+    c.x = x_mm;
+    c.y = 0;
+    c.h = 0;
+    c.pos_unc = pos_unc_mm;
+    c.heading_unc = heading_unc;
+    s->ignorance = false;
+    fl_mcl_internal_core_penalty(&s->core, mcl_live(s), s->n, &c);
+    s->stats.resets = mcl_sat_inc(s->stats.resets);
+}
+
 void fl_mcl_set_prior_half(fl_mcl_t *s, int half)
 {
     if (!mcl_ready(s))
         return;
-    s->core.prior = half == 0 ? FL_MCL_PRIOR_NONE : FL_MCL_PRIOR_HALF;
-    s->core.prior_half = (int8_t)(half < 0 ? -1 : 1);
-    /* no half: a tracked mode still carries the half it was told */
-    s->core.half_known = half != 0 || (s->core.half_known && s->core.track_valid);
-    apply_prior(s);
+    fl_mcl_internal_core_prior_half(&s->core, mcl_live(s), s->n, s->ignorance, half);
 }
 
 void fl_mcl_set_prior_pose(fl_mcl_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t heading,
                            int32_t radius_mm)
 {
+    fl_mcl_paint_t c;
     if (!mcl_ready(s))
         return;
-    s->core.prior = FL_MCL_PRIOR_POSE;
-    s->core.prior_x_mm = mcl_clamp(x_mm, -100000, 100000);
-    s->core.prior_y_mm = mcl_clamp(y_mm, -100000, 100000);
-    s->core.prior_heading = heading;
-    s->core.prior_radius_mm = mcl_clamp(radius_mm, 100, 20000);
-    s->core.half_known = true;
-    apply_prior(s);
+    c.x = x_mm;
+    c.y = y_mm;
+    c.h = heading;
+    c.pos_unc = radius_mm;
+    c.heading_unc = 0;
+    fl_mcl_internal_core_prior_pose(&s->core, mcl_live(s), s->n, s->ignorance, &c);
 }
 
 void fl_mcl_clear_prior(fl_mcl_t *s)
 {
     if (!mcl_ready(s))
         return;
-    s->core.prior = FL_MCL_PRIOR_NONE;
-    s->core.half_known = s->core.half_known && s->core.track_valid;
+    fl_mcl_internal_core_clear_prior(&s->core);
 }
-
-/* ---- check ----------------------------------------------------------------------- */
 
 bool fl_mcl_check(const fl_mcl_t *s)
 {
-    const fl_mcl_particle_t *p;
-    uint16_t i;
-    int k;
-    if (!mcl_ready(s) || s->core.rng == 0u || s->n < 1 || s->n > FL_MCL_MAX_PARTICLES ||
-        s->cur > 1u || s->core.n_reset > FL_MCL_RESET_OBS || s->core.box_x_mm > 32767 ||
-        s->core.box_y_mm > 32767 || s->core.kind_start[FL_LM_KIND_COUNT] > FL_MCL_MAX_LANDMARKS)
+    if (!mcl_ready(s) || s->n < 1 || s->n > FL_MCL_MAX_PARTICLES || s->cur > 1u)
         return false;
-    for (k = 0; k < FL_LM_KIND_COUNT; k++)
-        if (s->core.kind_start[k] > s->core.kind_start[k + 1])
-            return false;
-    p = mcl_live_c(s);
-    for (i = 0; i < s->n; i++)
-        if (p[i].x_mm < -s->core.box_x_mm || p[i].x_mm > s->core.box_x_mm || p[i].y_mm < -s->core.box_y_mm ||
-            p[i].y_mm > s->core.box_y_mm)
-            return false;
-    return true;
+    return fl_mcl_internal_core_check(&s->core, mcl_live_c(s), s->n);
 }

@@ -80,6 +80,34 @@ void fl_mcl_internal_uniform(fl_mcl_core_t *c, fl_mcl_particle_t *p);
 void fl_mcl_internal_clamp(const fl_mcl_core_t *c, int32_t *x, int32_t *y);
 void fl_mcl_internal_drop_prior(fl_mcl_core_t *c);
 
+/* A pose with its uncertainty, to draw particles around (passed by
+ * pointer: six arguments at most, so no call pushes arguments on the stack
+ * and every frame stays static for `make stack`). */
+typedef struct {
+    int32_t x, y, pos_unc;
+    fl_angle_t h, heading_unc;
+} fl_mcl_paint_t;
+
+/* Resets and priors on n particles p of a core (the caller resets its own
+ * weights, averages and counters): uniform over the allowed region;
+ * around a pose (sd pos_unc / 2, heading_unc / 2; the pose tracked); at
+ * the penalty spots x (the placement's half as the prior unless x = 0);
+ * a prior half or pose (pose->pos_unc the radius), which draws the
+ * particles again from its region under ignorance and, on a symmetric
+ * field, mirrors those outside the own half. */
+void fl_mcl_internal_core_ignorance(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n);
+void fl_mcl_internal_core_pose(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                               const fl_mcl_paint_t *pose);
+void fl_mcl_internal_core_penalty(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                                  const fl_mcl_paint_t *pose);
+void fl_mcl_internal_core_prior_half(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                                     bool ignorance, int half);
+void fl_mcl_internal_core_prior_pose(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                                     bool ignorance, const fl_mcl_paint_t *pose);
+void fl_mcl_internal_core_clear_prior(fl_mcl_core_t *c);
+/* The core's tables and the particles within the box. */
+bool fl_mcl_internal_core_check(const fl_mcl_core_t *c, const fl_mcl_particle_t *p, uint16_t n);
+
 /* mcl_update.c */
 uint32_t fl_mcl_internal_exp_q16(uint32_t nll_q8);
 
@@ -116,11 +144,23 @@ uint32_t fl_mcl_internal_obs_nll(const fl_mcl_core_t *pc, const fl_mcl_params_t 
                                  const fl_mcl_obs_c_t *c, fl_mcl_at_t *at);
 void fl_mcl_internal_mixture_table(uint16_t eps_q16, uint16_t *tab);
 uint32_t fl_mcl_internal_mixture(const uint16_t *tab, uint32_t q);
+/* w_avg of the frame's negative log-likelihoods nll[0..n) of `used`
+ * observations, the averages and the injection probability; true when
+ * that probability calls a kidnap (the prior dropped; the caller counts). */
+bool fl_mcl_internal_augment(fl_mcl_core_t *c, const fl_mcl_params_t *p, fl_mcl_aug_t *s,
+                             const uint32_t *nll, uint16_t n, uint16_t used);
 /* Keep an applied observation for sensor resetting (the first
  * FL_MCL_RESET_OBS of a frame; the caller sets n_reset 0 first). */
 void fl_mcl_internal_keep_reset_obs(fl_mcl_core_t *c, const fl_obs_t *o);
 
 /* mcl_resample.c */
+/* The motion model's noise sds of one predict call (see there). */
+void fl_mcl_internal_motion_sd(const fl_mcl_params_t *p, int32_t dx, int32_t dy, fl_angle_t dth,
+                               int32_t *sd_xy, int32_t *sd_h);
+/* (x, y) moved by the robot-frame odometry (dx, dy) at heading h (rounded). */
+void fl_mcl_internal_move(int32_t *x, int32_t *y, fl_angle_t h, int32_t dx_mm, int32_t dy_mm);
+/* The tracked mode follows the odometry. */
+void fl_mcl_internal_track_move(fl_mcl_core_t *k, int32_t dx_mm, int32_t dy_mm, fl_angle_t dtheta);
 void fl_mcl_internal_resample(fl_mcl_t *s);
 /* One injected particle: sensor-reset from a kept observation, else
  * uniform over the allowed region (counted). */

@@ -19,8 +19,8 @@
  * step = |(dx, dy)| in mm, angles in binary units (10430.4 per rad,
  * 0.182 per mdeg).
  */
-static void motion_sd(const fl_mcl_params_t *p, int32_t dx, int32_t dy, fl_angle_t dth,
-                      int32_t *sd_xy, int32_t *sd_h)
+void fl_mcl_internal_motion_sd(const fl_mcl_params_t *p, int32_t dx, int32_t dy, fl_angle_t dth,
+                               int32_t *sd_xy, int32_t *sd_h)
 {
     uint64_t step = fl_hypot(dx, dy), turn = (uint64_t)mcl_absang(dth);
     uint64_t vxy = (uint64_t)p->odo_trans_pct * p->odo_trans_pct * step / 10u; /* mm^2 */
@@ -50,7 +50,7 @@ void fl_mcl_predict(fl_mcl_t *s, int32_t dx_mm, int32_t dy_mm, fl_angle_t dtheta
     }
     if (s->weighted)
         fl_mcl_internal_resample(s);
-    motion_sd(&s->params, dx_mm, dy_mm, dtheta, &sd_xy, &sd_h);
+    fl_mcl_internal_motion_sd(&s->params, dx_mm, dy_mm, dtheta, &sd_xy, &sd_h);
     if (s->jitter_due) {
         /* the resampling's jitter, drawn with the motion noise (one
          * deviate per coordinate instead of two) */
@@ -64,9 +64,8 @@ void fl_mcl_predict(fl_mcl_t *s, int32_t dx_mm, int32_t dy_mm, fl_angle_t dtheta
         return;
     p = mcl_live(s);
     for (i = 0; i < s->n; i++) {
-        int32_t c = fl_cos_q15(p[i].heading), sn = fl_sin_q15(p[i].heading);
-        int32_t x = p[i].x_mm + mcl_asr((int64_t)dx_mm * c - (int64_t)dy_mm * sn + 16384, 15);
-        int32_t y = p[i].y_mm + mcl_asr((int64_t)dx_mm * sn + (int64_t)dy_mm * c + 16384, 15);
+        int32_t x = p[i].x_mm, y = p[i].y_mm;
+        fl_mcl_internal_move(&x, &y, p[i].heading, dx_mm, dy_mm);
         x += mcl_noise(&s->core.rng, sd_xy);
         y += mcl_noise(&s->core.rng, sd_xy);
         fl_mcl_internal_clamp(&s->core, &x, &y);
@@ -79,14 +78,27 @@ void fl_mcl_predict(fl_mcl_t *s, int32_t dx_mm, int32_t dy_mm, fl_angle_t dtheta
      * gathered within 90 deg of its heading, so a turn in place of more
      * than that between two estimates would otherwise leave the cluster
      * behind (a NAO turning 135 deg between two frames) */
-    if (s->core.track_valid) {
-        int32_t c = fl_cos_q15(s->core.track_heading), sn = fl_sin_q15(s->core.track_heading);
-        s->core.track_x_mm = mcl_clamp(s->core.track_x_mm + mcl_asr((int64_t)dx_mm * c - (int64_t)dy_mm * sn + 16384, 15),
-                                  -s->core.half_x_mm, s->core.half_x_mm);
-        s->core.track_y_mm = mcl_clamp(s->core.track_y_mm + mcl_asr((int64_t)dx_mm * sn + (int64_t)dy_mm * c + 16384, 15),
-                                  -s->core.half_y_mm, s->core.half_y_mm);
-        s->core.track_heading = fl_angle_add(s->core.track_heading, dtheta);
-    }
+    fl_mcl_internal_track_move(&s->core, dx_mm, dy_mm, dtheta);
+}
+
+void fl_mcl_internal_track_move(fl_mcl_core_t *k, int32_t dx_mm, int32_t dy_mm, fl_angle_t dtheta)
+{
+    int32_t x, y;
+    if (!k->track_valid)
+        return;
+    x = k->track_x_mm;
+    y = k->track_y_mm;
+    fl_mcl_internal_move(&x, &y, k->track_heading, dx_mm, dy_mm);
+    k->track_x_mm = mcl_clamp(x, -k->half_x_mm, k->half_x_mm);
+    k->track_y_mm = mcl_clamp(y, -k->half_y_mm, k->half_y_mm);
+    k->track_heading = fl_angle_add(k->track_heading, dtheta);
+}
+
+void fl_mcl_internal_move(int32_t *x, int32_t *y, fl_angle_t h, int32_t dx_mm, int32_t dy_mm)
+{
+    int32_t c = fl_cos_q15(h), sn = fl_sin_q15(h);
+    *x += mcl_asr((int64_t)dx_mm * c - (int64_t)dy_mm * sn + 16384, 15);
+    *y += mcl_asr((int64_t)dx_mm * sn + (int64_t)dy_mm * c + 16384, 15);
 }
 
 /* ---- resampling ------------------------------------------------------------- */
@@ -203,7 +215,7 @@ void fl_mcl_internal_resample(fl_mcl_t *s)
         return;
     for (m = 0; m < n_out; m++) {
         fl_mcl_particle_t *d = &dst[m];
-        if (s->inject_q16 != 0u && (fl_mcl_rand(&s->core.rng) >> 16) < s->inject_q16) {
+        if (s->aug.inject_q16 != 0u && (fl_mcl_rand(&s->core.rng) >> 16) < s->aug.inject_q16) {
             fl_mcl_internal_inject(s, d);
             continue;
         }

@@ -283,15 +283,16 @@ void fl_mcl_internal_keep_reset_obs(fl_mcl_core_t *c, const fl_obs_t *o)
 }
 
 /* w_avg, the averages and the injection probability. */
-static void augment(fl_mcl_t *s, uint16_t used)
+bool fl_mcl_internal_augment(fl_mcl_core_t *c, const fl_mcl_params_t *p, fl_mcl_aug_t *s,
+                             const uint32_t *nll, uint16_t n, uint16_t used)
 {
-    const fl_mcl_params_t *p = &s->params;
+    bool kidnap = false;
     uint32_t recip = 65536u / used, i, pinj;
     uint64_t sum = 0;
     uint32_t w_avg;
-    for (i = 0; i < s->n; i++)
-        sum += fl_mcl_internal_exp_q16((uint32_t)(((uint64_t)s->nll[i] * recip) >> 16));
-    w_avg = (uint32_t)((sum << 8) / s->n);           /* Q24 */
+    for (i = 0; i < n; i++)
+        sum += fl_mcl_internal_exp_q16((uint32_t)(((uint64_t)nll[i] * recip) >> 16));
+    w_avg = (uint32_t)((sum << 8) / n);           /* Q24 */
     if (s->w_slow_q24 == 0u) {
         s->w_slow_q24 = w_avg;
         s->w_fast_q24 = w_avg;
@@ -304,15 +305,16 @@ static void augment(fl_mcl_t *s, uint16_t used)
     pinj = 0;
     if (s->w_slow_q24 > 0u && s->w_fast_q24 < s->w_slow_q24)
         pinj = 65536u - (uint32_t)(((uint64_t)s->w_fast_q24 << 16) / s->w_slow_q24);
-    if (pinj >= p->kidnap_q16 && (s->core.track_valid || s->core.prior != FL_MCL_PRIOR_NONE)) {
-        s->stats.kidnaps = mcl_sat_inc(s->stats.kidnaps);
-        fl_mcl_internal_drop_prior(&s->core);
+    if (pinj >= p->kidnap_q16 && (c->track_valid || c->prior != FL_MCL_PRIOR_NONE)) {
+        kidnap = true;
+        fl_mcl_internal_drop_prior(c);
     }
     if (pinj > p->inject_max_q16)
         pinj = p->inject_max_q16;
     if (pinj < p->inject_min_q16)
         pinj = p->inject_min_q16;
     s->inject_q16 = (uint16_t)pinj;
+    return kidnap;
 }
 
 /* Adds one observation's floored negative log-likelihood to every
@@ -393,7 +395,8 @@ uint16_t fl_mcl_update(fl_mcl_t *s, const fl_obs_list_t *obs)
         uint32_t w = fl_mcl_internal_exp_q16(s->nll[i] - nmin);
         p[i].weight = (uint16_t)(w > 65535u ? 65535u : w);
     }
-    augment(s, used);
+    if (fl_mcl_internal_augment(&s->core, &s->params, &s->aug, s->nll, s->n, used))
+        s->stats.kidnaps = mcl_sat_inc(s->stats.kidnaps);
     s->weighted = true;
     s->ignorance = false;
     s->since_obs = 0;
