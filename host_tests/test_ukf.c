@@ -590,6 +590,21 @@ static void test_extremes(void)
         CHECK(abs(mm.x_mm) <= 8 && abs(mm.y_mm) <= 15);
         CHECK(mm.heading <= -32768 + 40 || mm.heading >= 32767 - 40);
     }
+    /* the caps themselves: tt = 2^30 puts its pivot at 2^62 (Q32) */
+    {
+        fl_ukf_cov_t pc = {FL_UKF_VAR_MM2_MAX, 0, 0, FL_UKF_VAR_MM2_MAX, 0, FL_UKF_VAR_ANG2_MAX};
+        fl_ukf_limits_t lc = {FL_UKF_VAR_MM2_MAX, FL_UKF_VAR_ANG2_MAX};
+        fl_ukf_chol_t lq;
+        CHECK(fl_ukf_cov_valid(&pc, &lc));
+        CHECK_EQ(fl_ukf_chol3(&pc, &lq), FL_OK);
+        CHECK(lq.l11 == 20000 * 256 && lq.l22 == 20000 * 256 && lq.l33 == 32768 * 256);
+        m.x_mm = 0; m.y_mm = 0; m.heading = 0;
+        CHECK_EQ(fl_ukf_predict(&m, &pc, 20000, -20000, 100, &pc, &lc, &rep), FL_OK);
+        CHECK(fl_ukf_cov_valid(&pc, &lc));
+        CHECK_EQ(fl_ukf_update(&m, &pc, 1000, 1000, 20000, -32768, 65535, 32767, &lc, &rep, &nll),
+                 FL_OK);
+        CHECK(fl_ukf_cov_valid(&pc, &lc));
+    }
     /* zero, negative, huge, INT32 extremes everywhere: valid outputs */
     for (i = 0; i < (t_quick ? 3000 : 20000); i++) {
         int32_t v[16], k;

@@ -61,10 +61,15 @@ static inline int64_t ukf_clamp64(int64_t v, int64_t lo, int64_t hi)
     return v < lo ? lo : v > hi ? hi : v;
 }
 
-/* round(sqrt(v)) for 0 <= v < 2^62 (floor(sqrt(4 v)) = floor(2 sqrt v)). */
+/* round(sqrt(v)) for any v (0 for v <= 0): s = floor(sqrt v), plus one
+ * when v > s^2 + s (sqrt v >= s + 1/2 for integers). */
 static inline int64_t ukf_sqrt_round(int64_t v)
 {
-    return v <= 0 ? 0 : (int64_t)((fl_isqrt64((uint64_t)v << 2) + 1u) >> 1);
+    uint64_t s;
+    if (v <= 0)
+        return 0;
+    s = fl_isqrt64((uint64_t)v);
+    return (int64_t)((uint64_t)v - s * s > s ? s + 1u : s);
 }
 
 /* v modulo 2^28 (a turn in Q12 angle units) in [-2^27, 2^27). */

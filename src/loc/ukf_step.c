@@ -298,8 +298,8 @@ static void ukf_innovation_cov(const ukf_sigma_t *s, ukf_upd_t *u, int64_t r_rr,
             sum += (u->e[i][a] - u->mu[a]) * (u->e[i][b] - u->mu[b]);
         u->s[k] = ukf_div(sum, 6);
     }
-    u->s[0] += r_rr << 24;
-    u->s[2] += r_bb << 24;
+    u->s[0] += r_rr * ((int64_t)1 << 24);
+    u->s[2] += r_bb * ((int64_t)1 << 24);
     for (j = 0; j < 3; j++)
         for (k = 0; k < 2; k++) {
             int64_t sum = 0;
@@ -317,7 +317,7 @@ static void ukf_innovation_cov(const ukf_sigma_t *s, ukf_upd_t *u, int64_t r_rr,
     if (det < 1)
         det = 1;                              /* singular at 2^-30: S's floor */
     u->a = ukf_sqrt_round(srr << 30);         /* [2^29, 2^30) */
-    u->b = ukf_div(srb << 30, u->a);
+    u->b = ukf_div(srb * ((int64_t)1 << 30), u->a);
     /* c^2 = det / srr in Q30, in two steps (det < 2^60) */
     u->c = ukf_sqrt_round((det / srr) * ((int64_t)1 << 30) + ukf_div((det % srr) << 30, srr));
     if (u->c < 1)
