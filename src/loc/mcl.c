@@ -514,11 +514,7 @@ void fl_mcl_reset_pose(fl_mcl_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t headi
     if (!mcl_ready(s))
         return;
     fresh(s);
-    c.x = x_mm;
-    c.y = y_mm;
-    c.pos_unc = pos_unc_mm;
-    c.h = heading;
-    c.heading_unc = heading_unc;
+    mcl_paint(&c, x_mm, y_mm, heading, pos_unc_mm, heading_unc);
     fl_mcl_internal_core_pose(&s->core, mcl_live(s), s->n, &c);
     s->ignorance = false;
     s->stats.resets = mcl_sat_inc(s->stats.resets);
@@ -531,11 +527,7 @@ void fl_mcl_reset_penalty(fl_mcl_t *s, int32_t x_mm, int32_t pos_unc_mm,
     if (!mcl_ready(s))
         return;
     fresh(s);
-    c.x = x_mm;
-    c.y = 0;
-    c.h = 0;
-    c.pos_unc = pos_unc_mm;
-    c.heading_unc = heading_unc;
+    mcl_paint(&c, x_mm, 0, 0, pos_unc_mm, heading_unc);
     s->ignorance = false;
     fl_mcl_internal_core_penalty(&s->core, mcl_live(s), s->n, &c);
     s->stats.resets = mcl_sat_inc(s->stats.resets);
@@ -554,11 +546,7 @@ void fl_mcl_set_prior_pose(fl_mcl_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t h
     fl_mcl_paint_t c;
     if (!mcl_ready(s))
         return;
-    c.x = x_mm;
-    c.y = y_mm;
-    c.h = heading;
-    c.pos_unc = radius_mm;
-    c.heading_unc = 0;
+    mcl_paint(&c, x_mm, y_mm, heading, radius_mm, 0);
     fl_mcl_internal_core_prior_pose(&s->core, mcl_live(s), s->n, s->ignorance, &c);
 }
 

@@ -183,8 +183,10 @@ static uint16_t sd_of(uint64_t sqq, int64_t sq, uint64_t w)
 }
 
 /* Uniform over the region the prior allows (localizer.h contract). */
-void fl_mcl_internal_ignorance_pose(const fl_mcl_core_t *c, fl_mcl_estimate_t *out)
+void fl_mcl_internal_ignorance_pose(fl_mcl_core_t *c, uint16_t since_obs, fl_mcl_estimate_t *out)
 {
+    out->since_obs = since_obs;
+    c->track_valid = false;
     int32_t hx = c->half_x_mm, hy = c->half_y_mm;
     out->ignorance = true;
     out->sd_x_mm = (uint16_t)((2 * hx * 1000) / 3464);
@@ -268,17 +270,17 @@ uint32_t fl_mcl_possibility_q16(const fl_mcl_t *s, int32_t x_mm, int32_t y_mm,
  * the sensor-reset modes of both halves compete); not tracking x 1/8 (LOST
  * records: 0.10 good); ignorance: 0.
  */
-#define MCL_CAL_KNOTS 15
-static const uint16_t mcl_cal_raw[MCL_CAL_KNOTS] = {
-    0, 24269, 28119, 31503, 34430, 36639, 40043, 42629, 46606, 49472, 51565, 54708, 56415, 58479,
-    65535};
-static const uint16_t mcl_cal_rel[MCL_CAL_KNOTS] = {
-    0, 35955, 36551, 42973, 46070, 47523, 51159, 52233, 54207, 54738, 55745, 56933, 57442, 59400,
-    59400};
+static const fl_mcl_cal_t mcl_cal = {
+    15,
+    {0, 24269, 28119, 31503, 34430, 36639, 40043, 42629, 46606, 49472, 51565, 54708, 56415, 58479,
+     65535},
+    {0, 35955, 36551, 42973, 46070, 47523, 51159, 52233, 54207, 54738, 55745, 56933, 57442, 59400,
+     59400}};
 
-uint16_t fl_mcl_internal_calibrate(const fl_mcl_estimate_t *e, const uint16_t *cal_raw,
-                                   const uint16_t *cal_rel, int n_knots)
+uint16_t fl_mcl_internal_calibrate(const fl_mcl_estimate_t *e, const fl_mcl_cal_t *cal)
 {
+    const uint16_t *cal_raw = cal->raw, *cal_rel = cal->rel;
+    int n_knots = cal->n;
     uint32_t raw, rel;
     int k;
     if (e->ignorance)
@@ -403,10 +405,8 @@ bool fl_mcl_estimate(fl_mcl_t *s, fl_mcl_estimate_t *out)
     if (!mcl_ready(s) || out == NULL)
         return false;
     if (s->ignorance) {
-        fl_mcl_internal_ignorance_pose(&s->core, out);
-        out->since_obs = s->since_obs;
+        fl_mcl_internal_ignorance_pose(&s->core, s->since_obs, out);
         s->est_density = 0;
-        s->core.track_valid = false;
         return true;
     }
     mcl_set_of(s, &set);
@@ -414,7 +414,7 @@ bool fl_mcl_estimate(fl_mcl_t *s, fl_mcl_estimate_t *out)
     if (out->switched)
         s->stats.mode_switches = mcl_sat_inc(s->stats.mode_switches);
     out->since_obs = s->since_obs;
-    out->reliability_q16 = fl_mcl_internal_calibrate(out, mcl_cal_raw, mcl_cal_rel, MCL_CAL_KNOTS);
+    out->reliability_q16 = fl_mcl_internal_calibrate(out, &mcl_cal);
     dens = fl_mcl_internal_density(&set, out->x_mm, out->y_mm, out->heading);
     s->est_density = (uint32_t)(dens > UINT32_MAX ? UINT32_MAX : dens);
     return true;

@@ -63,6 +63,9 @@ for name in $("$CLI" bench --loc-list); do
                  if (r > 0) printf "  %5.3f x fuzzy", i / r; printf "\n" }'
     if [ "$samples" -gt 0 ] 2>/dev/null; then
         p1=64; p2=256; k1=1; k2=5
+        # a localizer of fewer particles (upf: capacity 12): 4..12
+        "$CLI" bench --loc-frames "$name" --repeat 1 --param n_particles=$p2 >/dev/null 2>&1 ||
+            { p1=4; p2=12; }
         a=$(refs "$name" --param n_particles=$p1 --obs $k1); b=$(refs "$name" --param n_particles=$p1 --obs $k2)
         c=$(refs "$name" --param n_particles=$p2 --obs $k1); d=$(refs "$name" --param n_particles=$p2 --obs $k2)
         if [ -z "$a" ] || [ -z "$b" ] || [ -z "$c" ] || [ -z "$d" ]; then
