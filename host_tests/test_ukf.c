@@ -527,15 +527,17 @@ static void test_digest(void)
         m.y_mm = t_rng_range(&r, -3500, 3500);
         m.heading = (fl_angle_t)t_rng_range(&r, -32768, 32767);
         for (k = 0; k < 8; k++) {
+            int32_t a[6], j;
+            /* drawn in order first (argument evaluation order is unspecified) */
+            for (j = 0; j < 6; j++)
+                a[j] = t_rng_range(&r, k % 2 == 0 ? -2000 : -5200, k % 2 == 0 ? 2000 : 5200);
             if (k % 2 == 0) {
                 fl_ukf_cov_t q = {400, 0, 0, 400, 0, 2000};
-                fl_ukf_predict(&m, &p, t_rng_range(&r, -50, 300), t_rng_range(&r, -100, 100),
-                               (fl_angle_t)t_rng_range(&r, -2000, 2000), &q, &lim, &rep);
+                fl_ukf_predict(&m, &p, a[0] / 8 + 125, a[1] / 20, (fl_angle_t)a[2], &q, &lim, &rep);
             } else {
-                fl_ukf_update(&m, &p, t_rng_range(&r, -5200, 5200), t_rng_range(&r, -3700, 3700),
-                              t_rng_range(&r, 0, 9000), (fl_angle_t)t_rng_range(&r, -32768, 32767),
-                              t_rng_range(&r, 10, 900), (fl_angle_t)t_rng_range(&r, 90, 900), &lim,
-                              &rep, &nll);
+                fl_ukf_update(&m, &p, a[0], a[1] * 37 / 52, (a[2] + 5200) * 9 / 10,
+                              (fl_angle_t)(a[3] * 6), 10 + (a[4] + 5200) / 12,
+                              (fl_angle_t)(90 + (a[5] + 5200) / 12), &lim, &rep, &nll);
                 h = t_hash_i32(h, (int32_t)nll);
             }
             h = t_hash_i32(h, m.x_mm);
