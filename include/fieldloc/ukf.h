@@ -80,9 +80,11 @@ typedef struct {
                                     replaced by its diagonal */
 } fl_ukf_repairs_t;
 
-/* Cholesky factor of an SPD matrix.  FL_ERR_RANGE when p is not positive
- * definite at the factor's resolution (l is then the factor of p's
- * diagonal); FL_ERR_NULL for NULL. */
+/* Cholesky factor of an SPD matrix (each entry within 1 LSB of the exact
+ * factor rounded).  FL_ERR_RANGE when p is not positive definite at the
+ * factor's resolution or an entry is beyond the caps (l is then the factor
+ * of p's diagonal, its negative entries taken as 0); FL_ERR_NULL for
+ * NULL. */
 fl_status_t fl_ukf_chol3(const fl_ukf_cov_t *p, fl_ukf_chol_t *l);
 
 /* Inverse of a symmetric 2x2 matrix [a b; b c] (int64 entries), scaled:
@@ -97,7 +99,8 @@ bool fl_ukf_inv2(int64_t a, int64_t b, int64_t c, int64_t *ia, int64_t *ib,
  * not factor.  Returns true when nothing had to change. */
 bool fl_ukf_cov_repair(fl_ukf_cov_t *p, const fl_ukf_limits_t *lim,
                        fl_ukf_repairs_t *rep);
-/* true when p is within the caps and floors and factors (SPD). */
+/* true when p is within the caps and floors and factors with every pivot
+ * (conditional variance) at least its floor: SPD with a margin. */
 bool fl_ukf_cov_valid(const fl_ukf_cov_t *p, const fl_ukf_limits_t *lim);
 
 /* Predict: the sigma points of (m, p) moved by the odometry (dx_mm, dy_mm
@@ -162,7 +165,8 @@ uint32_t fl_ukf_gauss_nll_q8(const fl_ukf_pose_t *m, const fl_ukf_cov_t *p,
                              const fl_ukf_pose_t *x);
 
 /* A draw from N(m, p) (fl_mcl_gauss_q12 deviates through the Cholesky
- * factor, from *rng).  false (out = m) when p does not factor. */
+ * factor, from *rng), the position clamped onto the box.  false (out = m,
+ * clamped) when p does not factor or rng is NULL. */
 bool fl_ukf_sample(const fl_ukf_pose_t *m, const fl_ukf_cov_t *p, uint32_t *rng,
                    fl_ukf_pose_t *out);
 

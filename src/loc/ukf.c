@@ -66,14 +66,13 @@ static const uint32_t ukf_ln1p_q24[33] = {
  * nats, below the tables' rounding to Q8). */
 int64_t fl_ukf_internal_ln_q16(uint64_t x)
 {
-    unsigned k = 63;
+    unsigned k;
     uint64_t y;
     uint32_t j, t;
     int64_t v;
     if (x == 0u)
         return 0;
-    while (!(x >> k))
-        k--;
+    k = ukf_topbit(x);
     y = x << (63u - k);                       /* top bit at 63 */
     j = (uint32_t)(y >> 58) & 31u;
     t = (uint32_t)(y >> 26);                  /* the next 32 bits */
@@ -116,50 +115,61 @@ static bool ukf_div_hi(int64_t n, int64_t d, unsigned k, int64_t *out)
     return true;
 }
 
-/* Entries in Q16, pivots in Q32.  The entries below the diagonal come
- * from exact integer quantities: l21^2 = xy^2 / xx, l31^2 = xt^2 / xx and
- * l32 = (yt xx - xt xy) / xx / l22 (numerators exact in int64, the
- * divisions rounded in Q32), l22 taken with up to 15 more bits for that
- * division: each entry is within about 1/2 LSB of Q16 whatever the
- * correlations.  Every product stays below 2^63 by the bounds checked on
- * the way (a matrix within the caps passes them unless it is not positive
- * definite). */
+/* sqrt(v) with k more bits (k <= 15, v 4^k < 2^62 kept near 2^60): the
+ * root in Q(16 + k) for v in Q32, and k. */
+static int64_t ukf_sqrt_hi(int64_t v, unsigned *k)
+{
+    unsigned n = ukf_topbit((uint64_t)v);
+    *k = n >= 60u ? 0u : (61u - n) / 2u > 15u ? 15u : (61u - n) / 2u;
+    return ukf_sqrt_round(v * ((int64_t)1 << (2u * *k)));
+}
+
+/* Entries in Q16, pivots in Q32.  The pivots come from exact integer
+ * quantities: l21^2 = xy^2 / xx and l31^2 = xt^2 / xx (numerators exact in
+ * int64, the divisions rounded in Q32), l32 = (yt xx - xt xy) / xx / l22;
+ * the entries below the diagonal are divisions by the diagonal's roots
+ * taken with up to 15 more bits: each entry is within about 1/2 LSB of
+ * Q16 whatever the correlations.  Every product stays below 2^63 by the
+ * bounds checked on the way (a matrix within the caps passes them unless
+ * it is not positive definite). */
 void fl_ukf_internal_factor(const fl_ukf_cov_t *p, ukf_fac_t *f)
 {
-    int64_t t, n;
-    unsigned k = 0;
+    int64_t t, n, h;
+    unsigned k;
     memset(f, 0, sizeof *f);
     f->piv[0] = f->piv[1] = f->piv[2] = UKF_PIVOT_BAD;
     f->fail = 1;
     if (!ukf_in(p->xx, 1, FL_UKF_VAR_MM2_MAX))
         return;
     f->piv[0] = (int64_t)p->xx * UKF_P32;
-    f->l11 = ukf_sqrt_round(f->piv[0]);
+    h = ukf_sqrt_hi(f->piv[0], &k);
+    f->l11 = k ? ukf_rsr(h, k) : h;
     f->fail = 2;
     if (!ukf_in(p->xy, -UKF_C_LIM, UKF_C_LIM) || !ukf_in(p->yy, 1, FL_UKF_VAR_MM2_MAX) ||
         !ukf_ratio_q32(ukf_abs64(p->xy) * ukf_abs64(p->xy), (uint64_t)p->xx,
-                       (uint64_t)p->yy + 1u, &t))
+                       (uint64_t)p->yy + 1u, &t) ||
+        !ukf_div_hi((int64_t)p->xy * UKF_P32, h, k, &f->l21))
         return;
-    f->l21 = ukf_signed((uint64_t)ukf_sqrt_round(t), p->xy < 0);
     f->piv[1] = (int64_t)p->yy * UKF_P32 - t;
-    if (f->piv[1] <= 0)
-        return;
-    f->l22 = ukf_sqrt_round(f->piv[1]);
     f->fail = 3;
+    if (f->piv[1] <= 0) {
+        f->fail = 2;
+        return;
+    }
     if (!ukf_in(p->xt, -UKF_C_LIM, UKF_C_LIM) || !ukf_in(p->yt, -UKF_C_LIM, UKF_C_LIM) ||
         !ukf_in(p->tt, 1, FL_UKF_VAR_ANG2_MAX) ||
         !ukf_ratio_q32(ukf_abs64(p->xt) * ukf_abs64(p->xt), (uint64_t)p->xx,
-                       (uint64_t)p->tt + 1u, &t))
+                       (uint64_t)p->tt + 1u, &t) ||
+        !ukf_div_hi((int64_t)p->xt * UKF_P32, h, k, &f->l31))
         return;
-    f->l31 = ukf_signed((uint64_t)ukf_sqrt_round(t), p->xt < 0);
     n = (int64_t)p->yt * p->xx - (int64_t)p->xt * p->xy;            /* |n| < 2^61 */
     if (!ukf_ratio_q32(ukf_abs64(n), (uint64_t)p->xx, (uint64_t)3 << 29, &n))
         return;
     if (p->yt * (int64_t)p->xx < (int64_t)p->xt * p->xy)
         n = -n;
-    while (k < 15u && f->piv[1] < ((int64_t)1 << (60 - 2 * k)))
-        k++;
-    if (!ukf_div_hi(n, ukf_sqrt_round(f->piv[1] * ((int64_t)1 << (2 * k))), k, &f->l32))
+    h = ukf_sqrt_hi(f->piv[1], &k);
+    f->l22 = k ? ukf_rsr(h, k) : h;
+    if (!ukf_div_hi(n, h, k, &f->l32))
         return;
     f->piv[2] = (int64_t)p->tt * UKF_P32 - t - f->l32 * f->l32;
     if (f->piv[2] <= 0)
@@ -297,13 +307,26 @@ static void ukf_add_repairs(fl_ukf_repairs_t *to, const fl_ukf_repairs_t *r)
     to->not_pd = to->not_pd > UINT32_MAX - r->not_pd ? UINT32_MAX : to->not_pd + r->not_pd;
 }
 
-bool fl_ukf_cov_repair(fl_ukf_cov_t *p, const fl_ukf_limits_t *lim, fl_ukf_repairs_t *rep)
+static bool ukf_fac_valid(const fl_ukf_cov_t *p, const fl_ukf_limits_t *lm, ukf_fac_t *f)
+{
+    if (p->xx < lm->var_min_mm2 || p->xx > FL_UKF_VAR_MM2_MAX || p->yy < lm->var_min_mm2 ||
+        p->yy > FL_UKF_VAR_MM2_MAX || p->tt < lm->var_min_ang2 || p->tt > FL_UKF_VAR_ANG2_MAX) {
+        f->fail = 1;
+        return false;
+    }
+    fl_ukf_internal_factor(p, f);
+    return f->fail == 0 && f->piv[1] >= (int64_t)lm->var_min_mm2 * UKF_P32 &&
+           f->piv[2] >= (int64_t)lm->var_min_ang2 * UKF_P32;
+}
+
+bool fl_ukf_internal_repair(fl_ukf_cov_t *p, const fl_ukf_limits_t *lim, fl_ukf_repairs_t *rep,
+                            ukf_fac_t *f)
 {
     fl_ukf_limits_t lm;
     fl_ukf_repairs_t r = {0u, 0u, 0u};
-    if (p == NULL)
-        return false;
     fl_ukf_internal_limits(lim, &lm);
+    if (ukf_fac_valid(p, &lm, f))
+        return true;                          /* the common case: one factorisation */
     ukf_fix_diag(&p->xx, lm.var_min_mm2, FL_UKF_VAR_MM2_MAX, &r);
     ukf_fix_diag(&p->yy, lm.var_min_mm2, FL_UKF_VAR_MM2_MAX, &r);
     ukf_fix_diag(&p->tt, lm.var_min_ang2, FL_UKF_VAR_ANG2_MAX, &r);
@@ -311,9 +334,18 @@ bool fl_ukf_cov_repair(fl_ukf_cov_t *p, const fl_ukf_limits_t *lim, fl_ukf_repai
     ukf_fix_cs(&p->xt, p->xx, p->tt, &r);
     ukf_fix_cs(&p->yt, p->yy, p->tt, &r);
     ukf_fix_pivots(p, &lm, &r);
+    fl_ukf_internal_factor(p, f);
     if (rep != NULL)
         ukf_add_repairs(rep, &r);
     return r.floors == 0u && r.caps == 0u && r.not_pd == 0u;
+}
+
+bool fl_ukf_cov_repair(fl_ukf_cov_t *p, const fl_ukf_limits_t *lim, fl_ukf_repairs_t *rep)
+{
+    ukf_fac_t f;
+    if (p == NULL)
+        return false;
+    return fl_ukf_internal_repair(p, lim, rep, &f);
 }
 
 bool fl_ukf_cov_valid(const fl_ukf_cov_t *p, const fl_ukf_limits_t *lim)
@@ -323,12 +355,7 @@ bool fl_ukf_cov_valid(const fl_ukf_cov_t *p, const fl_ukf_limits_t *lim)
     if (p == NULL)
         return false;
     fl_ukf_internal_limits(lim, &lm);
-    if (p->xx < lm.var_min_mm2 || p->xx > FL_UKF_VAR_MM2_MAX || p->yy < lm.var_min_mm2 ||
-        p->yy > FL_UKF_VAR_MM2_MAX || p->tt < lm.var_min_ang2 || p->tt > FL_UKF_VAR_ANG2_MAX)
-        return false;
-    fl_ukf_internal_factor(p, &f);
-    return f.fail == 0 && f.piv[1] >= (int64_t)lm.var_min_mm2 * UKF_P32 &&
-           f.piv[2] >= (int64_t)lm.var_min_ang2 * UKF_P32;
+    return ukf_fac_valid(p, &lm, &f);
 }
 
 /* ---- density and draws -------------------------------------------------------- */

@@ -56,6 +56,19 @@ static inline int64_t ukf_div(int64_t n, int64_t d)
     return ukf_signed((ukf_abs64(n) + ud / 2u) / ud, n < 0);
 }
 
+/* Index of the top set bit of x (x >= 1), by halving. */
+static inline unsigned ukf_topbit(uint64_t x)
+{
+    unsigned k = 0;
+    if (x >> 32) { x >>= 32; k += 32; }
+    if (x >> 16) { x >>= 16; k += 16; }
+    if (x >> 8) { x >>= 8; k += 8; }
+    if (x >> 4) { x >>= 4; k += 4; }
+    if (x >> 2) { x >>= 2; k += 2; }
+    if (x >> 1) k += 1;
+    return k;
+}
+
 static inline int64_t ukf_clamp64(int64_t v, int64_t lo, int64_t hi)
 {
     return v < lo ? lo : v > hi ? hi : v;
@@ -86,6 +99,10 @@ static inline int32_t ukf_box(int64_t v)
 
 /* ukf.c */
 void fl_ukf_internal_factor(const fl_ukf_cov_t *p, ukf_fac_t *f);
+/* fl_ukf_cov_repair, leaving in *f the factor of the repaired matrix (one
+ * factorisation when p was valid). */
+bool fl_ukf_internal_repair(fl_ukf_cov_t *p, const fl_ukf_limits_t *lim, fl_ukf_repairs_t *rep,
+                            ukf_fac_t *f);
 /* ln(x) in Q16 (x >= 1; 0 for 0). */
 int64_t fl_ukf_internal_ln_q16(uint64_t x);
 /* The effective floors (lim clamped into [1, cap]; NULL: 1). */

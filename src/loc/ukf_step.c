@@ -87,8 +87,7 @@ static void ukf_prepare(fl_ukf_pose_t *m, fl_ukf_cov_t *p, const fl_ukf_limits_t
     int j, k;
     m->x_mm = ukf_box(m->x_mm);
     m->y_mm = ukf_box(m->y_mm);
-    fl_ukf_cov_repair(p, lim, rep);
-    fl_ukf_internal_factor(p, &f);            /* a repaired matrix factors */
+    fl_ukf_internal_repair(p, lim, rep, &f);  /* a repaired matrix factors */
     col[0][0] = f.l11; col[0][1] = f.l21; col[0][2] = f.l31;
     col[1][0] = 0;     col[1][1] = f.l22; col[1][2] = f.l32;
     col[2][0] = 0;     col[2][1] = 0;     col[2][2] = f.l33;
@@ -129,7 +128,7 @@ fl_status_t fl_ukf_predict_odo(fl_ukf_pose_t *m, fl_ukf_cov_t *p, const fl_ukf_o
                                fl_ukf_repairs_t *rep)
 {
     ukf_sigma_t s;
-    int64_t dev[6][3], acc[6], qv[6], c0, s0, mx, my, h_q12, mu[3] = {0, 0, 0};
+    int64_t dev[6][3], acc[6], qv[6], c0, s0, mx, my, h_q12, mu[3] = {0, 0, 0}, cd[3], sd[3];
     int64_t dx_mm, dy_mm;
     int i, k;
     if (m == NULL || p == NULL || odo == NULL)
@@ -142,11 +141,13 @@ fl_status_t fl_ukf_predict_odo(fl_ukf_pose_t *m, fl_ukf_cov_t *p, const fl_ukf_o
         return FL_ERR_RANGE;
     h_q12 = (int64_t)m->heading * 4096;
     ukf_cossin(h_q12, &c0, &s0);
+    for (i = 0; i < 3; i++)
+        ukf_cossin(s.d[i][2], &cd[i], &sd[i]);
     for (i = 0; i < 6; i++) {
-        int64_t ci, si;
-        ukf_cossin(h_q12 + s.d[i][2], &ci, &si);
-        ci -= c0;
-        si -= s0;
+        /* cos and sin of h +- d from those of d (the +- pairs share them) */
+        int64_t c = cd[i % 3], sn = i < 3 ? sd[i] : -sd[i - 3], ci, si;
+        ci = ukf_rsr(c0 * c - s0 * sn, 30) - c0;
+        si = ukf_rsr(s0 * c + c0 * sn, 30) - s0;
         /* Q30 mm -> Q12 mm */
         dev[i][0] = s.d[i][0] + ukf_rsr(dx_mm * ci - dy_mm * si, 18);
         dev[i][1] = s.d[i][1] + ukf_rsr(dx_mm * si + dy_mm * ci, 18);
@@ -197,21 +198,18 @@ typedef struct {
 static int64_t ukf_atan2_q12(int64_t y, int64_t x)
 {
     uint64_t mx = ukf_abs64(x) > ukf_abs64(y) ? ukf_abs64(x) : ukf_abs64(y);
-    unsigned up = 0, dn = 0;
+    unsigned n;
     fl_angle_t a;
     int64_t c, s, xr, yr;
     if (mx == 0u)
         return 0;
-    while ((mx << up) < ((uint64_t)1 << 29))
-        up++;
-    while ((mx >> dn) >= ((uint64_t)1 << 30))
-        dn++;
-    if (up > 0u) {
-        x *= (int64_t)1 << up;
-        y *= (int64_t)1 << up;
-    } else if (dn > 0u) {
-        x = ukf_asr(x, dn);
-        y = ukf_asr(y, dn);
+    n = ukf_topbit(mx);
+    if (n < 29u) {
+        x *= (int64_t)1 << (29u - n);
+        y *= (int64_t)1 << (29u - n);
+    } else if (n > 29u) {
+        x = ukf_asr(x, n - 29u);
+        y = ukf_asr(y, n - 29u);
     }
     a = fl_atan2((int32_t)y, (int32_t)x);
     c = fl_cos_q30(a);
@@ -224,9 +222,8 @@ static int64_t ukf_atan2_q12(int64_t y, int64_t x)
 /* sqrt(x^2 + y^2), rounded (|x|, |y| < 2^62). */
 static int64_t ukf_hypot64(int64_t x, int64_t y)
 {
-    unsigned k = 0;
-    while (ukf_abs64(x) >= ((uint64_t)1 << (30 + k)) || ukf_abs64(y) >= ((uint64_t)1 << (30 + k)))
-        k++;
+    uint64_t mx = ukf_abs64(x) > ukf_abs64(y) ? ukf_abs64(x) : ukf_abs64(y);
+    unsigned k = mx >= ((uint64_t)1 << 30) ? ukf_topbit(mx) - 29u : 0u;
     if (k == 0u)
         return ukf_sqrt_round(x * x + y * y);
     x = ukf_rsr(x, k);
@@ -234,29 +231,64 @@ static int64_t ukf_hypot64(int64_t x, int64_t y)
     return ukf_sqrt_round(x * x + y * y) * ((int64_t)1 << k);
 }
 
-/* Range and bearing (Q12) of the map point from the mean moved by d (Q12). */
-static void ukf_measure(const fl_ukf_pose_t *m, const int32_t *d, int32_t lx, int32_t ly,
-                        int64_t *r, int64_t *b)
+/* The angle (Q12 units) of v relative to the unit direction (c, s) (Q30),
+ * by the series atan t = t - t^3/3 + ... + t^9/9 (truncation below 1.1e-11
+ * rad for |t| <= 1/8): false when v is 0, behind, or more than atan(1/8)
+ * = 7.1 deg off (the caller then takes the full atan2). */
+static bool ukf_rel_angle(int64_t vx, int64_t vy, int64_t c, int64_t s, int64_t *out)
 {
-    int64_t vx = ((int64_t)lx - m->x_mm) * 4096 - d[0];
-    int64_t vy = ((int64_t)ly - m->y_mm) * 4096 - d[1];
-    *r = ukf_hypot64(vx, vy);
-    *b = ukf_atan2_q12(vy, vx) - ((int64_t)m->heading * 4096 + d[2]);
+    uint64_t mx = ukf_abs64(vx) > ukf_abs64(vy) ? ukf_abs64(vx) : ukf_abs64(vy);
+    unsigned n;
+    int64_t xr, yr, t, t2, p;
+    if (mx == 0u)
+        return false;
+    n = ukf_topbit(mx);
+    if (n > 29u) {
+        vx = ukf_asr(vx, n - 29u);
+        vy = ukf_asr(vy, n - 29u);
+    } else if (n < 29u) {
+        vx *= (int64_t)1 << (29u - n);
+        vy *= (int64_t)1 << (29u - n);
+    }
+    xr = ukf_asr(vx * c + vy * s, 30);        /* |v| in [2^29, 2^30.5) */
+    yr = ukf_asr(vy * c - vx * s, 30);
+    if (xr <= 0 || ukf_abs64(yr) * 8u > (uint64_t)xr)
+        return false;
+    t = ukf_div(yr * ((int64_t)1 << 30), xr);   /* Q30, |t| <= 2^27 */
+    t2 = ukf_rsr(t * t, 30);
+    p = 119304647;                                /* 1/9, then 1/7, 1/5, 1/3, 1 in Q30 */
+    p = 153391689 - ukf_rsr(t2 * p, 30);
+    p = 214748365 - ukf_rsr(t2 * p, 30);
+    p = 357913941 - ukf_rsr(t2 * p, 30);
+    p = ((int64_t)1 << 30) - ukf_rsr(t2 * p, 30);
+    *out = ukf_rsr(ukf_rsr(t * p, 30) * UKF_RAD_Q12, 30);
+    return true;
 }
 
-/* The points through the measurement function; deviations and their mean. */
+/* The points through the measurement function; deviations and their mean.
+ * Ranges by a rounded square root each; bearing deviations relative to
+ * the central point's direction by the series (both angles through the
+ * same rotation, so its error cancels), else by the full atan2. */
 static void ukf_points(const fl_ukf_pose_t *m, const ukf_sigma_t *s, int32_t lx, int32_t ly,
                        ukf_upd_t *u)
 {
-    static const int32_t zero[3] = {0, 0, 0};
-    int64_t sum[2] = {0, 0};
+    int64_t sum[2] = {0, 0}, vx0, vy0, a0, c, sn, res0 = 0, h = (int64_t)m->heading * 4096;
+    bool series;
     int i;
-    ukf_measure(m, zero, lx, ly, &u->r0, &u->b0);
+    vx0 = ((int64_t)lx - m->x_mm) * 4096;
+    vy0 = ((int64_t)ly - m->y_mm) * 4096;
+    u->r0 = ukf_hypot64(vx0, vy0);
+    a0 = ukf_atan2_q12(vy0, vx0);
+    u->b0 = a0 - h;
+    ukf_cossin(a0, &c, &sn);
+    series = ukf_rel_angle(vx0, vy0, c, sn, &res0);
     for (i = 0; i < 6; i++) {
-        int64_t r, b;
-        ukf_measure(m, s->d[i], lx, ly, &r, &b);
-        u->e[i][0] = (int32_t)(r - u->r0);    /* |r - r0| <= |d| < 2^28 */
-        u->e[i][1] = ukf_wrap_q12(b - u->b0);
+        int64_t vx = vx0 - s->d[i][0], vy = vy0 - s->d[i][1], res;
+        u->e[i][0] = (int32_t)(ukf_hypot64(vx, vy) - u->r0);   /* |.| <= |d| < 2^28 */
+        if (series && ukf_rel_angle(vx, vy, c, sn, &res))
+            u->e[i][1] = ukf_wrap_q12(res - res0 - s->d[i][2]);
+        else
+            u->e[i][1] = ukf_wrap_q12(ukf_atan2_q12(vy, vx) - (h + s->d[i][2]) - u->b0);
         sum[0] += u->e[i][0];
         sum[1] += u->e[i][1];
     }
@@ -277,12 +309,8 @@ static int64_t ukf_scale(int64_t x, int k)
 /* The shift u with x 2^-2u in [2^28, 2^30) (x >= 1). */
 static int ukf_norm_shift(int64_t x)
 {
-    int u = 0;
-    while (ukf_scale(x, -2 * u) >= ((int64_t)1 << 30))
-        u++;
-    while (ukf_scale(x, -2 * u) < ((int64_t)1 << 28))
-        u--;
-    return u;
+    /* floor((top bit - 28) / 2): the scaled top bit is 28 or 29 */
+    return (int)((ukf_topbit((uint64_t)x) + 36u) / 2u) - 32;
 }
 
 /* S, Pxz, and the factor of the normalised S. */

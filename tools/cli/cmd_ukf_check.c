@@ -18,7 +18,9 @@
  * result against it are collected for the steps that did not repair
  * (a repair is a floor or a cap the double step does not have; those steps
  * are counted, not compared).  Every covariance is checked with
- * fl_ukf_cov_valid after every step (spd_violations).
+ * fl_ukf_cov_valid after every step (spd_violations).  cov_rel_err is the
+ * largest |P_ij - R_ij| / sqrt(R_ii R_jj) beyond the output's rounding to
+ * integers (1/2); cov_rel_err_with_rounding includes it.
  *
  * --fixed-only runs the fixed-point steps alone (for callgrind: the
  * instructions of fl_ukf_predict_odo and fl_ukf_update_obs per call).
@@ -40,7 +42,7 @@ static const int32_t uc_map[12][2] = {
 };
 
 typedef struct {
-    double *mean, *head, *cov, *nll;
+    double *mean, *head, *cov, *nll, *raw;
     long n, cap;
     double nll_worst_at;           /* the reference's nll (Q8) where the nll error is largest */
     double nll_worst;
@@ -55,18 +57,19 @@ static int uc_alloc(uc_errs_t *e, long cap)
     e->head = malloc((size_t)cap * sizeof(double));
     e->cov = malloc((size_t)cap * sizeof(double));
     e->nll = malloc((size_t)cap * sizeof(double));
-    return e->mean && e->head && e->cov && e->nll;
+    e->raw = malloc((size_t)cap * sizeof(double));
+    return e->mean && e->head && e->cov && e->nll && e->raw;
 }
 
 /* Room for one more (doubling); 0 when out of memory. */
 static int uc_room(uc_errs_t *e)
 {
-    double **v[4];
+    double **v[5];
     int i;
     if (e->n < e->cap)
         return 1;
-    v[0] = &e->mean; v[1] = &e->head; v[2] = &e->cov; v[3] = &e->nll;
-    for (i = 0; i < 4; i++) {
+    v[0] = &e->mean; v[1] = &e->head; v[2] = &e->cov; v[3] = &e->nll; v[4] = &e->raw;
+    for (i = 0; i < 5; i++) {
         double *g = realloc(*v[i], (size_t)(2 * e->cap) * sizeof(double));
         if (g == NULL)
             return 0;
@@ -82,6 +85,7 @@ static void uc_free(uc_errs_t *e)
     free(e->head);
     free(e->cov);
     free(e->nll);
+    free(e->raw);
 }
 
 static int uc_cmp(const void *a, const void *b)
@@ -101,12 +105,15 @@ static void uc_print(const char *pre, uc_errs_t *e, int with_nll)
     qsort(e->head, (size_t)e->n, sizeof(double), uc_cmp);
     qsort(e->cov, (size_t)e->n, sizeof(double), uc_cmp);
     qsort(e->nll, (size_t)e->n, sizeof(double), uc_cmp);
+    qsort(e->raw, (size_t)e->n, sizeof(double), uc_cmp);
     printf("%smean_err_mm_p50/p99/max %.3f %.3f %.3f\n", pre, uc_q(e->mean, e->n, 0.5),
            uc_q(e->mean, e->n, 0.99), uc_q(e->mean, e->n, 1));
     printf("%sheading_err_deg_p50/p99/max %.4f %.4f %.4f\n", pre, uc_q(e->head, e->n, 0.5),
            uc_q(e->head, e->n, 0.99), uc_q(e->head, e->n, 1));
     printf("%scov_rel_err_p50/p99/max %.2e %.2e %.2e\n", pre, uc_q(e->cov, e->n, 0.5),
            uc_q(e->cov, e->n, 0.99), uc_q(e->cov, e->n, 1));
+    printf("%scov_rel_err_with_rounding_p50/p99/max %.2e %.2e %.2e\n", pre,
+           uc_q(e->raw, e->n, 0.5), uc_q(e->raw, e->n, 0.99), uc_q(e->raw, e->n, 1));
     if (with_nll)
         printf("%snll_err_q8_p99/max %.2f %.2f (the largest at nll %.0f Q8)\n", pre,
                uc_q(e->nll, e->n, 0.99), uc_q(e->nll, e->n, 1), e->nll_worst_at);
@@ -196,6 +203,7 @@ static void uc_predict(uc_t *s)
         s->ep.mean[s->ep.n] = e.mean_mm;
         s->ep.head[s->ep.n] = e.heading_deg;
         s->ep.cov[s->ep.n] = e.cov_rel;
+        s->ep.raw[s->ep.n] = e.cov_rel_raw;
         s->ep.nll[s->ep.n++] = 0;
     }
 }
@@ -240,6 +248,7 @@ static void uc_update(uc_t *s, int k)
         s->eu.mean[s->eu.n] = e.mean_mm;
         s->eu.head[s->eu.n] = e.heading_deg;
         s->eu.cov[s->eu.n] = e.cov_rel;
+        s->eu.raw[s->eu.n] = e.cov_rel_raw;
         s->eu.nll[s->eu.n] = fabs((double)nll - (rnll < 0 ? 0 : rnll));
         if (s->eu.nll[s->eu.n] > s->eu.nll_worst) {
             s->eu.nll_worst = s->eu.nll[s->eu.n];

@@ -162,7 +162,7 @@ void ukf_ref_from6(const int32_t c[6], double p[3][3])
 void ukf_ref_compare(const ukf_ref_pose_t *ref, double rp[3][3], int32_t x_mm,
                      int32_t y_mm, int32_t heading, const int32_t c[6], ukf_ref_err_t *e)
 {
-    double p[3][3], worst = 0;
+    double p[3][3], worst = 0, raw = 0;
     int a, b;
     ukf_ref_from6(c, p);
     e->mean_mm = hypot(x_mm - ref->x, y_mm - ref->y);
@@ -172,10 +172,14 @@ void ukf_ref_compare(const ukf_ref_pose_t *ref, double rp[3][3], int32_t x_mm,
             double den = sqrt(fabs(rp[a][a] * rp[b][b]));
             /* beyond the output's rounding to integers */
             double v = fmax(0, fabs(p[a][b] - rp[a][b]) - 0.5) / (den > 0 ? den : 1);
+            double w = fabs(p[a][b] - rp[a][b]) / (den > 0 ? den : 1);
             if (v > worst)
                 worst = v;
+            if (w > raw)
+                raw = w;
         }
     e->cov_rel = worst;
+    e->cov_rel_raw = raw;
 }
 
 double ukf_ref_unif(ukf_ref_rng_t *r)

@@ -44,6 +44,7 @@ void ukf_ref_from6(const int32_t c[6], double p[3][3]);
  * max(0, |P_ij - R_ij| - 1/2) / sqrt(R_ii R_jj). */
 typedef struct {
     double mean_mm, heading_deg, cov_rel;
+    double cov_rel_raw;          /* the same with the rounding included */
 } ukf_ref_err_t;
 void ukf_ref_compare(const ukf_ref_pose_t *ref, double rp[3][3], int32_t x_mm,
                      int32_t y_mm, int32_t heading, const int32_t c[6], ukf_ref_err_t *e);
