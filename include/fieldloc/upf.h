@@ -46,9 +46,9 @@
  * counters, the summed process noise: sizeof(fl_upf_t) is 1,184 B on
  * x86-64, within 1.2 KiB (printed and asserted by the upf suite).  Stack
  * below 2.4 KiB per call (make stack).  Cost (callgrind, `fieldloc bench
- * --loc-frames upf`, 12 particles, 5 observations): about 0.66 M
- * instructions per frame, 8.8 k per particle per observation (the UKF
- * measurement update is most of it).  No heap, no floating point.
+ * --loc-frames upf`, 12 particles, 5 observations): about 0.46 M
+ * instructions per frame, 6.1 k per particle per observation (the UKF
+ * measurement update, 4.9 k, is most of it).  No heap, no floating point.
  */
 #ifndef FIELDLOC_UPF_H
 #define FIELDLOC_UPF_H
