@@ -16,6 +16,8 @@ T_SUITE(scan);
 T_SUITE(fuzzy);
 T_SUITE(localizer);
 T_SUITE(mcl);
+T_SUITE(ukf);
+T_SUITE(upf);
 T_SUITE(confidence);
 T_SUITE(lines);
 T_SUITE(features);

@@ -160,9 +160,10 @@ static void t_odometry(void)
         CHECK(lr_localizer(NULL, err, (int)sizeof err) == loc);
         CHECK(lr_localizer("fuzzy", err, (int)sizeof err) == loc);
         CHECK(lr_localizer("mcl", err, (int)sizeof err) == fl_localizer_find("mcl"));
-        CHECK(lr_localizer("upf", err, (int)sizeof err) == NULL);
-        CHECK(strstr(err, "unknown localizer 'upf'") != NULL && strstr(err, "fuzzy") != NULL &&
-              strstr(err, "mcl") != NULL);
+        CHECK(lr_localizer("upf", err, (int)sizeof err) == fl_localizer_find("upf"));
+        CHECK(lr_localizer("pgrid", err, (int)sizeof err) == NULL);
+        CHECK(strstr(err, "unknown localizer 'pgrid'") != NULL && strstr(err, "fuzzy") != NULL &&
+              strstr(err, "mcl") != NULL && strstr(err, "upf") != NULL);
     }
 }
 

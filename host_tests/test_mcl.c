@@ -130,29 +130,29 @@ static void test_injection_rate(void)
     fl_obs_list_push(&ol, &o);
     for (k = 0; k < 40; k++) {
         uint32_t before, ws, wf, pq;
-        s->w_slow_q24 = 1u << 24;     /* as if every observation fitted */
-        s->w_fast_q24 = 1u << 24;
+        s->aug.w_slow_q24 = 1u << 24;     /* as if every observation fitted */
+        s->aug.w_fast_q24 = 1u << 24;
         CHECK_EQ(fl_mcl_update(s, &ol), 1);
-        ws = s->w_slow_q24;
-        wf = s->w_fast_q24;
+        ws = s->aug.w_slow_q24;
+        wf = s->aug.w_fast_q24;
         pq = wf < ws ? 65536u - (uint32_t)(((uint64_t)wf << 16) / ws) : 0u;
-        CHECK_EQ(s->inject_q16, pq > 65535u ? 65535u : pq);
+        CHECK_EQ(s->aug.inject_q16, pq > 65535u ? 65535u : pq);
         before = s->stats.injected;
         fl_mcl_predict(s, 0, 0, 0);             /* resamples */
         inj += (long)(s->stats.injected - before);
-        expect += (long)s->n * s->inject_q16 / 65536;
-        var += (long)(s->n * (s->inject_q16 / 65536.0) * (1 - s->inject_q16 / 65536.0));
+        expect += (long)s->n * s->aug.inject_q16 / 65536;
+        var += (long)(s->n * (s->aug.inject_q16 / 65536.0) * (1 - s->aug.inject_q16 / 65536.0));
     }
     t_info("injected %ld, expected %ld (sd %.1f)", inj, expect, sqrt((double)var));
     CHECK(expect > 100);
     CHECK(fabs((double)(inj - expect)) <= 4 * sqrt((double)var) + 40);
     /* w_fast at or above w_slow: no injection */
-    s->w_slow_q24 = 1u;
-    s->w_fast_q24 = 1u;
+    s->aug.w_slow_q24 = 1u;
+    s->aug.w_fast_q24 = 1u;
     pp.alpha_fast_q16 = 0;
     s->params = pp;
     CHECK_EQ(fl_mcl_update(s, &ol), 1);
-    CHECK_EQ(s->inject_q16, 0);
+    CHECK_EQ(s->aug.inject_q16, 0);
     free(s);
 }
 
@@ -250,11 +250,11 @@ static void test_hostile(void)
         CHECK(fl_mcl_check(s));
         for (i = 0; i < s->n; i++) {
             const fl_mcl_particle_t *p = &s->buf[s->cur][i];
-            if (abs(p->x_mm) > s->half_x_mm + pp.margin_mm ||
-                abs(p->y_mm) > s->half_y_mm + pp.margin_mm)
+            if (abs(p->x_mm) > s->core.half_x_mm + pp.margin_mm ||
+                abs(p->y_mm) > s->core.half_y_mm + pp.margin_mm)
                 in_box = false;
         }
-        CHECK(abs(e.x_mm) <= s->half_x_mm && abs(e.y_mm) <= s->half_y_mm);
+        CHECK(abs(e.x_mm) <= s->core.half_x_mm && abs(e.y_mm) <= s->core.half_y_mm);
     }
     CHECK(in_box);
     CHECK(s->stats.odo_rejected > 0);
@@ -378,7 +378,7 @@ static void test_priors(void)
         CHECK(abs(fl_angle_sub(p->heading, (fl_angle_t)(l ? -16384 : 16384))) < 3000);
     }
     CHECK(left > s->n / 3 && left < 2 * s->n / 3);
-    CHECK(s->half_known && s->prior == FL_MCL_PRIOR_HALF && s->prior_half == -1);
+    CHECK(s->core.half_known && s->core.prior == FL_MCL_PRIOR_HALF && s->core.prior_half == -1);
     fl_mcl_set_prior_pose(s, 1000, 500, 0, 300);
     fl_mcl_reset_ignorance(s);
     for (i = 0; i < s->n; i++) {

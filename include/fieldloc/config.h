@@ -30,7 +30,7 @@
  * a public struct that an init function takes changes shape (a field
  * added, removed, retyped or moved), so that a caller compiled against
  * the old headers gets FL_ERR_CONFIG instead of a wrong layout. */
-#define FL_ABI_VERSION 3
+#define FL_ABI_VERSION 4
 
 /* Largest image width or height accepted, pixels.  Default 1280 (NAO v6
  * full resolution is 1280x960).  Range 16..4096. */
@@ -89,6 +89,19 @@
 #endif
 #if FL_MCL_MAX_PARTICLES < 8 || FL_MCL_MAX_PARTICLES > 4096
 #error "FL_MCL_MAX_PARTICLES must be in 8..4096"
+#endif
+
+/* ---- unscented particle filter (upf.h, seed 003) -------------------------
+ * FL_UPF_MAX_PARTICLES  particle capacity (the run-time count,
+ *                    params.n_particles, is at most this).  Default 12 (seed
+ *                    003's player), range 4..64.  Memory: 56 B per particle
+ *                    (sample, UKF mean and covariance, log-weight) + about
+ *                    0.6 KiB. */
+#ifndef FL_UPF_MAX_PARTICLES
+#define FL_UPF_MAX_PARTICLES 12
+#endif
+#if FL_UPF_MAX_PARTICLES < 4 || FL_UPF_MAX_PARTICLES > 64
+#error "FL_UPF_MAX_PARTICLES must be in 4..64"
 #endif
 
 /* ---- column scanner (scan.h, seed 000) ----------------------------------
@@ -253,11 +266,11 @@
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
-    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
     FL_ABI_VERSION), \
     FL_IMAGE_MAX_DIM), \
     FL_FUZZY_CELL_MM), FL_FUZZY_MAX_NX), FL_FUZZY_MAX_NY), \
-    FL_FUZZY_MAX_REGIONS), FL_MCL_MAX_PARTICLES), \
+    FL_FUZZY_MAX_REGIONS), FL_MCL_MAX_PARTICLES), FL_UPF_MAX_PARTICLES), \
     FL_SCAN_MAX_COLS), FL_SCAN_MAX_ROWS), FL_SCAN_MAX_FEET), \
     FL_LINES_MAX_POINTS), FL_LINES_MAX_SEGMENTS), FL_LINES_MAX_BUCKETS), \
     FL_LINES_WTAB), FL_CROSSINGS_MAX), FL_GOAL_MAX_POSTS), \

@@ -175,6 +175,11 @@ typedef struct {
     uint16_t weight_q16;         /* relative to the heaviest sample
                                     (65535 = as heavy; 0 = negligible) */
     bool in_mode;                /* belongs to the mode the estimate reports */
+    /* the sample's own spread (a particle carrying a Gaussian, upf; 0 for
+     * a point sample) */
+    uint16_t sd_x_mm, sd_y_mm;
+    int32_t cov_xy_mm2;
+    fl_angle_t sd_heading;
 } fl_loc_sample_t;
 
 typedef struct fl_localizer {
@@ -247,6 +252,8 @@ extern const fl_localizer_t fl_localizer_fuzzy;
 /* Augmented Monte Carlo localization (mcl.h; adapter src/loc/loc_mcl.c),
  * "mcl". */
 extern const fl_localizer_t fl_localizer_mcl;
+/* The unscented particle filter (upf.h; adapter src/loc/loc_upf.c), "upf". */
+extern const fl_localizer_t fl_localizer_upf;
 
 /* NULL for NULL or an unknown name. */
 const fl_localizer_t *fl_localizer_find(const char *name);

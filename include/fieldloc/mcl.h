@@ -152,23 +152,16 @@ typedef struct {
     uint32_t injected, kidnaps, mode_switches, resets;
 } fl_mcl_stats_t;
 
+/* The particle core: what the Monte Carlo filter and the unscented
+ * particle filter (upf.h) share, with the functions of src/loc/mcl*.c that
+ * take it: the map's landmark index and fl_mcl_core_associate, the carpet
+ * box, the prior and its allowed region, the tracked mode, the frame's
+ * sensor-reset observations and the random generator. */
 typedef struct {
     const fl_field_t *field;     /* NULL: not initialized */
-    fl_mcl_params_t params;
     uint32_t rng;                /* xorshift32 state, never 0 */
-    uint16_t n;                  /* particles in buf[cur] */
-    uint8_t cur;                 /* the live buffer */
-    bool weighted;               /* weights of an update not yet resampled */
-    bool ignorance;              /* no observation applied since the last
-                                    reset to ignorance */
     bool half_known;             /* the game told the half (prior, reset) */
     bool track_valid;
-    bool jitter_due;             /* resampled since the last motion: the
-                                    next predict adds the jitter */
-    fl_mcl_particle_t buf[2][FL_MCL_MAX_PARTICLES];
-    uint32_t nll[FL_MCL_MAX_PARTICLES];  /* update scratch, Q8 nats */
-    int16_t trig[FL_MCL_MAX_PARTICLES][2];  /* update scratch: cos, sin of
-                                               each particle's heading */
     uint8_t lm_index[FL_MCL_MAX_LANDMARKS];   /* landmark ids by kind */
     uint8_t kind_start[FL_LM_KIND_COUNT + 1]; /* kind k: lm_index[start[k]
                                                  .. start[k+1]) */
@@ -183,12 +176,33 @@ typedef struct {
     fl_angle_t prior_heading;
     int32_t track_x_mm, track_y_mm;
     fl_angle_t track_heading;
+    uint16_t n_reset;                    /* reset observations kept */
+    fl_mcl_reset_obs_t reset_obs[FL_MCL_RESET_OBS];
+} fl_mcl_core_t;
+
+/* Augmented MCL's likelihood averages (shared with upf.h). */
+typedef struct {
     uint32_t w_slow_q24, w_fast_q24;     /* averages of the likelihood */
     uint16_t inject_q16;                 /* injection probability at the
                                             next resampling */
+} fl_mcl_aug_t;
+
+typedef struct {
+    fl_mcl_core_t core;          /* core.field NULL: not initialized */
+    fl_mcl_params_t params;
+    uint16_t n;                  /* particles in buf[cur] */
+    uint8_t cur;                 /* the live buffer */
+    bool weighted;               /* weights of an update not yet resampled */
+    bool ignorance;              /* no observation applied since the last
+                                    reset to ignorance */
+    bool jitter_due;             /* resampled since the last motion: the
+                                    next predict adds the jitter */
+    fl_mcl_particle_t buf[2][FL_MCL_MAX_PARTICLES];
+    uint32_t nll[FL_MCL_MAX_PARTICLES];  /* update scratch, Q8 nats */
+    int16_t trig[FL_MCL_MAX_PARTICLES][2];  /* update scratch: cos, sin of
+                                               each particle's heading */
+    fl_mcl_aug_t aug;
     uint16_t since_obs;
-    uint16_t n_reset;                    /* reset observations kept */
-    fl_mcl_reset_obs_t reset_obs[FL_MCL_RESET_OBS];
     uint32_t est_density;                /* kernel density at the last
                                             estimate (possibility's peak) */
     fl_mcl_stats_t stats;
@@ -266,6 +280,9 @@ bool fl_mcl_lowvar_pick(const fl_mcl_particle_t *p, uint16_t n_in, uint16_t *out
  * to the second nearest (UINT32_MAX when none). */
 int fl_mcl_associate(const fl_mcl_t *s, const fl_obs_t *o, int32_t fx, int32_t fy,
                      uint32_t *d1, uint32_t *d2);
+/* The same on a particle core (the unscented particle filter's). */
+int fl_mcl_core_associate(const fl_mcl_core_t *c, const fl_obs_t *o, int32_t fx, int32_t fy,
+                          uint32_t *d1, uint32_t *d2);
 
 #ifdef __cplusplus
 }

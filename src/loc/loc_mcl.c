@@ -5,6 +5,7 @@
  */
 #include "fieldloc/localizer.h"
 #include "fieldloc/mcl.h"
+#include "loc_particle.h"
 
 #include <stddef.h>
 #include <string.h>
@@ -65,7 +66,7 @@ static fl_status_t mc_init(void *state, const fl_field_t *field, const void *par
 static void *mc_params_of(void *state)
 {
     fl_mcl_t *s = (fl_mcl_t *)state;
-    return s == NULL || s->field == NULL ? NULL : (void *)&s->params;
+    return s == NULL || s->core.field == NULL ? NULL : (void *)&s->params;
 }
 
 static void mc_predict(void *state, int32_t dx_mm, int32_t dy_mm, fl_angle_t dtheta)
@@ -80,6 +81,30 @@ static uint16_t mc_update(void *state, const fl_obs_list_t *obs, const fl_obs_vi
     return fl_mcl_update((fl_mcl_t *)state, obs);
 }
 
+void fl_loc_internal_from_mcl(const fl_mcl_estimate_t *e, fl_loc_estimate_t *out)
+{
+    memset(out, 0, sizeof *out);
+    out->x_mm = e->x_mm;
+    out->y_mm = e->y_mm;
+    out->heading = e->heading;
+    out->reliability_q16 = e->reliability_q16;
+    out->peak_q8 = (uint8_t)(e->share_q16 >> 8);
+    out->mode_cells = e->mode_particles;
+    out->switched = e->switched;
+    out->sd_x_mm = e->sd_x_mm;
+    out->sd_y_mm = e->sd_y_mm;
+    out->cov_xy_mm2 = e->cov_xy_mm2;
+    out->sd_heading = e->sd_heading;
+    out->mirror_q16 = e->mirror_q16;
+    out->score_q16 = e->score_q16;
+    out->since_obs = e->since_obs;
+    out->state = !e->tracking || e->ignorance ? FL_LOC_LOST
+                 : e->mirror_q16 >= 32768u    ? FL_LOC_AMBIGUOUS
+                                              : FL_LOC_TRACKING;
+    out->localized = out->state == FL_LOC_TRACKING &&
+                     out->reliability_q16 >= FL_LOC_LOCALIZED_Q16;
+}
+
 static bool mc_estimate(void *state, fl_loc_estimate_t *out)
 {
     fl_mcl_estimate_t e;
@@ -87,26 +112,7 @@ static bool mc_estimate(void *state, fl_loc_estimate_t *out)
     if (out == NULL)
         return false;
     ok = fl_mcl_estimate((fl_mcl_t *)state, &e);
-    memset(out, 0, sizeof *out);
-    out->x_mm = e.x_mm;
-    out->y_mm = e.y_mm;
-    out->heading = e.heading;
-    out->reliability_q16 = e.reliability_q16;
-    out->peak_q8 = (uint8_t)(e.share_q16 >> 8);
-    out->mode_cells = e.mode_particles;
-    out->switched = e.switched;
-    out->sd_x_mm = e.sd_x_mm;
-    out->sd_y_mm = e.sd_y_mm;
-    out->cov_xy_mm2 = e.cov_xy_mm2;
-    out->sd_heading = e.sd_heading;
-    out->mirror_q16 = e.mirror_q16;
-    out->score_q16 = e.score_q16;
-    out->since_obs = e.since_obs;
-    out->state = !e.tracking || e.ignorance ? FL_LOC_LOST
-                 : e.mirror_q16 >= 32768u   ? FL_LOC_AMBIGUOUS
-                                            : FL_LOC_TRACKING;
-    out->localized = out->state == FL_LOC_TRACKING &&
-                     out->reliability_q16 >= FL_LOC_LOCALIZED_Q16;
+    fl_loc_internal_from_mcl(&e, out);
     return ok;
 }
 
@@ -173,7 +179,7 @@ static void mc_stats(const void *state, fl_loc_stats_t *out)
 }
 
 /* Particles are not a grid. */
-static bool mc_belief_grid(const void *state, fl_loc_grid_t *out)
+bool fl_loc_internal_no_grid(const void *state, fl_loc_grid_t *out)
 {
     (void)state;
     if (out != NULL)
@@ -181,7 +187,7 @@ static bool mc_belief_grid(const void *state, fl_loc_grid_t *out)
     return false;
 }
 
-static bool mc_belief_cell(const void *state, int ix, int iy, fl_loc_cell_t *out)
+bool fl_loc_internal_no_cell(const void *state, int ix, int iy, fl_loc_cell_t *out)
 {
     (void)state;
     (void)ix;
@@ -194,33 +200,37 @@ static bool mc_belief_cell(const void *state, int ix, int iy, fl_loc_cell_t *out
 static uint16_t mc_belief_samples(const void *state)
 {
     const fl_mcl_t *s = (const fl_mcl_t *)state;
-    return s == NULL || s->field == NULL ? 0 : s->n;
+    return s == NULL || s->core.field == NULL ? 0 : s->n;
 }
 
 /* Weight relative to the heaviest particle (the update normalises the
  * heaviest to 65535); in the mode: within cluster_mm of the tracked
- * estimate and heading within 90 deg of it. */
-static bool mc_belief_sample(const void *state, uint16_t i, fl_loc_sample_t *out)
+ * estimate and heading within 90 deg of it.  A point: no spread. */
+void fl_loc_internal_sample(const fl_mcl_core_t *c, int32_t cluster_mm,
+                            const fl_mcl_particle_t *p, fl_loc_sample_t *out)
 {
-    const fl_mcl_t *s = (const fl_mcl_t *)state;
-    const fl_mcl_particle_t *p;
-    if (out == NULL)
-        return false;
-    memset(out, 0, sizeof *out);
-    if (s == NULL || s->field == NULL || i >= s->n)
-        return false;
-    p = &s->buf[s->cur & 1u][i];
     out->x_mm = p->x_mm;
     out->y_mm = p->y_mm;
     out->heading = p->heading;
     out->weight_q16 = p->weight;
-    if (s->track_valid) {
-        int32_t dx = p->x_mm - s->track_x_mm, dy = p->y_mm - s->track_y_mm;
-        int32_t dh = fl_angle_sub(p->heading, s->track_heading);
-        int64_t r = s->params.cluster_mm;
+    if (c->track_valid) {
+        int32_t dx = p->x_mm - c->track_x_mm, dy = p->y_mm - c->track_y_mm;
+        int32_t dh = fl_angle_sub(p->heading, c->track_heading);
+        int64_t r = cluster_mm;
         out->in_mode = (int64_t)dx * dx + (int64_t)dy * dy <= r * r && dh <= FL_ANGLE_90 &&
                        dh >= -FL_ANGLE_90;
     }
+}
+
+static bool mc_belief_sample(const void *state, uint16_t i, fl_loc_sample_t *out)
+{
+    const fl_mcl_t *s = (const fl_mcl_t *)state;
+    if (out == NULL)
+        return false;
+    memset(out, 0, sizeof *out);
+    if (s == NULL || s->core.field == NULL || i >= s->n)
+        return false;
+    fl_loc_internal_sample(&s->core, s->params.cluster_mm, &s->buf[s->cur & 1u][i], out);
     return true;
 }
 
@@ -264,8 +274,8 @@ const fl_localizer_t fl_localizer_mcl = {
     mc_check,
     mc_possibility_q16,
     mc_stats,
-    mc_belief_grid,
-    mc_belief_cell,
+    fl_loc_internal_no_grid,
+    fl_loc_internal_no_cell,
     mc_belief_samples,
     mc_belief_sample,
 };

@@ -207,26 +207,48 @@ void fl_mcl_clear(fl_mcl_t *s)
 }
 
 /* Landmark ids by kind, and the orientations of those that have one. */
-static void index_landmarks(fl_mcl_t *s, const fl_field_t *f)
+static void index_landmarks(fl_mcl_core_t *c, const fl_field_t *f)
 {
     uint16_t i, n = 0;
     int k;
     for (k = 0; k < FL_LM_KIND_COUNT; k++) {
-        s->kind_start[k] = (uint8_t)n;
+        c->kind_start[k] = (uint8_t)n;
         for (i = 0; i < f->n_landmarks; i++)
             if ((int)f->landmarks[i].kind == k)
-                s->lm_index[n++] = (uint8_t)i;
+                c->lm_index[n++] = (uint8_t)i;
     }
-    s->kind_start[FL_LM_KIND_COUNT] = (uint8_t)n;
+    c->kind_start[FL_LM_KIND_COUNT] = (uint8_t)n;
     for (i = 0; i < f->n_landmarks; i++) {
         const fl_landmark_t *lm = &f->landmarks[i];
         fl_angle_t o;
         if (!fl_landmark_orientation(lm, &o))
             continue;
-        s->lm_orient[i] = o;
-        s->lm_orient_mod[i] = lm->kind == FL_LM_L || lm->kind == FL_LM_T        ? 1
+        c->lm_orient[i] = o;
+        c->lm_orient_mod[i] = lm->kind == FL_LM_L || lm->kind == FL_LM_T        ? 1
                               : lm->kind == FL_LM_CENTRE_CIRCLE ? 2 : 4;
     }
+}
+
+fl_status_t fl_mcl_internal_core_init(fl_mcl_core_t *c, const fl_field_t *field,
+                                      int32_t margin_mm, int32_t seed)
+{
+    memset(c, 0, sizeof *c);
+    if (field->n_landmarks > FL_MCL_MAX_LANDMARKS)
+        return FL_ERR_SIZE;
+    if (fl_field_carpet_half_x_mm(field) + margin_mm > 30000 ||
+        fl_field_carpet_half_y_mm(field) + margin_mm > 30000 ||
+        fl_field_carpet_half_x_mm(field) < 100 || fl_field_carpet_half_y_mm(field) < 100)
+        return FL_ERR_RANGE;
+    c->half_x_mm = fl_field_carpet_half_x_mm(field);
+    c->half_y_mm = fl_field_carpet_half_y_mm(field);
+    c->box_x_mm = c->half_x_mm + margin_mm;
+    c->box_y_mm = c->half_y_mm + margin_mm;
+    c->rng = (uint32_t)seed * 2654435761u ^ 0x9e3779b9u;
+    if (c->rng == 0u)
+        c->rng = 1u;
+    index_landmarks(c, field);
+    c->field = field;
+    return FL_OK;
 }
 
 fl_status_t fl_mcl_init(fl_mcl_t *s, const fl_field_t *field, const fl_mcl_params_t *params)
@@ -245,22 +267,10 @@ fl_status_t fl_mcl_init(fl_mcl_t *s, const fl_field_t *field, const fl_mcl_param
     st = fl_mcl_params_check(&p);
     if (st != FL_OK)
         return st;
-    if (field->n_landmarks > FL_MCL_MAX_LANDMARKS)
-        return FL_ERR_SIZE;
-    if (fl_field_carpet_half_x_mm(field) + p.margin_mm > 30000 ||
-        fl_field_carpet_half_y_mm(field) + p.margin_mm > 30000 ||
-        fl_field_carpet_half_x_mm(field) < 100 || fl_field_carpet_half_y_mm(field) < 100)
-        return FL_ERR_RANGE;
+    st = fl_mcl_internal_core_init(&s->core, field, p.margin_mm, p.seed);
+    if (st != FL_OK)
+        return st;
     s->params = p;
-    s->half_x_mm = fl_field_carpet_half_x_mm(field);
-    s->half_y_mm = fl_field_carpet_half_y_mm(field);
-    s->box_x_mm = s->half_x_mm + p.margin_mm;
-    s->box_y_mm = s->half_y_mm + p.margin_mm;
-    s->rng = (uint32_t)p.seed * 2654435761u ^ 0x9e3779b9u;
-    if (s->rng == 0u)
-        s->rng = 1u;
-    index_landmarks(s, field);
-    s->field = field;
     s->n = p.n_particles;
     fl_mcl_reset_ignorance(s);
     s->stats.resets = 0;
@@ -269,64 +279,64 @@ fl_status_t fl_mcl_init(fl_mcl_t *s, const fl_field_t *field, const fl_mcl_param
 
 /* ---- regions ---------------------------------------------------------------- */
 
-void fl_mcl_internal_clamp(const fl_mcl_t *s, int32_t *x, int32_t *y)
+void fl_mcl_internal_clamp(const fl_mcl_core_t *c, int32_t *x, int32_t *y)
 {
-    *x = mcl_clamp(*x, -s->box_x_mm, s->box_x_mm);
-    *y = mcl_clamp(*y, -s->box_y_mm, s->box_y_mm);
+    *x = mcl_clamp(*x, -c->box_x_mm, c->box_x_mm);
+    *y = mcl_clamp(*y, -c->box_y_mm, c->box_y_mm);
 }
 
 /* Whether a pose is on the carpet and inside the prior's region.  A half
  * prior decides between the mirror modes of a symmetric field (always) and
  * between modes of an asymmetric one until a mode is tracked (then the
  * map decides, and a kidnap into the other half recovers by injection). */
-bool fl_mcl_internal_allowed(const fl_mcl_t *s, int32_t x, int32_t y, fl_angle_t h)
+bool fl_mcl_internal_allowed(const fl_mcl_core_t *c, int32_t x, int32_t y, fl_angle_t h)
 {
-    if (x < -s->half_x_mm || x > s->half_x_mm || y < -s->half_y_mm || y > s->half_y_mm)
+    if (x < -c->half_x_mm || x > c->half_x_mm || y < -c->half_y_mm || y > c->half_y_mm)
         return false;
-    if (s->prior == FL_MCL_PRIOR_HALF && !s->field->symmetric && s->track_valid)
+    if (c->prior == FL_MCL_PRIOR_HALF && !c->field->symmetric && c->track_valid)
         return true;
-    if (s->prior == FL_MCL_PRIOR_HALF)
-        return s->prior_half < 0 ? x <= 0 : x >= 0;
-    if (s->prior == FL_MCL_PRIOR_POSE) {
-        int64_t dx = (int64_t)x - s->prior_x_mm, dy = (int64_t)y - s->prior_y_mm;
-        return dx * dx + dy * dy <= (int64_t)s->prior_radius_mm * s->prior_radius_mm &&
-               mcl_absang(fl_angle_sub(h, s->prior_heading)) <= FL_ANGLE_90;
+    if (c->prior == FL_MCL_PRIOR_HALF)
+        return c->prior_half < 0 ? x <= 0 : x >= 0;
+    if (c->prior == FL_MCL_PRIOR_POSE) {
+        int64_t dx = (int64_t)x - c->prior_x_mm, dy = (int64_t)y - c->prior_y_mm;
+        return dx * dx + dy * dy <= (int64_t)c->prior_radius_mm * c->prior_radius_mm &&
+               mcl_absang(fl_angle_sub(h, c->prior_heading)) <= FL_ANGLE_90;
     }
     return true;
 }
 
 /* A pose drawn uniformly from the prior's region (the carpet, the own
  * half, or a pose's disc and heading within 90 deg), any heading. */
-void fl_mcl_internal_uniform(fl_mcl_t *s, fl_mcl_particle_t *p)
+void fl_mcl_internal_uniform(fl_mcl_core_t *c, fl_mcl_particle_t *p)
 {
-    int32_t x0 = -s->half_x_mm, x1 = s->half_x_mm, y0 = -s->half_y_mm, y1 = s->half_y_mm;
+    int32_t x0 = -c->half_x_mm, x1 = c->half_x_mm, y0 = -c->half_y_mm, y1 = c->half_y_mm;
     int32_t x, y, tries;
-    fl_angle_t h = (fl_angle_t)(int32_t)(fl_mcl_rand(&s->rng) >> 16) ;
-    if (s->prior == FL_MCL_PRIOR_HALF && (s->field->symmetric || !s->track_valid)) {
-        if (s->prior_half < 0)
+    fl_angle_t h = (fl_angle_t)(int32_t)(fl_mcl_rand(&c->rng) >> 16) ;
+    if (c->prior == FL_MCL_PRIOR_HALF && (c->field->symmetric || !c->track_valid)) {
+        if (c->prior_half < 0)
             x1 = 0;
         else
             x0 = 0;
-    } else if (s->prior == FL_MCL_PRIOR_POSE) {
-        int32_t r = s->prior_radius_mm;
-        x0 = mcl_clamp(s->prior_x_mm - r, x0, x1);
-        x1 = mcl_clamp(s->prior_x_mm + r, x0, x1);
-        y0 = mcl_clamp(s->prior_y_mm - r, y0, y1);
-        y1 = mcl_clamp(s->prior_y_mm + r, y0, y1);
-        h = fl_angle_add(s->prior_heading,
-                         fl_angle_wrap((int32_t)mcl_below(&s->rng, 32769u) - 16384));
+    } else if (c->prior == FL_MCL_PRIOR_POSE) {
+        int32_t r = c->prior_radius_mm;
+        x0 = mcl_clamp(c->prior_x_mm - r, x0, x1);
+        x1 = mcl_clamp(c->prior_x_mm + r, x0, x1);
+        y0 = mcl_clamp(c->prior_y_mm - r, y0, y1);
+        y1 = mcl_clamp(c->prior_y_mm + r, y0, y1);
+        h = fl_angle_add(c->prior_heading,
+                         fl_angle_wrap((int32_t)mcl_below(&c->rng, 32769u) - 16384));
     }
     x = x0;
     y = y0;
     for (tries = 0; tries < 8; tries++) {
-        x = x0 + (int32_t)mcl_below(&s->rng, (uint32_t)(x1 - x0 + 1));
-        y = y0 + (int32_t)mcl_below(&s->rng, (uint32_t)(y1 - y0 + 1));
-        if (fl_mcl_internal_allowed(s, x, y, h))
+        x = x0 + (int32_t)mcl_below(&c->rng, (uint32_t)(x1 - x0 + 1));
+        y = y0 + (int32_t)mcl_below(&c->rng, (uint32_t)(y1 - y0 + 1));
+        if (fl_mcl_internal_allowed(c, x, y, h))
             break;
     }
-    if (tries == 8 && s->prior == FL_MCL_PRIOR_POSE) {
-        x = mcl_clamp(s->prior_x_mm, -s->half_x_mm, s->half_x_mm);
-        y = mcl_clamp(s->prior_y_mm, -s->half_y_mm, s->half_y_mm);
+    if (tries == 8 && c->prior == FL_MCL_PRIOR_POSE) {
+        x = mcl_clamp(c->prior_x_mm, -c->half_x_mm, c->half_x_mm);
+        y = mcl_clamp(c->prior_y_mm, -c->half_y_mm, c->half_y_mm);
     }
     p->x_mm = (int16_t)x;
     p->y_mm = (int16_t)y;
@@ -336,11 +346,11 @@ void fl_mcl_internal_uniform(fl_mcl_t *s, fl_mcl_particle_t *p)
 
 /* A detected kidnap or an explicit reset: the game's half no longer
  * holds unless told again. */
-void fl_mcl_internal_drop_prior(fl_mcl_t *s)
+void fl_mcl_internal_drop_prior(fl_mcl_core_t *c)
 {
-    s->prior = FL_MCL_PRIOR_NONE;
-    s->half_known = false;
-    s->track_valid = false;
+    c->prior = FL_MCL_PRIOR_NONE;
+    c->half_known = false;
+    c->track_valid = false;
 }
 
 /* ---- resets -------------------------------------------------------------------- */
@@ -352,184 +362,204 @@ static void fresh(fl_mcl_t *s)
     if (s->n < 1 || s->n > FL_MCL_MAX_PARTICLES)
         s->n = FL_MCL_MAX_PARTICLES < 256 ? FL_MCL_MAX_PARTICLES : 256;
     s->weighted = false;
-    s->w_slow_q24 = 0;
-    s->w_fast_q24 = 0;
-    s->inject_q16 = 0;
-    s->n_reset = 0;
+    s->aug.w_slow_q24 = 0;
+    s->aug.w_fast_q24 = 0;
+    s->aug.inject_q16 = 0;
+    s->core.n_reset = 0;
     s->est_density = 0;
 }
 
-void fl_mcl_reset_ignorance(fl_mcl_t *s)
+/* ---- resets and priors on a particle core ---------------------------------------- */
+
+void fl_mcl_internal_core_ignorance(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n)
 {
     uint16_t i;
-    fl_mcl_particle_t *p;
-    if (!mcl_ready(s))
-        return;
-    fresh(s);
-    p = mcl_live(s);
-    for (i = 0; i < s->n; i++)
-        fl_mcl_internal_uniform(s, &p[i]);
-    s->ignorance = true;
-    s->track_valid = false;
-    s->half_known = s->prior != FL_MCL_PRIOR_NONE;
-    s->stats.resets = mcl_sat_inc(s->stats.resets);
+    for (i = 0; i < n; i++)
+        fl_mcl_internal_uniform(c, &p[i]);
+    c->track_valid = false;
+    c->half_known = c->prior != FL_MCL_PRIOR_NONE;
 }
 
 /* Particles around one pose: Gaussian, sd pos_unc / 2 and heading_unc / 2
  * (most within the uncertainty; the fuzzy grid's cone falls to 1/2 there). */
-/* A pose with its uncertainty, to draw particles around (passed by
- * pointer: six arguments at most, so no call pushes arguments on the stack
- * and every frame stays static for `make stack`). */
-typedef struct {
-    int32_t x, y, pos_unc;
-    fl_angle_t h, heading_unc;
-} mcl_paint_t;
-
-static void paint_pose(fl_mcl_t *s, fl_mcl_particle_t *p, const mcl_paint_t *c)
+static void paint_pose(fl_mcl_core_t *k, fl_mcl_particle_t *p, const fl_mcl_paint_t *c)
 {
     int32_t sd = mcl_clamp(c->pos_unc, 1, 20000) / 2;
     int32_t sh = mcl_absang(c->heading_unc) / 2;
-    int32_t px = mcl_clamp(c->x, -s->half_x_mm, s->half_x_mm) + mcl_noise(&s->rng, sd);
-    int32_t py = mcl_clamp(c->y, -s->half_y_mm, s->half_y_mm) + mcl_noise(&s->rng, sd);
-    fl_mcl_internal_clamp(s, &px, &py);
+    int32_t px = mcl_clamp(c->x, -k->half_x_mm, k->half_x_mm) + mcl_noise(&k->rng, sd);
+    int32_t py = mcl_clamp(c->y, -k->half_y_mm, k->half_y_mm) + mcl_noise(&k->rng, sd);
+    fl_mcl_internal_clamp(k, &px, &py);
     p->x_mm = (int16_t)px;
     p->y_mm = (int16_t)py;
-    p->heading = fl_angle_add(c->h, fl_angle_wrap(mcl_noise(&s->rng, sh)));
+    p->heading = fl_angle_add(c->h, fl_angle_wrap(mcl_noise(&k->rng, sh)));
     p->weight = 65535u;
 }
 
-void fl_mcl_reset_pose(fl_mcl_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t heading,
-                       int32_t pos_unc_mm, fl_angle_t heading_unc)
+void fl_mcl_internal_core_pose(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                               const fl_mcl_paint_t *pose)
 {
     uint16_t i;
-    fl_mcl_particle_t *p;
-    mcl_paint_t c;
-    if (!mcl_ready(s))
-        return;
-    fresh(s);
-    p = mcl_live(s);
-    c.x = x_mm;
-    c.y = y_mm;
-    c.pos_unc = pos_unc_mm;
-    c.h = heading;
-    c.heading_unc = heading_unc;
-    for (i = 0; i < s->n; i++)
-        paint_pose(s, &p[i], &c);
-    s->ignorance = false;
-    s->half_known = true;
-    s->track_valid = true;
-    s->track_x_mm = mcl_clamp(x_mm, -s->half_x_mm, s->half_x_mm);
-    s->track_y_mm = mcl_clamp(y_mm, -s->half_y_mm, s->half_y_mm);
-    s->track_heading = heading;
-    s->stats.resets = mcl_sat_inc(s->stats.resets);
+    for (i = 0; i < n; i++)
+        paint_pose(c, &p[i], pose);
+    c->half_known = true;
+    c->track_valid = true;
+    c->track_x_mm = mcl_clamp(pose->x, -c->half_x_mm, c->half_x_mm);
+    c->track_y_mm = mcl_clamp(pose->y, -c->half_y_mm, c->half_y_mm);
+    c->track_heading = pose->h;
 }
 
-void fl_mcl_reset_penalty(fl_mcl_t *s, int32_t x_mm, int32_t pos_unc_mm,
-                          fl_angle_t heading_unc)
+void fl_mcl_internal_core_penalty(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                                  const fl_mcl_paint_t *pose)
 {
+    fl_mcl_paint_t q = *pose;
+    int32_t hw = c->field->width_mm / 2;
     uint16_t i;
-    int32_t hw;
-    fl_mcl_particle_t *p;
-    mcl_paint_t c;
-    if (!mcl_ready(s))
-        return;
-    fresh(s);
-    p = mcl_live(s);
-    hw = s->field->width_mm / 2;
-    c.x = x_mm;
-    c.pos_unc = pos_unc_mm;
-    c.heading_unc = heading_unc;
-    for (i = 0; i < s->n; i++) {
+    for (i = 0; i < n; i++) {
         bool left = (i & 1u) == 0u;
-        c.y = left ? hw : -hw;
-        c.h = (fl_angle_t)(left ? -FL_ANGLE_90 : FL_ANGLE_90);
-        paint_pose(s, &p[i], &c);
+        q.y = left ? hw : -hw;
+        q.h = (fl_angle_t)(left ? -FL_ANGLE_90 : FL_ANGLE_90);
+        paint_pose(c, &p[i], &q);
     }
-    s->ignorance = false;
-    s->track_valid = false;
+    c->track_valid = false;
     /* the placement tells the half (unless the spots are on the halfway
      * line, where they are each other's mirror) */
-    if (x_mm != 0)
-        fl_mcl_set_prior_half(s, x_mm < 0 ? -1 : 1);
-    s->half_known = s->prior != FL_MCL_PRIOR_NONE;
-    s->stats.resets = mcl_sat_inc(s->stats.resets);
+    if (pose->x != 0)
+        fl_mcl_internal_core_prior_half(c, p, n, false, pose->x < 0 ? -1 : 1);
+    c->half_known = c->prior != FL_MCL_PRIOR_NONE;
 }
-
-/* ---- priors ------------------------------------------------------------------- */
 
 /* The prior changed: under ignorance the particles are drawn again from
  * its region; otherwise, on a symmetric field, particles outside the own
  * half move to their mirror pose (which explains the same observations). */
-static void apply_prior(fl_mcl_t *s)
+static void apply_prior(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n, bool ignorance)
 {
     uint16_t i;
-    fl_mcl_particle_t *p = mcl_live(s);
-    if (s->ignorance) {
-        for (i = 0; i < s->n; i++)
-            fl_mcl_internal_uniform(s, &p[i]);
+    if (ignorance) {
+        for (i = 0; i < n; i++)
+            fl_mcl_internal_uniform(c, &p[i]);
         return;
     }
-    if (s->prior != FL_MCL_PRIOR_HALF || !s->field->symmetric)
+    if (c->prior != FL_MCL_PRIOR_HALF || !c->field->symmetric)
         return;
-    for (i = 0; i < s->n; i++)
-        if (s->prior_half < 0 ? p[i].x_mm > 0 : p[i].x_mm < 0) {
+    for (i = 0; i < n; i++)
+        if (c->prior_half < 0 ? p[i].x_mm > 0 : p[i].x_mm < 0) {
             p[i].x_mm = (int16_t)-p[i].x_mm;
             p[i].y_mm = (int16_t)-p[i].y_mm;
             p[i].heading = fl_angle_add(p[i].heading, FL_ANGLE_180);
         }
 }
 
+void fl_mcl_internal_core_prior_half(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                                     bool ignorance, int half)
+{
+    c->prior = half == 0 ? FL_MCL_PRIOR_NONE : FL_MCL_PRIOR_HALF;
+    c->prior_half = (int8_t)(half < 0 ? -1 : 1);
+    /* no half: a tracked mode still carries the half it was told */
+    c->half_known = half != 0 || (c->half_known && c->track_valid);
+    apply_prior(c, p, n, ignorance);
+}
+
+void fl_mcl_internal_core_prior_pose(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                                     bool ignorance, const fl_mcl_paint_t *pose)
+{
+    c->prior = FL_MCL_PRIOR_POSE;
+    c->prior_x_mm = mcl_clamp(pose->x, -100000, 100000);
+    c->prior_y_mm = mcl_clamp(pose->y, -100000, 100000);
+    c->prior_heading = pose->h;
+    c->prior_radius_mm = mcl_clamp(pose->pos_unc, 100, 20000);
+    c->half_known = true;
+    apply_prior(c, p, n, ignorance);
+}
+
+void fl_mcl_internal_core_clear_prior(fl_mcl_core_t *c)
+{
+    c->prior = FL_MCL_PRIOR_NONE;
+    c->half_known = c->half_known && c->track_valid;
+}
+
+bool fl_mcl_internal_core_check(const fl_mcl_core_t *c, const fl_mcl_particle_t *p, uint16_t n)
+{
+    uint16_t i;
+    int k;
+    if (c->field == NULL || c->rng == 0u || c->n_reset > FL_MCL_RESET_OBS ||
+        c->box_x_mm > 32767 || c->box_y_mm > 32767 ||
+        c->kind_start[FL_LM_KIND_COUNT] > FL_MCL_MAX_LANDMARKS)
+        return false;
+    for (k = 0; k < FL_LM_KIND_COUNT; k++)
+        if (c->kind_start[k] > c->kind_start[k + 1])
+            return false;
+    for (i = 0; i < n; i++)
+        if (p[i].x_mm < -c->box_x_mm || p[i].x_mm > c->box_x_mm || p[i].y_mm < -c->box_y_mm ||
+            p[i].y_mm > c->box_y_mm)
+            return false;
+    return true;
+}
+
+/* ---- the Monte Carlo filter's resets, priors and check ---------------------------- */
+
+void fl_mcl_reset_ignorance(fl_mcl_t *s)
+{
+    if (!mcl_ready(s))
+        return;
+    fresh(s);
+    fl_mcl_internal_core_ignorance(&s->core, mcl_live(s), s->n);
+    s->ignorance = true;
+    s->stats.resets = mcl_sat_inc(s->stats.resets);
+}
+
+void fl_mcl_reset_pose(fl_mcl_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t heading,
+                       int32_t pos_unc_mm, fl_angle_t heading_unc)
+{
+    fl_mcl_paint_t c;
+    if (!mcl_ready(s))
+        return;
+    fresh(s);
+    mcl_paint(&c, x_mm, y_mm, heading, pos_unc_mm, heading_unc);
+    fl_mcl_internal_core_pose(&s->core, mcl_live(s), s->n, &c);
+    s->ignorance = false;
+    s->stats.resets = mcl_sat_inc(s->stats.resets);
+}
+
+void fl_mcl_reset_penalty(fl_mcl_t *s, int32_t x_mm, int32_t pos_unc_mm,
+                          fl_angle_t heading_unc)
+{
+    fl_mcl_paint_t c;
+    if (!mcl_ready(s))
+        return;
+    fresh(s);
+    mcl_paint(&c, x_mm, 0, 0, pos_unc_mm, heading_unc);
+    s->ignorance = false;
+    fl_mcl_internal_core_penalty(&s->core, mcl_live(s), s->n, &c);
+    s->stats.resets = mcl_sat_inc(s->stats.resets);
+}
+
 void fl_mcl_set_prior_half(fl_mcl_t *s, int half)
 {
     if (!mcl_ready(s))
         return;
-    s->prior = half == 0 ? FL_MCL_PRIOR_NONE : FL_MCL_PRIOR_HALF;
-    s->prior_half = (int8_t)(half < 0 ? -1 : 1);
-    /* no half: a tracked mode still carries the half it was told */
-    s->half_known = half != 0 || (s->half_known && s->track_valid);
-    apply_prior(s);
+    fl_mcl_internal_core_prior_half(&s->core, mcl_live(s), s->n, s->ignorance, half);
 }
 
 void fl_mcl_set_prior_pose(fl_mcl_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t heading,
                            int32_t radius_mm)
 {
+    fl_mcl_paint_t c;
     if (!mcl_ready(s))
         return;
-    s->prior = FL_MCL_PRIOR_POSE;
-    s->prior_x_mm = mcl_clamp(x_mm, -100000, 100000);
-    s->prior_y_mm = mcl_clamp(y_mm, -100000, 100000);
-    s->prior_heading = heading;
-    s->prior_radius_mm = mcl_clamp(radius_mm, 100, 20000);
-    s->half_known = true;
-    apply_prior(s);
+    mcl_paint(&c, x_mm, y_mm, heading, radius_mm, 0);
+    fl_mcl_internal_core_prior_pose(&s->core, mcl_live(s), s->n, s->ignorance, &c);
 }
 
 void fl_mcl_clear_prior(fl_mcl_t *s)
 {
     if (!mcl_ready(s))
         return;
-    s->prior = FL_MCL_PRIOR_NONE;
-    s->half_known = s->half_known && s->track_valid;
+    fl_mcl_internal_core_clear_prior(&s->core);
 }
-
-/* ---- check ----------------------------------------------------------------------- */
 
 bool fl_mcl_check(const fl_mcl_t *s)
 {
-    const fl_mcl_particle_t *p;
-    uint16_t i;
-    int k;
-    if (!mcl_ready(s) || s->rng == 0u || s->n < 1 || s->n > FL_MCL_MAX_PARTICLES ||
-        s->cur > 1u || s->n_reset > FL_MCL_RESET_OBS || s->box_x_mm > 32767 ||
-        s->box_y_mm > 32767 || s->kind_start[FL_LM_KIND_COUNT] > FL_MCL_MAX_LANDMARKS)
+    if (!mcl_ready(s) || s->n < 1 || s->n > FL_MCL_MAX_PARTICLES || s->cur > 1u)
         return false;
-    for (k = 0; k < FL_LM_KIND_COUNT; k++)
-        if (s->kind_start[k] > s->kind_start[k + 1])
-            return false;
-    p = mcl_live_c(s);
-    for (i = 0; i < s->n; i++)
-        if (p[i].x_mm < -s->box_x_mm || p[i].x_mm > s->box_x_mm || p[i].y_mm < -s->box_y_mm ||
-            p[i].y_mm > s->box_y_mm)
-            return false;
-    return true;
+    return fl_mcl_internal_core_check(&s->core, mcl_live_c(s), s->n);
 }

@@ -39,53 +39,53 @@ typedef struct {
     uint32_t n;
 } csum_t;
 
-static int bin_x(const fl_mcl_t *s, int32_t x)
+static int bin_x(const fl_mcl_set_t *s, int32_t x)
 {
-    return mcl_clamp((int32_t)(((int64_t)(x + s->box_x_mm) * NBX) / (2 * s->box_x_mm + 1)), 0,
+    return mcl_clamp((int32_t)(((int64_t)(x + s->core->box_x_mm) * NBX) / (2 * s->core->box_x_mm + 1)), 0,
                      NBX - 1);
 }
 
-static int bin_y(const fl_mcl_t *s, int32_t y)
+static int bin_y(const fl_mcl_set_t *s, int32_t y)
 {
-    return mcl_clamp((int32_t)(((int64_t)(y + s->box_y_mm) * NBY) / (2 * s->box_y_mm + 1)), 0,
+    return mcl_clamp((int32_t)(((int64_t)(y + s->core->box_y_mm) * NBY) / (2 * s->core->box_y_mm + 1)), 0,
                      NBY - 1);
 }
 
-static int32_t bin_cx(const fl_mcl_t *s, int bx)
+static int32_t bin_cx(const fl_mcl_set_t *s, int bx)
 {
-    return -s->box_x_mm + (int32_t)(((2 * bx + 1) * (int64_t)(2 * s->box_x_mm + 1)) / (2 * NBX));
+    return -s->core->box_x_mm + (int32_t)(((2 * bx + 1) * (int64_t)(2 * s->core->box_x_mm + 1)) / (2 * NBX));
 }
 
-static int32_t bin_cy(const fl_mcl_t *s, int by)
+static int32_t bin_cy(const fl_mcl_set_t *s, int by)
 {
-    return -s->box_y_mm + (int32_t)(((2 * by + 1) * (int64_t)(2 * s->box_y_mm + 1)) / (2 * NBY));
+    return -s->core->box_y_mm + (int32_t)(((2 * by + 1) * (int64_t)(2 * s->core->box_y_mm + 1)) / (2 * NBY));
 }
 
 /* Whether bin centre (x, y) is in the reference region: near the track,
  * else in the prior's region. */
-static bool in_reference(const fl_mcl_t *s, int32_t x, int32_t y)
+static bool in_reference(const fl_mcl_set_t *s, int32_t x, int32_t y)
 {
-    if (s->track_valid) {
-        int64_t dx = x - s->track_x_mm, dy = y - s->track_y_mm;
-        int64_t r = 2 * s->params.cluster_mm;
+    if (s->core->track_valid) {
+        int64_t dx = x - s->core->track_x_mm, dy = y - s->core->track_y_mm;
+        int64_t r = 2 * s->params->cluster_mm;
         return dx * dx + dy * dy <= r * r;
     }
-    if (s->prior == FL_MCL_PRIOR_HALF)
-        return s->prior_half < 0 ? x < 0 : x > 0;
-    if (s->prior == FL_MCL_PRIOR_POSE) {
-        int64_t dx = x - s->prior_x_mm, dy = y - s->prior_y_mm;
-        int64_t r = s->prior_radius_mm + s->params.cluster_mm;
+    if (s->core->prior == FL_MCL_PRIOR_HALF)
+        return s->core->prior_half < 0 ? x < 0 : x > 0;
+    if (s->core->prior == FL_MCL_PRIOR_POSE) {
+        int64_t dx = x - s->core->prior_x_mm, dy = y - s->core->prior_y_mm;
+        int64_t r = s->core->prior_radius_mm + s->params->cluster_mm;
         return dx * dx + dy * dy <= r * r;
     }
     return false;
 }
 
 /* Steps 1-2: the dominant bin; *switched when the track is given up. */
-static int dominant_bin(const fl_mcl_t *s, bool *switched)
+static int dominant_bin(const fl_mcl_set_t *s, bool *switched)
 {
     uint32_t h[NBY][NBX], r3[NBY][NBX];
     int32_t cxs[NBX], cys[NBY];
-    const fl_mcl_particle_t *p = mcl_live_c(s);
+    const fl_mcl_particle_t *p = s->p;
     uint64_t best = 0, bref = 0;
     int gi = 0, ri = -1, bx, by, i;
     memset(h, 0, sizeof h);
@@ -118,19 +118,19 @@ static int dominant_bin(const fl_mcl_t *s, bool *switched)
         }
     *switched = false;
     if (ri >= 0) {
-        uint32_t q = s->track_valid ? s->params.switch_q8 : 32u;
+        uint32_t q = s->core->track_valid ? s->params->switch_q8 : 32u;
         if (bref * 256u >= best * q)
             return ri;
     }
-    *switched = s->track_valid;
+    *switched = s->core->track_valid;
     return gi;
 }
 
 /* Step 3: the heaviest 45-degree sector (with its neighbours) near (cx, cy). */
-static fl_angle_t sector_heading(const fl_mcl_t *s, int32_t cx, int32_t cy, int64_t r2)
+static fl_angle_t sector_heading(const fl_mcl_set_t *s, int32_t cx, int32_t cy, int64_t r2)
 {
     uint64_t w[8], best = 0;
-    const fl_mcl_particle_t *p = mcl_live_c(s);
+    const fl_mcl_particle_t *p = s->p;
     int i, k, bk = 0;
     memset(w, 0, sizeof w);
     for (i = 0; i < s->n; i++) {
@@ -150,10 +150,10 @@ static fl_angle_t sector_heading(const fl_mcl_t *s, int32_t cx, int32_t cy, int6
 
 /* Weighted sums of the particles within sqrt(r2) of (cx, cy) whose heading
  * is within 90 deg of ch, offsets relative to (cx, cy, ch). */
-static void cluster_sums(const fl_mcl_t *s, int32_t cx, int32_t cy, fl_angle_t ch, int64_t r2,
+static void cluster_sums(const fl_mcl_set_t *s, int32_t cx, int32_t cy, fl_angle_t ch, int64_t r2,
                          csum_t *c)
 {
-    const fl_mcl_particle_t *p = mcl_live_c(s);
+    const fl_mcl_particle_t *p = s->p;
     int i;
     memset(c, 0, sizeof *c);
     for (i = 0; i < s->n; i++) {
@@ -183,21 +183,23 @@ static uint16_t sd_of(uint64_t sqq, int64_t sq, uint64_t w)
 }
 
 /* Uniform over the region the prior allows (localizer.h contract). */
-static void ignorance_pose(const fl_mcl_t *s, fl_mcl_estimate_t *out)
+void fl_mcl_internal_ignorance_pose(fl_mcl_core_t *c, uint16_t since_obs, fl_mcl_estimate_t *out)
 {
-    int32_t hx = s->half_x_mm, hy = s->half_y_mm;
+    out->since_obs = since_obs;
+    c->track_valid = false;
+    int32_t hx = c->half_x_mm, hy = c->half_y_mm;
     out->ignorance = true;
     out->sd_x_mm = (uint16_t)((2 * hx * 1000) / 3464);
     out->sd_y_mm = (uint16_t)((2 * hy * 1000) / 3464);
     out->sd_heading = (fl_angle_t)32767;
-    if (s->prior == FL_MCL_PRIOR_HALF) {
-        out->x_mm = s->prior_half * (hx / 2);
+    if (c->prior == FL_MCL_PRIOR_HALF) {
+        out->x_mm = c->prior_half * (hx / 2);
         out->sd_x_mm = (uint16_t)((hx * 1000) / 3464);
-    } else if (s->prior == FL_MCL_PRIOR_POSE) {
-        int32_t r = mcl_clamp(s->prior_radius_mm, 100, hx);
-        out->x_mm = mcl_clamp(s->prior_x_mm, -hx, hx);
-        out->y_mm = mcl_clamp(s->prior_y_mm, -hy, hy);
-        out->heading = s->prior_heading;
+    } else if (c->prior == FL_MCL_PRIOR_POSE) {
+        int32_t r = mcl_clamp(c->prior_radius_mm, 100, hx);
+        out->x_mm = mcl_clamp(c->prior_x_mm, -hx, hx);
+        out->y_mm = mcl_clamp(c->prior_y_mm, -hy, hy);
+        out->heading = c->prior_heading;
         out->sd_x_mm = (uint16_t)(r / 2);
         out->sd_y_mm = (uint16_t)(r / 2);
     }
@@ -206,10 +208,10 @@ static void ignorance_pose(const fl_mcl_t *s, fl_mcl_estimate_t *out)
 /* Kernel density at a pose: sum of w (R^2 - d^2) / R^2 x (1 - |dh| / 45
  * deg) over the particles within R = cluster_mm / 2 and 45 deg (Q16
  * weight units). */
-static uint64_t density(const fl_mcl_t *s, int32_t x, int32_t y, fl_angle_t h)
+uint64_t fl_mcl_internal_density(const fl_mcl_set_t *s, int32_t x, int32_t y, fl_angle_t h)
 {
-    const fl_mcl_particle_t *p = mcl_live_c(s);
-    int64_t r = s->params.cluster_mm / 2, r2 = r * r;
+    const fl_mcl_particle_t *p = s->p;
+    int64_t r = s->params->cluster_mm / 2, r2 = r * r;
     uint64_t sum = 0;
     int i;
     for (i = 0; i < s->n; i++) {
@@ -226,20 +228,30 @@ static uint64_t density(const fl_mcl_t *s, int32_t x, int32_t y, fl_angle_t h)
     return sum;
 }
 
+uint32_t fl_mcl_internal_possibility(const fl_mcl_set_t *s, bool ignorance, uint32_t est_density,
+                                     int32_t x_mm, int32_t y_mm, fl_angle_t heading)
+{
+    uint64_t d;
+    if (x_mm < -s->core->half_x_mm || x_mm > s->core->half_x_mm || y_mm < -s->core->half_y_mm ||
+        y_mm > s->core->half_y_mm)
+        return 0u;
+    if (ignorance)
+        return fl_mcl_internal_allowed(s->core, x_mm, y_mm, heading) ? 65536u : 0u;
+    d = fl_mcl_internal_density(s, x_mm, y_mm, heading);
+    if (est_density == 0u)
+        return d > 0u ? 65536u : 0u;
+    d = (d << 16) / est_density;
+    return d > 65536u ? 65536u : (uint32_t)d;
+}
+
 uint32_t fl_mcl_possibility_q16(const fl_mcl_t *s, int32_t x_mm, int32_t y_mm,
                                 fl_angle_t heading)
 {
-    uint64_t d;
-    if (!mcl_ready(s) || x_mm < -s->half_x_mm || x_mm > s->half_x_mm || y_mm < -s->half_y_mm ||
-        y_mm > s->half_y_mm)
+    fl_mcl_set_t set;
+    if (!mcl_ready(s))
         return 0u;
-    if (s->ignorance)
-        return fl_mcl_internal_allowed(s, x_mm, y_mm, heading) ? 65536u : 0u;
-    d = density(s, x_mm, y_mm, heading);
-    if (s->est_density == 0u)
-        return d > 0u ? 65536u : 0u;
-    d = (d << 16) / s->est_density;
-    return d > 65536u ? 65536u : (uint32_t)d;
+    mcl_set_of((fl_mcl_t *)s, &set);
+    return fl_mcl_internal_possibility(&set, s->ignorance, s->est_density, x_mm, y_mm, heading);
 }
 
 /*
@@ -258,29 +270,30 @@ uint32_t fl_mcl_possibility_q16(const fl_mcl_t *s, int32_t x_mm, int32_t y_mm,
  * the sensor-reset modes of both halves compete); not tracking x 1/8 (LOST
  * records: 0.10 good); ignorance: 0.
  */
-#define MCL_CAL_KNOTS 15
-static const uint16_t mcl_cal_raw[MCL_CAL_KNOTS] = {
-    0, 24269, 28119, 31503, 34430, 36639, 40043, 42629, 46606, 49472, 51565, 54708, 56415, 58479,
-    65535};
-static const uint16_t mcl_cal_rel[MCL_CAL_KNOTS] = {
-    0, 35955, 36551, 42973, 46070, 47523, 51159, 52233, 54207, 54738, 55745, 56933, 57442, 59400,
-    59400};
+static const fl_mcl_cal_t mcl_cal = {
+    15,
+    {0, 24269, 28119, 31503, 34430, 36639, 40043, 42629, 46606, 49472, 51565, 54708, 56415, 58479,
+     65535},
+    {0, 35955, 36551, 42973, 46070, 47523, 51159, 52233, 54207, 54738, 55745, 56933, 57442, 59400,
+     59400}};
 
-static uint16_t calibrate(const fl_mcl_estimate_t *e)
+uint16_t fl_mcl_internal_calibrate(const fl_mcl_estimate_t *e, const fl_mcl_cal_t *cal)
 {
+    const uint16_t *cal_raw = cal->raw, *cal_rel = cal->rel;
+    int n_knots = cal->n;
     uint32_t raw, rel;
     int k;
     if (e->ignorance)
         return 0;
     raw = ((uint32_t)e->score_q16 * 16u) / (16u + (uint32_t)e->since_obs);
-    for (k = 1; k < MCL_CAL_KNOTS - 1 && raw > mcl_cal_raw[k]; k++)
+    for (k = 1; k < n_knots - 1 && raw > cal_raw[k]; k++)
         ;
-    rel = mcl_cal_rel[k - 1];
-    if (raw > mcl_cal_raw[k - 1])
-        rel += (uint32_t)(((uint64_t)(mcl_cal_rel[k] - mcl_cal_rel[k - 1]) *
-                           (raw - mcl_cal_raw[k - 1])) / (uint32_t)(mcl_cal_raw[k] - mcl_cal_raw[k - 1]));
-    if (rel > mcl_cal_rel[k])
-        rel = mcl_cal_rel[k];
+    rel = cal_rel[k - 1];
+    if (raw > cal_raw[k - 1])
+        rel += (uint32_t)(((uint64_t)(cal_rel[k] - cal_rel[k - 1]) *
+                           (raw - cal_raw[k - 1])) / (uint32_t)(cal_raw[k] - cal_raw[k - 1]));
+    if (rel > cal_rel[k])
+        rel = cal_rel[k];
     if (!e->tracking)
         rel >>= 3;
     rel = (uint32_t)(((uint64_t)rel * 65536u) / (65536u + 3u * (uint32_t)e->mirror_q16));
@@ -288,9 +301,9 @@ static uint16_t calibrate(const fl_mcl_estimate_t *e)
 }
 
 /* Step 5 and the scores. */
-static void finish(fl_mcl_t *s, const csum_t *c, uint64_t total, fl_mcl_estimate_t *out)
+static void finish(const fl_mcl_set_t *s, const csum_t *c, uint64_t total, fl_mcl_estimate_t *out)
 {
-    uint64_t r2 = (uint64_t)s->params.cluster_mm * (uint64_t)s->params.cluster_mm;
+    uint64_t r2 = (uint64_t)s->params->cluster_mm * (uint64_t)s->params->cluster_mm;
     uint64_t sp2 = (uint64_t)out->sd_x_mm * out->sd_x_mm + (uint64_t)out->sd_y_mm * out->sd_y_mm;
     uint32_t share = (uint32_t)((c->w << 16) / (total > 0u ? total : 1u));
     uint32_t compact = (uint32_t)((62500ull << 16) / (62500ull + sp2));
@@ -304,64 +317,52 @@ static void finish(fl_mcl_t *s, const csum_t *c, uint64_t total, fl_mcl_estimate
     out->share_q16 = (uint16_t)share;
     out->score_q16 = (uint16_t)(((((uint64_t)share * compact) >> 16) * fill) >> 16);
     out->mirror_q16 = 0;
-    if (s->field->symmetric) {
+    if (s->core->field->symmetric) {
         csum_t m;
         cluster_sums(s, -out->x_mm, -out->y_mm, fl_angle_add(out->heading, FL_ANGLE_180),
                      (int64_t)r2, &m);
-        if (!s->half_known || m.w >= c->w)
+        if (!s->core->half_known || m.w >= c->w)
             out->mirror_q16 = 65535u;
         else
             out->mirror_q16 = (uint16_t)((m.w * 65535u) / c->w);
     }
     out->tracking = share >= 24576u && out->sd_x_mm < 1000u && out->sd_y_mm < 1000u;
-    out->since_obs = s->since_obs;
 }
 
-bool fl_mcl_estimate(fl_mcl_t *s, fl_mcl_estimate_t *out)
+bool fl_mcl_internal_cluster(const fl_mcl_set_t *s, fl_mcl_estimate_t *out)
 {
-    const fl_mcl_particle_t *p;
+    const fl_mcl_particle_t *p = s->p;
     int bi, i;
     int32_t cx, cy, ra;
     int64_t r2;
     fl_angle_t ch;
     csum_t c;
-    uint64_t total = 0, dens;
-    if (out != NULL)
-        memset(out, 0, sizeof *out);
-    if (!mcl_ready(s) || out == NULL)
-        return false;
-    if (s->ignorance) {
-        ignorance_pose(s, out);
-        out->since_obs = s->since_obs;
-        s->est_density = 0;
-        s->track_valid = false;
-        return true;
-    }
-    p = mcl_live_c(s);
+    uint64_t total = 0;
     for (i = 0; i < s->n; i++)
         total += p[i].weight;
     bi = dominant_bin(s, &out->switched);
     if (out->switched) {
         /* the belief left the tracked mode for another place (a kidnap
          * that injection recovered before the averages called it one):
-         * the half the game told was the old mode's */
-        s->stats.mode_switches = mcl_sat_inc(s->stats.mode_switches);
-        fl_mcl_internal_drop_prior(s);
+         * the half the game told was the old mode's (the caller counts
+         * the switch) */
+        fl_mcl_internal_drop_prior(s->core);
     }
     cx = bin_cx(s, bi % NBX);
     cy = bin_cy(s, bi / NBX);
-    ra = s->box_x_mm * 2 / NBX + s->box_y_mm * 2 / NBY;
-    if (ra < s->params.cluster_mm)
-        ra = s->params.cluster_mm;
+    ra = s->core->box_x_mm * 2 / NBX + s->core->box_y_mm * 2 / NBY;
+    if (ra < s->params->cluster_mm)
+        ra = s->params->cluster_mm;
     r2 = (int64_t)ra * ra;
-    ch = s->track_valid && !out->switched ? s->track_heading : sector_heading(s, cx, cy, r2);
+    ch = s->core->track_valid && !out->switched ? s->core->track_heading
+                                                 : sector_heading(s, cx, cy, r2);
     cluster_sums(s, cx, cy, ch, r2, &c);
     if (c.w > 0u) {
         cx += (int32_t)(c.sx / (int64_t)c.w);
         cy += (int32_t)(c.sy / (int64_t)c.w);
         ch = fl_angle_add(ch, fl_angle_wrap((int32_t)(c.sh / (int64_t)c.w)));
     }
-    r2 = (int64_t)s->params.cluster_mm * s->params.cluster_mm;
+    r2 = (int64_t)s->params->cluster_mm * s->params->cluster_mm;
     cluster_sums(s, cx, cy, ch, r2, &c);
     if (c.w == 0u)
         cluster_sums(s, cx, cy, ch, (int64_t)ra * ra, &c);
@@ -378,22 +379,43 @@ bool fl_mcl_estimate(fl_mcl_t *s, fl_mcl_estimate_t *out)
         out->x_mm = cx;
         out->y_mm = cy;
         out->heading = ch;
-        out->sd_x_mm = (uint16_t)s->params.cluster_mm;
-        out->sd_y_mm = (uint16_t)s->params.cluster_mm;
+        out->sd_x_mm = (uint16_t)s->params->cluster_mm;
+        out->sd_y_mm = (uint16_t)s->params->cluster_mm;
         out->sd_heading = (fl_angle_t)32767;
     }
-    out->x_mm = mcl_clamp(out->x_mm, -s->half_x_mm, s->half_x_mm);
-    out->y_mm = mcl_clamp(out->y_mm, -s->half_y_mm, s->half_y_mm);
+    out->x_mm = mcl_clamp(out->x_mm, -s->core->half_x_mm, s->core->half_x_mm);
+    out->y_mm = mcl_clamp(out->y_mm, -s->core->half_y_mm, s->core->half_y_mm);
     out->mode_particles = (uint16_t)c.n;
     finish(s, &c, total, out);
-    s->track_valid = out->tracking;
+    s->core->track_valid = out->tracking;
     if (out->tracking) {
-        s->track_x_mm = out->x_mm;
-        s->track_y_mm = out->y_mm;
-        s->track_heading = out->heading;
+        s->core->track_x_mm = out->x_mm;
+        s->core->track_y_mm = out->y_mm;
+        s->core->track_heading = out->heading;
     }
-    out->reliability_q16 = calibrate(out);
-    dens = density(s, out->x_mm, out->y_mm, out->heading);
+    return true;
+}
+
+bool fl_mcl_estimate(fl_mcl_t *s, fl_mcl_estimate_t *out)
+{
+    fl_mcl_set_t set;
+    uint64_t dens;
+    if (out != NULL)
+        memset(out, 0, sizeof *out);
+    if (!mcl_ready(s) || out == NULL)
+        return false;
+    if (s->ignorance) {
+        fl_mcl_internal_ignorance_pose(&s->core, s->since_obs, out);
+        s->est_density = 0;
+        return true;
+    }
+    mcl_set_of(s, &set);
+    fl_mcl_internal_cluster(&set, out);
+    if (out->switched)
+        s->stats.mode_switches = mcl_sat_inc(s->stats.mode_switches);
+    out->since_obs = s->since_obs;
+    out->reliability_q16 = fl_mcl_internal_calibrate(out, &mcl_cal);
+    dens = fl_mcl_internal_density(&set, out->x_mm, out->y_mm, out->heading);
     s->est_density = (uint32_t)(dens > UINT32_MAX ? UINT32_MAX : dens);
     return true;
 }

@@ -8,6 +8,7 @@
 #define FIELDLOC_MCL_INT_H
 
 #include "fieldloc/mcl.h"
+#include "pcore.h"
 
 /* Largest negative log-likelihood of one term, Q8 nats (16 nats: beyond
  * it every likelihood is at the outlier floor). */
@@ -28,7 +29,7 @@ static inline int32_t mcl_asr(int64_t v, unsigned n)
 
 static inline bool mcl_ready(const fl_mcl_t *s)
 {
-    return s != NULL && s->field != NULL;
+    return s != NULL && s->core.field != NULL;
 }
 
 static inline uint32_t mcl_sat_inc(uint32_t v)
@@ -66,19 +67,19 @@ static inline int32_t mcl_absang(fl_angle_t a)
     return a < 0 ? -(int32_t)a : (int32_t)a;
 }
 
-/* mcl.c */
-bool fl_mcl_internal_allowed(const fl_mcl_t *s, int32_t x, int32_t y, fl_angle_t h);
-void fl_mcl_internal_uniform(fl_mcl_t *s, fl_mcl_particle_t *p);
-void fl_mcl_internal_clamp(const fl_mcl_t *s, int32_t *x, int32_t *y);
-void fl_mcl_internal_drop_prior(fl_mcl_t *s);
-
-/* mcl_update.c */
-uint32_t fl_mcl_internal_exp_q16(uint32_t nll_q8);
-
-/* mcl_resample.c */
+/* mcl_resample.c: the MCL's own resampling and counted injection */
 void fl_mcl_internal_resample(fl_mcl_t *s);
 /* One injected particle: sensor-reset from a kept observation, else
  * uniform over the allowed region (counted). */
 void fl_mcl_internal_inject(fl_mcl_t *s, fl_mcl_particle_t *out);
+
+/* the MCL's live buffer as a particle set (mcl_estimate.c) */
+static inline void mcl_set_of(fl_mcl_t *s, fl_mcl_set_t *set)
+{
+    set->core = &s->core;
+    set->params = &s->params;
+    set->p = mcl_live_c(s);
+    set->n = s->n;
+}
 
 #endif /* FIELDLOC_MCL_INT_H */

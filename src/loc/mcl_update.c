@@ -90,8 +90,8 @@ static uint32_t neg_ln_q8(uint32_t x)
 }
 
 /* The floor table: F[j] = -ln((1 - eps) e^(-j/4) + eps) in Q8, j = 0..64. */
-#define MIX_N 65
-static void mixture_table(uint16_t eps_q16, uint16_t *tab)
+#define MIX_N FL_MCL_MIX_N
+void fl_mcl_internal_mixture_table(uint16_t eps_q16, uint16_t *tab)
 {
     uint32_t j;
     for (j = 0; j < MIX_N; j++) {
@@ -101,7 +101,7 @@ static void mixture_table(uint16_t eps_q16, uint16_t *tab)
     }
 }
 
-static uint32_t mixture(const uint16_t *tab, uint32_t q)
+uint32_t fl_mcl_internal_mixture(const uint16_t *tab, uint32_t q)
 {
     uint32_t j, f;
     if (q >= (MIX_N - 1) * 64u)
@@ -127,19 +127,25 @@ static bool lm_matches(const fl_landmark_t *lm, const fl_obs_t *o)
 int fl_mcl_associate(const fl_mcl_t *s, const fl_obs_t *o, int32_t fx, int32_t fy,
                      uint32_t *d1, uint32_t *d2)
 {
+    return fl_mcl_core_associate(s != NULL ? &s->core : NULL, o, fx, fy, d1, d2);
+}
+
+int fl_mcl_core_associate(const fl_mcl_core_t *c, const fl_obs_t *o, int32_t fx, int32_t fy,
+                          uint32_t *d1, uint32_t *d2)
+{
     uint32_t b1 = UINT32_MAX, b2 = UINT32_MAX;
     int best = -1, k, a, e;
     if (d1 != NULL)
         *d1 = UINT32_MAX;
     if (d2 != NULL)
         *d2 = UINT32_MAX;
-    if (!mcl_ready(s) || o == NULL || (int)o->kind < 0 || o->kind >= FL_LM_KIND_COUNT)
+    if (c == NULL || c->field == NULL || o == NULL || (int)o->kind < 0 || o->kind >= FL_LM_KIND_COUNT)
         return -1;
     k = (int)o->kind;
     fx = mcl_clamp(fx, -40000, 40000);
     fy = mcl_clamp(fy, -40000, 40000);
-    for (a = s->kind_start[k], e = s->kind_start[k + 1]; a < e; a++) {
-        const fl_landmark_t *lm = &s->field->landmarks[s->lm_index[a]];
+    for (a = c->kind_start[k], e = c->kind_start[k + 1]; a < e; a++) {
+        const fl_landmark_t *lm = &c->field->landmarks[c->lm_index[a]];
         int32_t dx = lm->x_mm - fx, dy = lm->y_mm - fy;
         uint32_t d;
         if (!lm_matches(lm, o))
@@ -150,7 +156,7 @@ int fl_mcl_associate(const fl_mcl_t *s, const fl_obs_t *o, int32_t fx, int32_t f
         if (d < b1) {
             b2 = b1;
             b1 = d;
-            best = s->lm_index[a];
+            best = c->lm_index[a];
         } else if (d < b2) {
             b2 = d;
         }
@@ -164,23 +170,11 @@ int fl_mcl_associate(const fl_mcl_t *s, const fl_obs_t *o, int32_t fx, int32_t f
 
 /* ---- the update ------------------------------------------------------------ */
 
-/* One observation's per-frame constants. */
-typedef struct {
-    const fl_obs_t *o;
-    int32_t ox, oy;              /* robot-frame vector, mm */
-    int32_t cb, sb;              /* its direction, Q15 */
-    int32_t sd_r, sd_a;          /* along and across sds, mm */
-    uint64_t k_r, k_a;           /* 128 * 2^32 / sd^2 */
-    uint8_t cand[FL_MCL_MAX_LANDMARKS];  /* candidate landmarks (field ids) */
-    int16_t cx[FL_MCL_MAX_LANDMARKS], cy[FL_MCL_MAX_LANDMARKS];  /* their
-                                                                    positions */
-    uint8_t n_cand;
-} obs_c_t;
 
 /* Whether the observation is usable, and its constants. */
-static bool prepare(const fl_mcl_t *s, const fl_obs_t *o, obs_c_t *c)
+bool fl_mcl_internal_prepare(const fl_mcl_core_t *pc, const fl_mcl_params_t *p,
+                             const fl_obs_t *o, fl_mcl_obs_c_t *c)
 {
-    const fl_mcl_params_t *p = &s->params;
     int32_t r = o->range_mm;
     int64_t sa;
     int k, a;
@@ -191,13 +185,13 @@ static bool prepare(const fl_mcl_t *s, const fl_obs_t *o, obs_c_t *c)
         return false;
     k = (int)o->kind;
     c->n_cand = 0;
-    for (a = s->kind_start[k]; a < s->kind_start[k + 1]; a++) {
-        const fl_landmark_t *lm = &s->field->landmarks[s->lm_index[a]];
+    for (a = pc->kind_start[k]; a < pc->kind_start[k + 1]; a++) {
+        const fl_landmark_t *lm = &pc->field->landmarks[pc->lm_index[a]];
         if (!lm_matches(lm, o))
             continue;
         c->cx[c->n_cand] = (int16_t)mcl_clamp(lm->x_mm, -20000, 20000);
         c->cy[c->n_cand] = (int16_t)mcl_clamp(lm->y_mm, -20000, 20000);
-        c->cand[c->n_cand++] = s->lm_index[a];
+        c->cand[c->n_cand++] = pc->lm_index[a];
     }
     if (c->n_cand == 0)
         return false;
@@ -224,10 +218,11 @@ static uint32_t gauss_nll(int32_t e, int32_t sd, uint64_t k)
 }
 
 /* The Gaussian part q (Q8 nats) of one observation for one particle. */
-static uint32_t obs_nll(const fl_mcl_t *s, const obs_c_t *c, int32_t px, int32_t py,
-                        int32_t ch, int32_t sh, fl_angle_t h)
+uint32_t fl_mcl_internal_obs_nll(const fl_mcl_core_t *pc, const fl_mcl_params_t *p,
+                                 const fl_mcl_obs_c_t *c, fl_mcl_at_t *at)
 {
-    const fl_mcl_params_t *p = &s->params;
+    int32_t px = at->x, py = at->y, ch = at->c, sh = at->s;
+    fl_angle_t h = at->h;
     /* |fx|, |fy| <= 25000 and the landmarks within +-20000: differences
      * below 45000, squares below 2^31, their sum below 2^32 */
     int32_t fx = mcl_clamp(px + mcl_asr((int64_t)c->ox * ch - (int64_t)c->oy * sh, 15), -25000,
@@ -249,35 +244,36 @@ static uint32_t obs_nll(const fl_mcl_t *s, const obs_c_t *c, int32_t px, int32_t
             b2 = d;
         }
     }
-    ex = mcl_clamp(s->field->landmarks[best].x_mm - fx, -16000, 16000);
-    ey = mcl_clamp(s->field->landmarks[best].y_mm - fy, -16000, 16000);
+    ex = mcl_clamp(pc->field->landmarks[best].x_mm - fx, -16000, 16000);
+    ey = mcl_clamp(pc->field->landmarks[best].y_mm - fy, -16000, 16000);
     along = mcl_asr(ex * ux + ey * uy, 15);
     across = mcl_asr(ey * ux - ex * uy, 15);
     q = gauss_nll(along, c->sd_r, c->k_r) + gauss_nll(across, c->sd_a, c->k_a);
     if (p->assoc_q8 != 0 && b2 != UINT32_MAX && b2 > 0u)
         q += (uint32_t)(((uint64_t)b1 << 23) /
                         ((uint64_t)b2 * ((uint64_t)p->assoc_q8 * p->assoc_q8)));
-    if (p->orient_mdeg != 0 && c->o->has_orientation && s->lm_orient_mod[best] != 0) {
+    if (p->orient_mdeg != 0 && c->o->has_orientation && pc->lm_orient_mod[best] != 0) {
         /* field orientation of the observed crossing vs the landmark's,
          * modulo its symmetry (L, T 360, circle 180, X and marks 90 deg) */
         int32_t d = (int32_t)fl_angle_sub(fl_angle_add(c->o->orientation, h),
-                                          s->lm_orient[best]);
-        int32_t m = s->lm_orient_mod[best], sdo = (int32_t)(((int64_t)p->orient_mdeg * 65536) / 360000);
+                                          pc->lm_orient[best]);
+        int32_t m = pc->lm_orient_mod[best], sdo = (int32_t)(((int64_t)p->orient_mdeg * 65536) / 360000);
         d = (int32_t)fl_angle_wrap(d * m) / m;
         if (sdo < 1)
             sdo = 1;
         q += gauss_nll(d, sdo, (128ull << 32) / ((uint64_t)sdo * (uint64_t)sdo));
     }
+    at->best = best;
     return q > MCL_NLL_MAX ? MCL_NLL_MAX : q;
 }
 
 /* Keep the frame's first applied observations for sensor resetting. */
-static void keep_reset_obs(fl_mcl_t *s, const fl_obs_t *o)
+void fl_mcl_internal_keep_reset_obs(fl_mcl_core_t *c, const fl_obs_t *o)
 {
     fl_mcl_reset_obs_t *r;
-    if (s->n_reset >= FL_MCL_RESET_OBS)
+    if (c->n_reset >= FL_MCL_RESET_OBS)
         return;
-    r = &s->reset_obs[s->n_reset++];
+    r = &c->reset_obs[c->n_reset++];
     r->kind = (uint8_t)o->kind;
     r->color = (uint8_t)o->color;
     r->side = (uint8_t)o->side;
@@ -287,15 +283,16 @@ static void keep_reset_obs(fl_mcl_t *s, const fl_obs_t *o)
 }
 
 /* w_avg, the averages and the injection probability. */
-static void augment(fl_mcl_t *s, uint16_t used)
+bool fl_mcl_internal_augment(fl_mcl_core_t *c, const fl_mcl_params_t *p, fl_mcl_aug_t *s,
+                             const uint32_t *nll, uint16_t n, uint16_t used)
 {
-    const fl_mcl_params_t *p = &s->params;
+    bool kidnap = false;
     uint32_t recip = 65536u / used, i, pinj;
     uint64_t sum = 0;
     uint32_t w_avg;
-    for (i = 0; i < s->n; i++)
-        sum += fl_mcl_internal_exp_q16((uint32_t)(((uint64_t)s->nll[i] * recip) >> 16));
-    w_avg = (uint32_t)((sum << 8) / s->n);           /* Q24 */
+    for (i = 0; i < n; i++)
+        sum += fl_mcl_internal_exp_q16((uint32_t)(((uint64_t)nll[i] * recip) >> 16));
+    w_avg = (uint32_t)((sum << 8) / n);           /* Q24 */
     if (s->w_slow_q24 == 0u) {
         s->w_slow_q24 = w_avg;
         s->w_fast_q24 = w_avg;
@@ -308,27 +305,34 @@ static void augment(fl_mcl_t *s, uint16_t used)
     pinj = 0;
     if (s->w_slow_q24 > 0u && s->w_fast_q24 < s->w_slow_q24)
         pinj = 65536u - (uint32_t)(((uint64_t)s->w_fast_q24 << 16) / s->w_slow_q24);
-    if (pinj >= p->kidnap_q16 && (s->track_valid || s->prior != FL_MCL_PRIOR_NONE)) {
-        s->stats.kidnaps = mcl_sat_inc(s->stats.kidnaps);
-        fl_mcl_internal_drop_prior(s);
+    if (pinj >= p->kidnap_q16 && (c->track_valid || c->prior != FL_MCL_PRIOR_NONE)) {
+        kidnap = true;
+        fl_mcl_internal_drop_prior(c);
     }
     if (pinj > p->inject_max_q16)
         pinj = p->inject_max_q16;
     if (pinj < p->inject_min_q16)
         pinj = p->inject_min_q16;
     s->inject_q16 = (uint16_t)pinj;
+    return kidnap;
 }
 
 /* Adds one observation's floored negative log-likelihood to every
  * particle's sum (observation-major: one observation's constants on the
  * stack at a time). */
-static void apply_obs(fl_mcl_t *s, const obs_c_t *c, const uint16_t *tab)
+static void apply_obs(fl_mcl_t *s, const fl_mcl_obs_c_t *c, const uint16_t *tab)
 {
     const fl_mcl_particle_t *p = mcl_live_c(s);
+    fl_mcl_at_t at;
     uint16_t i;
-    for (i = 0; i < s->n; i++)
-        s->nll[i] += mixture(tab, obs_nll(s, c, p[i].x_mm, p[i].y_mm, s->trig[i][0],
-                                          s->trig[i][1], p[i].heading));
+    for (i = 0; i < s->n; i++) {
+        at.x = p[i].x_mm;
+        at.y = p[i].y_mm;
+        at.c = s->trig[i][0];
+        at.s = s->trig[i][1];
+        at.h = p[i].heading;
+        s->nll[i] += fl_mcl_internal_mixture(tab, fl_mcl_internal_obs_nll(&s->core, &s->params, c, &at));
+    }
 }
 
 /* Under ignorance the first observations replace the uniform particles by
@@ -345,7 +349,7 @@ static void seed_from_obs(fl_mcl_t *s)
 
 uint16_t fl_mcl_update(fl_mcl_t *s, const fl_obs_list_t *obs)
 {
-    obs_c_t c;
+    fl_mcl_obs_c_t c;
     uint16_t tab[MIX_N];
     uint16_t i, used = 0, nmax;
     uint32_t nmin = UINT32_MAX;
@@ -358,10 +362,10 @@ uint16_t fl_mcl_update(fl_mcl_t *s, const fl_obs_list_t *obs)
     nmax = obs->n < FL_OBS_MAX ? obs->n : FL_OBS_MAX;
     /* pass 1: the usable observations (kept for sensor resetting) */
     for (i = 0; i < nmax && used < MCL_OBS_PER_FRAME; i++)
-        if (prepare(s, &obs->obs[i], &c)) {
+        if (fl_mcl_internal_prepare(&s->core, &s->params, &obs->obs[i], &c)) {
             if (used == 0)
-                s->n_reset = 0;
-            keep_reset_obs(s, c.o);
+                s->core.n_reset = 0;
+            fl_mcl_internal_keep_reset_obs(&s->core, c.o);
             used++;
         }
     s->stats.obs_ignored += (uint32_t)(nmax - used);
@@ -371,7 +375,7 @@ uint16_t fl_mcl_update(fl_mcl_t *s, const fl_obs_list_t *obs)
         fl_mcl_internal_resample(s);
     if (s->ignorance)
         seed_from_obs(s);
-    mixture_table(s->params.outlier_q16, tab);
+    fl_mcl_internal_mixture_table(s->params.outlier_q16, tab);
     memset(s->nll, 0, sizeof s->nll);
     p = mcl_live(s);
     for (i = 0; i < s->n; i++) {
@@ -380,7 +384,7 @@ uint16_t fl_mcl_update(fl_mcl_t *s, const fl_obs_list_t *obs)
     }
     /* pass 2: the likelihoods */
     for (i = 0, used = 0; i < nmax && used < MCL_OBS_PER_FRAME; i++)
-        if (prepare(s, &obs->obs[i], &c)) {
+        if (fl_mcl_internal_prepare(&s->core, &s->params, &obs->obs[i], &c)) {
             apply_obs(s, &c, tab);
             used++;
         }
@@ -391,7 +395,8 @@ uint16_t fl_mcl_update(fl_mcl_t *s, const fl_obs_list_t *obs)
         uint32_t w = fl_mcl_internal_exp_q16(s->nll[i] - nmin);
         p[i].weight = (uint16_t)(w > 65535u ? 65535u : w);
     }
-    augment(s, used);
+    if (fl_mcl_internal_augment(&s->core, &s->params, &s->aug, s->nll, s->n, used))
+        s->stats.kidnaps = mcl_sat_inc(s->stats.kidnaps);
     s->weighted = true;
     s->ignorance = false;
     s->since_obs = 0;

@@ -22,6 +22,10 @@
 #         and fl_loc_estimate per frame, from callgrind_annotate)
 #         callgrind loc_NAME_frame_vision N instr/frame R x fuzzy
 #         callgrind loc_NAME_particle_obs N instr/particle/obs (P1..P2, K1..K2)
+#         callgrind ukf_predict / ukf_update N instr/call (the UKF step of one
+#         particle, ukf.h: every call of fl_ukf_predict_odo or
+#         fl_ukf_update_obs, inclusive, over `fieldloc ukf-check --n 2000
+#         --fixed-only`: random filter lives on a 10 m field)
 B=${1:-build}
 CLI=$B/fieldloc
 N=10
@@ -63,6 +67,9 @@ for name in $("$CLI" bench --loc-list); do
                  if (r > 0) printf "  %5.3f x fuzzy", i / r; printf "\n" }'
     if [ "$samples" -gt 0 ] 2>/dev/null; then
         p1=64; p2=256; k1=1; k2=5
+        # a localizer of fewer particles (upf: capacity 12): 4..12
+        "$CLI" bench --loc-frames "$name" --repeat 1 --param n_particles=$p2 >/dev/null 2>&1 ||
+            { p1=4; p2=12; }
         a=$(refs "$name" --param n_particles=$p1 --obs $k1); b=$(refs "$name" --param n_particles=$p1 --obs $k2)
         c=$(refs "$name" --param n_particles=$p2 --obs $k1); d=$(refs "$name" --param n_particles=$p2 --obs $k2)
         if [ -z "$a" ] || [ -z "$b" ] || [ -z "$c" ] || [ -z "$d" ]; then
@@ -73,5 +80,15 @@ for name in $("$CLI" bench --loc-list); do
             'BEGIN { printf "callgrind %-28s %10.1f instr/particle/obs  (%d..%d particles x %d..%d obs; per frame %.0f %.0f %.0f %.0f)\n",
                      n, (d - c - b + a) / N / ((p2 - p1) * (k2 - k1)), p1, p2, k1, k2, a / N, b / N, c / N, d / N }'
     fi
+done
+for f in predict update; do
+    fn=fl_ukf_predict_odo; [ $f = update ] && fn=fl_ukf_update_obs
+    valgrind --tool=callgrind --toggle-collect=$fn --callgrind-out-file="$TMP/out" \
+        "$CLI" ukf-check --n 2000 --fixed-only >"$TMP/log" 2>&1
+    i=$(sed -n 's/.*refs: *//p' "$TMP/log" | tr -d ,)
+    c=$(sed -n "s/^${f}s //p" "$TMP/log")
+    if [ -z "$i" ] || [ -z "$c" ]; then echo "callgrind ukf_$f failed"; continue; fi
+    awk -v n="ukf_$f" -v i="$i" -v c="$c" \
+        'BEGIN { printf "callgrind %-28s %10.0f instr/call  (%d calls)\n", n, i / c, c }'
 done
 rm -rf "$TMP"

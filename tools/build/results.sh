@@ -34,7 +34,9 @@
 # counts $PARTICLE_COUNTS (default 32 64 128 256 512; frames mode, RNG
 # seeds $COUNT_RNG_SEEDS, default 1-3), the counts above the default capacity
 # with a second CLI built into BUILD/p512 with $BIG_DEFS (default
-# -DFL_MCL_MAX_PARTICLES=512); `localize --uva-spots` per localizer.
+# -DFL_MCL_MAX_PARTICLES=512 -DFL_UPF_MAX_PARTICLES=64; a count beyond a
+# localizer's largest capacity is not run); `localize --uva-spots` per
+# localizer.
 # LOC_JOBS runs that many walks at a time (default: the online CPUs).
 #
 # Other knobs, for trying the script on a subset:
@@ -57,7 +59,7 @@ FRAME_SEEDS=${FRAME_SEEDS:-"1 2 3 4 5 6"}
 RNG_SEEDS=${RNG_SEEDS:-"1 2 3 4 5"}
 PARTICLE_COUNTS=${PARTICLE_COUNTS:-"32 64 128 256 512"}
 COUNT_RNG_SEEDS=${COUNT_RNG_SEEDS:-"1 2 3"}
-BIG_DEFS=${BIG_DEFS:-"-DFL_MCL_MAX_PARTICLES=512"}
+BIG_DEFS=${BIG_DEFS:-"-DFL_MCL_MAX_PARTICLES=512 -DFL_UPF_MAX_PARTICLES=64"}
 LOC_JOBS=${LOC_JOBS:-$(nproc)}
 OBS_CACHE_DIR=${OBS_CACHE_DIR:-}
 SKIP_BENCH=${SKIP_BENCH:-0}

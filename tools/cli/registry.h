@@ -32,7 +32,8 @@
     X(replay, "--stream FILE [--localizer NAME]: a localizer on an input stream") \
     X(reliability, "reliability diagram and calibration check (held-out walks)") \
     X(demo, "the bundled walk, with pictures")                                \
-    X(bench, "[--out FILE.tsv]: benchmarks")
+    X(bench, "[--out FILE.tsv]: benchmarks")                                  \
+    X(ukf_check, "[--n N] [--seed S]: the fixed-point UKF step against double")
 
 #define FL_DECL_CMD(name, help) int cmd_##name(int argc, char **argv) FL_WEAK;
 FL_COMMANDS(FL_DECL_CMD)

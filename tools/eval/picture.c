@@ -251,9 +251,30 @@ static int pic_sample_cmp(const void *pa, const void *pb)
     return (a->weight_q16 > b->weight_q16) - (a->weight_q16 < b->weight_q16);
 }
 
+/* The 2-sd ellipse of a position covariance (sd_x, sd_y, cov_xy) at
+ * (x, y), from its Cholesky factor (l11, 0; l21, l22); dotted: every
+ * other segment. */
+static void pic_ellipse2(host_image_t *out, const pic_map_t *m, int32_t x, int32_t y,
+                         double sd_x, double sd_y, double cov_xy, const uint8_t *col,
+                         int dotted)
+{
+    double l11 = sd_x, l21 = cov_xy / l11, r = sd_y * sd_y - l21 * l21, l22 = r > 0 ? sqrt(r) : 0;
+    int j, steps = 96;
+    for (j = 0; j < steps; j++) {
+        double t = 2 * PIC_PI * j / steps, c = 2 * cos(t), d = 2 * sin(t), u0, v0, u1, v1;
+        double t1 = 2 * PIC_PI * (j + 1) / steps, c1 = 2 * cos(t1), d1 = 2 * sin(t1);
+        if (dotted && (j & 1))
+            continue;
+        pic_to_px(m, x + l11 * c, y + l21 * c + l22 * d, &u0, &v0);
+        pic_to_px(m, x + l11 * c1, y + l21 * c1 + l22 * d1, &u1, &v1);
+        pic_line(out, u0, v0, u1, v1, col, 0);
+    }
+}
+
 /* Samples as dots with a heading tick, the lighter first (the cluster's
  * and the heavy ones stay on top), then the cluster's spread: the
- * estimate's 2-sd ellipse (from sd_x, sd_y and cov_xy) dotted. */
+ * estimate's 2-sd ellipse (from sd_x, sd_y and cov_xy) dotted; a sample
+ * with a spread of its own (upf) is drawn with its 2-sd ellipse. */
 static int pic_draw_samples(host_image_t *out, const pic_map_t *m, int s,
                             const fl_localizer_t *loc, const void *state,
                             const fl_loc_estimate_t *est)
@@ -279,22 +300,15 @@ static int pic_draw_samples(host_image_t *out, const pic_map_t *m, int s,
         pic_to_px(m, sp[i].x_mm, sp[i].y_mm, &a, &b);
         pic_line(out, a, b, a + L * cos(h), b - L * sin(h), col, 0);
         pic_square(out, a, b, s >= 24 ? 2 : s >= 6 ? 1 : 0, col, col);
+        /* a sample that carries a Gaussian (upf): its 2-sd ellipse */
+        if (sp[i].sd_x_mm > 0 && sp[i].sd_y_mm > 0)
+            pic_ellipse2(out, m, sp[i].x_mm, sp[i].y_mm, sp[i].sd_x_mm, sp[i].sd_y_mm,
+                         sp[i].cov_xy_mm2, col, 0);
     }
     free(sp);
     if (est != NULL && est->state != FL_LOC_LOST && est->sd_x_mm > 0 && est->sd_y_mm > 0) {
-        /* Cholesky factor of the covariance: (l11, 0; l21, l22) */
-        double l11 = est->sd_x_mm, l21 = est->cov_xy_mm2 / l11,
-               r = (double)est->sd_y_mm * est->sd_y_mm - l21 * l21, l22 = r > 0 ? sqrt(r) : 0;
-        int j, steps = 96;
-        for (j = 0; j < steps; j++) {
-            double t = 2 * PIC_PI * j / steps, c = 2 * cos(t), d = 2 * sin(t), u0, v0, u1, v1;
-            double t1 = 2 * PIC_PI * (j + 1) / steps, c1 = 2 * cos(t1), d1 = 2 * sin(t1);
-            if (j & 1)
-                continue;
-            pic_to_px(m, est->x_mm + l11 * c, est->y_mm + l21 * c + l22 * d, &u0, &v0);
-            pic_to_px(m, est->x_mm + l11 * c1, est->y_mm + l21 * c1 + l22 * d1, &u1, &v1);
-            pic_line(out, u0, v0, u1, v1, lime, 0);
-        }
+        pic_ellipse2(out, m, est->x_mm, est->y_mm, est->sd_x_mm, est->sd_y_mm,
+                     est->cov_xy_mm2, lime, 1);
     }
     return 0;
 }
