@@ -5,6 +5,7 @@
  * configuration fingerprint, seed determinism, and a simulated walk.
  */
 #include "test.h"
+#include "loc_walk.h"
 #include "fieldloc/fieldloc.h"
 #include "world/sim.h"
 
@@ -393,48 +394,14 @@ static void test_priors(void)
  * others; the filter converges from the own-half prior. */
 static double walk(const char *name, int32_t seed, uint32_t steps, uint32_t *hash)
 {
-    char path[256], err[256];
-    static sim_scenario_t sc;
-    static sim_t sim;
-    static sim_step_t st;
-    const fl_localizer_t *loc = fl_localizer_find("mcl");
-    fl_mcl_params_t pp;
-    void *s = malloc(loc->state_size);
-    uint32_t n = 0, h = t_hash_init(), used = 0;
-    double se = 0;
+    t_loc_walk_t w;
+    void *s = t_loc_walk("mcl", name, seed, steps, NULL, &w);
     if (s == NULL)
         return 1e9;
-    snprintf(path, sizeof path, "fixtures/walks/%s.walk", name);
-    loc->params_default(&pp);
-    fl_localizer_param_set(loc, &pp, "seed", seed);
-    if (sim_scenario_load(&sc, path, err, sizeof err) != 0 || sim_init(&sim, &sc) != 0 ||
-        fl_loc_init(loc, s, sc.field, &pp) != FL_OK) {
-        t_fail_msg(__FILE__, __LINE__, "%s: %s", path, err);
-        free(s);
-        return 1e9;
-    }
-    loc->set_prior_half(s, sc.start_x_mm < 0 ? -1 : 1);
-    while (n < steps && sim_step(&sim, &st)) {
-        fl_loc_estimate_t e;
-        fl_loc_predict(loc, s, st.odo_dx_mm, st.odo_dy_mm, st.odo_dtheta);
-        if (st.events & SIM_EV_PENALIZED)
-            loc->reset_penalty(s, (int32_t)sc.penalty_x_mm, 300, 2730);
-        used += fl_loc_update(loc, s, &st.obs, NULL);
-        CHECK(fl_loc_estimate(loc, s, &e));
-        h = t_hash_i32(h, e.x_mm);
-        h = t_hash_i32(h, e.y_mm);
-        h = t_hash_i32(h, e.heading);
-        if (st.t_ms >= 5000) {
-            double dx = e.x_mm - st.x_mm, dy = e.y_mm - st.y_mm;
-            se += dx * dx + dy * dy;
-        }
-        n++;
-    }
-    CHECK(fl_loc_check(loc, s));
-    CHECK(used > n);
+    CHECK(w.obs_used > w.steps);
     free(s);
-    *hash = h;
-    return sqrt(se / (n > 150 ? n - 150 : 1));
+    *hash = w.hash;
+    return w.rmse_mm;
 }
 
 static void test_walk_seeds(void)

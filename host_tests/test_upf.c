@@ -5,6 +5,7 @@
  * many random updates, the repair counters, the in-place resampling.
  */
 #include "test.h"
+#include "loc_walk.h"
 #include "fieldloc/fieldloc.h"
 #include "fieldloc/upf.h"
 #include "world/sim.h"
@@ -99,58 +100,28 @@ static void test_params_config(void)
     free(st);
 }
 
+static bool all_valid_v(const void *s)
+{
+    return all_valid((const fl_upf_t *)s);
+}
+
 /* A short feature walk from the own-half prior through the interface. */
 static double walk(const char *name, int32_t seed, uint32_t steps, uint32_t *hash)
 {
-    char path[256], err[256];
-    static sim_scenario_t sc;
-    static sim_t sim;
-    static sim_step_t st;
-    const fl_localizer_t *loc = fl_localizer_find("upf");
-    fl_upf_params_t pp;
-    fl_upf_t *s = malloc(loc->state_size);
-    uint32_t n = 0, h = t_hash_init(), used = 0;
-    double se = 0;
+    t_loc_walk_t w;
+    fl_upf_t *s = (fl_upf_t *)t_loc_walk("upf", name, seed, steps, all_valid_v, &w);
     if (s == NULL)
         return 1e9;
-    snprintf(path, sizeof path, "fixtures/walks/%s.walk", name);
-    loc->params_default(&pp);
-    fl_localizer_param_set(loc, &pp, "seed", seed);
-    if (sim_scenario_load(&sc, path, err, sizeof err) != 0 || sim_init(&sim, &sc) != 0 ||
-        fl_loc_init(loc, s, sc.field, &pp) != FL_OK) {
-        t_fail_msg(__FILE__, __LINE__, "%s: %s", path, err);
-        free(s);
-        return 1e9;
-    }
-    loc->set_prior_half(s, sc.start_x_mm < 0 ? -1 : 1);
-    while (n < steps && sim_step(&sim, &st)) {
-        fl_loc_estimate_t e;
-        fl_loc_predict(loc, s, st.odo_dx_mm, st.odo_dy_mm, st.odo_dtheta);
-        used += fl_loc_update(loc, s, &st.obs, NULL);
-        CHECK(fl_loc_estimate(loc, s, &e));
-        h = t_hash_i32(h, e.x_mm);
-        h = t_hash_i32(h, e.y_mm);
-        h = t_hash_i32(h, e.heading);
-        if (st.t_ms >= 5000) {
-            double dx = e.x_mm - st.x_mm, dy = e.y_mm - st.y_mm;
-            se += dx * dx + dy * dy;
-        }
-        if ((n & 63u) == 0u)
-            CHECK(fl_loc_check(loc, s) && all_valid(s));
-        n++;
-    }
-    CHECK(fl_loc_check(loc, s));
-    CHECK(all_valid(s));
-    CHECK(used > n);
+    CHECK(w.obs_used > w.steps);
     t_info("%s seed %d: %u UKF updates, %u resamplings, %u injected, repairs floors %u caps %u "
            "not_pd %u", name, (int)seed, (unsigned)s->stats.ukf_updates,
            (unsigned)s->stats.resamples, (unsigned)s->stats.injected,
            (unsigned)s->stats.repairs.floors, (unsigned)s->stats.repairs.caps,
            (unsigned)s->stats.repairs.not_pd);
-    CHECK(s->stats.ukf_updates > n);
+    CHECK(s->stats.ukf_updates > w.steps);
     free(s);
-    *hash = h;
-    return sqrt(se / (n > 150 ? n - 150 : 1));
+    *hash = w.hash;
+    return w.rmse_mm;
 }
 
 static void test_walk(void)
