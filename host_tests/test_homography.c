@@ -25,8 +25,11 @@
  *    (measured 0.31 mm); four pairs reproduce themselves within 1/8 mm.
  *  - the camera model (test_camera_truth): 11 of the 17 points in view,
  *    725 ground points on a 250 mm grid: image -> field within 1 mm +
- *    0.2% of the range x 4 (measured: 0.36 of that; at most 3.2 mm within
- *    5 m), field -> image within 1 px (measured 0.20 px).
+ *    0.2% of the range (measured: 0.36 of that; at most 3.2 mm within
+ *    5 m), field -> image within 1 px (measured 0.20 px).  The truth is
+ *    the camera model's own pixel_to_ground of the same Q4 pixel, so the
+ *    error is the fit's (the 17 points' pixels rounded to 1/16 px) plus
+ *    the camera model's fixed-point error (camera.h: 1 mm + 0.1%).
  */
 #include "test.h"
 #include "fieldloc/homography.h"
@@ -361,7 +364,7 @@ static void test_camera_truth(void)
     fl_homog_error_t e;
     size_t nf, i, n = 0;
     int32_t X, Y;
-    double worst = 0, worst_near = 0, worst_px = 0;
+    double worst = 0, worst_near = 0, worst_all = 0, worst_px = 0;
     int cnt = 0;
     coach_camera(&cam);
     nf = fl_homog_field_points(f, fp, FL_HOMOG_FIELD_POINTS);
@@ -401,6 +404,7 @@ static void test_camera_truth(void)
             d = hypot(hf.x_mm - cx, hf.y_mm - cy);
             range = hypot(g.x_mm, g.y_mm);
             worst = fmax(worst, d / (1 + 0.002 * range));
+            worst_all = fmax(worst_all, d);
             if (range <= 5000)
                 worst_near = fmax(worst_near, d);
             CHECK_EQ(fl_homog_field_to_image(&h, (fl_point_t){X, Y}, &hu, &hv), FL_HOMOG_OK);
@@ -408,10 +412,10 @@ static void test_camera_truth(void)
             cnt++;
         }
     t_info("coach camera vs camera model: %d ground points, within 5 m max %.1f mm, "
-           "max error / (1 mm + 0.2%% of range) %.2f, field -> image max %.2f px",
-           cnt, worst_near, worst, worst_px);
+           "all max %.1f mm, max error / (1 mm + 0.2%% of range) %.2f, field -> image max "
+           "%.2f px", cnt, worst_near, worst_all, worst, worst_px);
     CHECK(cnt > 300);
-    CHECK_LE(worst, 4.0);
+    CHECK_LE(worst, 1.0);
     CHECK_LE(worst_px, 1.0);
 }
 
@@ -481,15 +485,18 @@ static void test_degenerate(void)
     set4(p, uv, xy);
     p[3].y_mm = INT32_MIN;
     CHECK_EQ(fl_homog_fit(&h, p, 4), FL_HOMOG_RANGE);
-    /* points on both sides of the horizon: a quadrilateral whose order is
-     * flipped in one view cannot come from one camera */
+    /* a convex quadrilateral onto a crossed one (two adjacent corners
+     * swapped): the exact map puts the horizon line through it, so its
+     * corners lie on both sides; two opposite corners swapped is a mirror
+     * image, which a homography maps fine */
+    set4(p, uv, xy);
+    p[0].x_mm = 1500;
+    p[1].x_mm = -1500;
+    CHECK_EQ(fl_homog_fit(&h, p, 4), FL_HOMOG_DEGENERATE);
     set4(p, uv, xy);
     p[0].x_mm = 1500; p[0].y_mm = 2000;
     p[2].x_mm = -1500; p[2].y_mm = -2000;
-    {
-        fl_homog_status_t st = fl_homog_fit(&h, p, 4);
-        CHECK(st == FL_HOMOG_DEGENERATE || st == FL_HOMOG_OK);
-    }
+    CHECK_EQ(fl_homog_fit(&h, p, 4), FL_HOMOG_OK);
     /* mapping: the horizon and beyond, out of range, NULL */
     set4(p, uv, xy);
     CHECK_EQ(fl_homog_fit(&h, p, 4), FL_HOMOG_OK);

@@ -26,7 +26,6 @@ typedef struct {
     int32_t e;
 } hf_t;
 
-#define HF_LO (1L << 29)
 #define HF_HI (1L << 30)
 /* a pivot this many binary orders below the largest entry: singular */
 #define SINGULAR_BITS 24
@@ -434,8 +433,10 @@ static fl_homog_status_t map_point(const map_t *mp, int32_t in_x, int32_t in_y,
         if (w <= 0)
             return FL_HOMOG_RANGE;
     }
-    *ox = ((int64_t)mp->dst_c[0] << mp->out_shift) + div_round64(nx * ((int64_t)1 << g), w);
-    *oy = ((int64_t)mp->dst_c[1] << mp->out_shift) + div_round64(ny * ((int64_t)1 << g), w);
+    *ox = (int64_t)mp->dst_c[0] * ((int64_t)1 << mp->out_shift) +
+          div_round64(nx * ((int64_t)1 << g), w);
+    *oy = (int64_t)mp->dst_c[1] * ((int64_t)1 << mp->out_shift) +
+          div_round64(ny * ((int64_t)1 << g), w);
     if (*ox > mp->limit || *ox < -mp->limit || *oy > mp->limit || *oy < -mp->limit)
         return FL_HOMOG_RANGE;
     return FL_HOMOG_OK;
