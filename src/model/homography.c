@@ -6,10 +6,11 @@
  * exponent.  Products and quotients of two mantissas fit int64; sums align
  * the smaller operand to the larger one's exponent with 32 guard bits.
  * Every operation rounds once, so the relative error per step is about
- * 2^-30 (1e-9); the normal equations of normalised points have condition
- * numbers around 1e3..1e5, which leaves the fitted map good to about 1e-5
- * relative, i.e. well under 0.1 mm over a 9 m field.  All of it is integer
- * arithmetic, identical on every target.
+ * 2^-30 (1e-9), amplified by the condition of the system (squared for the
+ * normal equations; the normalisation keeps it small): against a double
+ * DLT on the same inputs the fitted map agrees within 0.05 mm over a 9 x 6 m
+ * field seen from 640 x 480 (host_tests/test_homography.c).  All of it is
+ * integer arithmetic, identical on every target.
  *
  * Scaling of the mappings.  A pixel is |u| <= 2^20 (Q4), its offset from
  * the centroid below 2^21, the entries |h| <= 2^30 and 2^shift <= 2^21, so
