@@ -252,6 +252,17 @@
 #error "FL_BEACON_MAX_FOUND must be in 1..32"
 #endif
 
+/* ---- homography (homography.h, seed 003) ---------------------------------
+ * FL_HOMOG_MAX_POINTS  correspondences one fit accepts.  Default 17 (the
+ *                    field points seed 003 names).  Range 4..64.  No struct
+ *                    is sized by it; it bounds the fit's work. */
+#ifndef FL_HOMOG_MAX_POINTS
+#define FL_HOMOG_MAX_POINTS 17
+#endif
+#if FL_HOMOG_MAX_POINTS < 4 || FL_HOMOG_MAX_POINTS > 64
+#error "FL_HOMOG_MAX_POINTS must be in 4..64"
+#endif
+
 /* ---- the configuration fingerprint ---------------------------------------
  * FNV-1a over 32-bit words: the layout version, then every option above
  * (each one guarded by #ifndef in this file; the host test config.
@@ -266,7 +277,7 @@
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
-    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
     FL_ABI_VERSION), \
     FL_IMAGE_MAX_DIM), \
     FL_FUZZY_CELL_MM), FL_FUZZY_MAX_NX), FL_FUZZY_MAX_NY), \
@@ -276,6 +287,7 @@
     FL_LINES_WTAB), FL_CROSSINGS_MAX), FL_GOAL_MAX_POSTS), \
     FL_CIRCLE_MAX_CHORDS), FL_CIRCLE_MAX_POINTS), FL_LINES_NEAR_MAX), \
     FL_OBS_MAX), \
-    FL_BEACON_MAX_RUNS), FL_BEACON_MAX_BLOBS), FL_BEACON_MAX_FOUND)))
+    FL_BEACON_MAX_RUNS), FL_BEACON_MAX_BLOBS), FL_BEACON_MAX_FOUND), \
+    FL_HOMOG_MAX_POINTS)))
 
 #endif /* FIELDLOC_CONFIG_H */

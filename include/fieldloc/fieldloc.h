@@ -17,6 +17,7 @@
 #include "fieldloc/camera.h"
 #include "fieldloc/calib.h"
 #include "fieldloc/field.h"
+#include "fieldloc/homography.h"
 #include "fieldloc/obs.h"
 #include "fieldloc/lines.h"
 #include "fieldloc/circle.h"

@@ -34,6 +34,7 @@ HEADER_LAYER = {
     "common.h": "base", "config.h": "base", "fixed.h": "base", "image.h": "base",
     "text.h": "base",            # the text formats' words, numbers, writer
     "camera.h": "model", "calib.h": "model", "field.h": "model",
+    "homography.h": "model",     # image <-> field plane geometry, like camera.h
     "obs.h": "obs",              # the seam between vision and localization
     "color.h": "vision", "scan.h": "vision", "lines.h": "vision",
     "crossings.h": "vision", "circle.h": "vision", "goal.h": "vision",
