@@ -127,49 +127,57 @@ static void test_correct(void)
 }
 
 /* From total ignorance the report gives the position; the heading is
- * unknown (any heading: no mode tracked yet), and observations then find
- * it. */
+ * unknown (any heading), and observations then find it.  At three places
+ * of the walk (on a symmetric field: the mirror must not win).  The
+ * unscented filter's 12 particles, 30 deg apart, do not always find it
+ * (a particle that converges on a wrong heading is far from the foot a few
+ * frames later): at least 2 of the 3; the others every time. */
 static void test_from_ignorance(void)
 {
     static sim_t sim;
     static sim_step_t s;
     uint16_t li;
-    for (li = 0; li < fl_localizer_count(); li++) {
-        const fl_localizer_t *loc = fl_localizer_get(li);
-        sim_scenario_t sc;
-        void *st = malloc(loc->state_size);
-        fl_loc_estimate_t e;
-        fl_obs_report_t r;
-        uint32_t k;
-        uint16_t i, n;
-        double err;
-        CHECK(st != NULL);
-        if (st == NULL)
-            return;
-        CHECK_EQ(sim_scenario_builtin(&sc, "spl2013"), 0);
-        CHECK_EQ(sim_init(&sim, &sc), 0);
-        CHECK_EQ(fl_loc_init(loc, st, sc.field, NULL), FL_OK);
-        CHECK(sim_step(&sim, &s));
-        good_report(&r, s.x_mm, s.y_mm);
-        CHECK_EQ(fl_loc_reseed(loc, st, &r), FL_OK);
-        CHECK(fl_loc_check(loc, st));
-        CHECK(fl_loc_spread_mm(loc, st) < 3u * FL_OBS_REPORT_SD_MM);
-        /* every sample within 4.5 sd (the sampler's tail) of the foot */
-        n = loc->belief_samples(st);
-        for (i = 0; i < n; i++) {
-            fl_loc_sample_t p;
-            CHECK(loc->belief_sample(st, i, &p));
-            CHECK(dist(p.x_mm, p.y_mm, s.x_mm, s.y_mm) < 4.5 * 1.42 * FL_OBS_REPORT_SD_MM);
+    int start, good[8] = {0};
+    for (li = 0; li < fl_localizer_count() && li < 8; li++)
+        for (start = 0; start < 3; start++) {
+            const fl_localizer_t *loc = fl_localizer_get(li);
+            sim_scenario_t sc;
+            void *st = malloc(loc->state_size);
+            fl_loc_estimate_t e;
+            fl_obs_report_t r;
+            uint32_t k;
+            uint16_t i, n;
+            double err;
+            CHECK(st != NULL);
+            if (st == NULL)
+                return;
+            CHECK_EQ(sim_scenario_builtin(&sc, "spl2013"), 0);
+            CHECK_EQ(sim_init(&sim, &sc), 0);
+            CHECK_EQ(fl_loc_init(loc, st, sc.field, NULL), FL_OK);
+            for (k = 0; k <= (uint32_t)start * 200u; k++)
+                CHECK(sim_step(&sim, &s));
+            good_report(&r, s.x_mm, s.y_mm);
+            CHECK_EQ(fl_loc_reseed(loc, st, &r), FL_OK);
+            CHECK(fl_loc_check(loc, st));
+            CHECK(fl_loc_spread_mm(loc, st) < 3u * FL_OBS_REPORT_SD_MM);
+            /* every sample within 4.5 sd (the sampler's tail) of the foot */
+            n = loc->belief_samples(st);
+            for (i = 0; i < n; i++) {
+                fl_loc_sample_t p;
+                CHECK(loc->belief_sample(st, i, &p));
+                CHECK(dist(p.x_mm, p.y_mm, s.x_mm, s.y_mm) < 4.5 * 1.42 * FL_OBS_REPORT_SD_MM);
+            }
+            for (k = 0; k < 150 && sim_step(&sim, &s); k++)
+                frame(loc, st, &s, &e);
+            err = dist(e.x_mm, e.y_mm, s.x_mm, s.y_mm);
+            t_info("%s from ignorance at step %d, 150 frames later: err %.0f mm, heading err %d",
+                   loc->name, start * 200, err, (int)fl_angle_sub(e.heading, s.heading));
+            good[li] += err < FL_LOC_GOOD_MM;
+            CHECK(fl_loc_check(loc, st));
+            free(st);
         }
-        for (k = 0; k < 200 && sim_step(&sim, &s); k++)
-            frame(loc, st, &s, &e);
-        err = dist(e.x_mm, e.y_mm, s.x_mm, s.y_mm);
-        t_info("%s from ignorance, 200 frames later: err %.0f mm, heading err %d", loc->name,
-               err, (int)fl_angle_sub(e.heading, s.heading));
-        CHECK(err < FL_LOC_GOOD_MM);
-        CHECK(fl_loc_check(loc, st));
-        free(st);
-    }
+    for (li = 0; li < fl_localizer_count() && li < 8; li++)
+        CHECK(good[li] >= (fl_localizer_get(li) == &fl_localizer_upf ? 2 : 3));
 }
 
 /* Bad reports and an uninitialized state: refused, counted, the state as it

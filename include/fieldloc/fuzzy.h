@@ -467,7 +467,7 @@ void fl_fuzzy_clear_prior(fl_fuzzy_t *g);
  * disc alone, with the current estimate's heading (core max(pi/8, its
  * heading sd), slope twice that; any heading when the estimate tells
  * none), counted in stats.reseed_replaced.  The foot becomes the tracked
- * mode (with the heading known) and the half known, the consistency fresh,
+ * mode (with the estimate's heading) and the half known, the consistency fresh,
  * as fl_fuzzy_reset_pose; the prior kept.  FL_OK; FL_ERR_STATE
  * (uninitialized); fl_obs_report_check's refusals (counted in
  * stats.reseeds_refused, the grid unchanged). */

@@ -261,7 +261,8 @@ void fl_mcl_clear_prior(fl_mcl_t *s);
 /* Re-seeding from an observer's report (obs.h; seed 003 section 3.4):
  * every particle drawn again from N(foot, report sd) in position and
  * N(the current estimate's heading, max(pi/8, its heading sd)) in heading
- * (any heading when the estimate tells none), weights equal, the foot
+ * (when the estimate tells none: n headings evenly spaced over the turn
+ * from a random start, no mode tracked), weights equal, the foot
  * tracked, as fl_mcl_reset_pose does with that uncertainty (the prior
  * kept).  FL_OK; FL_ERR_STATE (uninitialized); fl_obs_report_check's
  * refusals (counted in stats.reseeds_refused, the state unchanged). */

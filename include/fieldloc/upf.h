@@ -164,7 +164,7 @@ void fl_upf_clear_prior(fl_upf_t *s);
 
 /* Re-seeding, as fl_mcl_reseed; each particle's Gaussian restarts at its
  * draw with the draw's covariance (diagonal: the report's sd, the heading
- * sd drawn with). */
+ * sd drawn with; with headings evenly spaced, half their spacing). */
 fl_status_t fl_upf_reseed(fl_upf_t *s, const fl_obs_report_t *r);
 /* The mixture's spread (its particles' means and covariances, weighted),
  * as fl_mcl_spread_mm. */

@@ -117,15 +117,19 @@ fl_status_t fl_fuzzy_reseed(fl_fuzzy_t *g, const fl_obs_report_t *r)
         g->stats.reseed_replaced = fz_sat_inc(g->stats.reseed_replaced);
     }
     fl_fuzzy_internal_normalize(g, peak);
-    /* as a pose reset: the foot tracked (with a heading to track), the
-     * half known, the consistency fresh; the disc has no mirror */
+    /* as a pose reset: the foot tracked, the half known, the consistency
+     * fresh; the disc has no mirror.  The foot is tracked even when the
+     * heading is unknown: on a symmetric field the next update makes the
+     * mirror as possible, and only the track's position keeps the estimate
+     * at the foot (the estimate takes the cells' dominant heading when
+     * they disagree with the track's) */
     g->blur_acc_mm = 0;
     g->consistency_q16 = 65535;
     g->contra_run = 0;
     g->contra_rate_q8 = 0;
     g->sym_exact = false;
     g->half_known = true;
-    g->track_valid = known;
+    g->track_valid = true;
     g->track_x_mm = fz_clamp32(r->x_mm, -g->half_x_mm, g->half_x_mm);
     g->track_y_mm = fz_clamp32(r->y_mm, -g->half_y_mm, g->half_y_mm);
     g->track_heading = e.heading;

@@ -502,11 +502,16 @@ void fl_mcl_internal_core_reseed(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_
                                  const fl_mcl_paint_t *pose, bool heading_known)
 {
     uint16_t i;
+    uint32_t base;
     fl_mcl_internal_core_pose(c, p, n, pose);
-    if (heading_known)
+    if (heading_known || n == 0)
         return;
+    /* any heading, stratified: n evenly spaced headings from one random
+     * start (a few particles, the UPF's 12, would leave gaps of random
+     * width that observations cannot fill) */
+    base = fl_mcl_rand(&c->rng) >> 16;
     for (i = 0; i < n; i++)
-        p[i].heading = (fl_angle_t)(int32_t)(int16_t)(uint16_t)(fl_mcl_rand(&c->rng) >> 16);
+        p[i].heading = fl_angle_wrap((int32_t)((base + ((uint32_t)i << 16) / n) & 0xFFFFu));
     c->track_valid = false;
 }
 

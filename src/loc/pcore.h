@@ -64,8 +64,9 @@ void fl_mcl_internal_core_clear_prior(fl_mcl_core_t *c);
  * 90 deg or more): the draw then takes any heading. */
 bool fl_mcl_internal_reseed_paint(const fl_obs_report_t *r, const fl_mcl_estimate_t *e,
                                   fl_mcl_paint_t *pose);
-/* core_pose with that paint (the foot tracked); with !heading_known each
- * particle's heading uniform instead and no mode tracked. */
+/* core_pose with that paint (the foot tracked); with !heading_known the
+ * headings evenly spaced over the turn from a random start instead (n
+ * headings 360/n deg apart) and no mode tracked. */
 void fl_mcl_internal_core_reseed(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
                                  const fl_mcl_paint_t *pose, bool heading_known);
 /* The belief's spread (localizer.h spread_mm): sqrt of the weighted

@@ -305,6 +305,8 @@ fl_status_t fl_upf_reseed(fl_upf_t *s, const fl_obs_report_t *r)
     known = fl_mcl_internal_reseed_paint(r, &e, &c);
     fresh(s);
     fl_mcl_internal_core_reseed(&s->core, s->part, s->n, &c, known);
+    if (!known)   /* headings 360/n apart: each covers half the gap (sd) */
+        c.heading_unc = (fl_angle_t)(s->n < 3 ? 32767 : 65536 / s->n);
     reset_cov(s, &c);
     s->drawn = false;
     s->ignorance = false;
