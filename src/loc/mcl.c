@@ -515,14 +515,31 @@ void fl_mcl_internal_core_reseed(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_
     c->track_valid = false;
 }
 
+/* A particle's position, folded onto the track's side of the mirror when
+ * fold (the nearer of itself and its mirror to the track). */
+static void spread_point(const fl_mcl_core_t *c, bool fold, const fl_mcl_particle_t *p,
+                         int64_t *x, int64_t *y)
+{
+    int64_t px = p->x_mm, py = p->y_mm;
+    if (fold) {
+        int64_t dx = px - c->track_x_mm, dy = py - c->track_y_mm;
+        int64_t ex = -px - c->track_x_mm, ey = -py - c->track_y_mm;
+        if (ex * ex + ey * ey < dx * dx + dy * dy) {
+            px = -px;
+            py = -py;
+        }
+    }
+    *x = px;
+    *y = py;
+}
+
 /* Scaling: |x| <= 2^15, weights < 2^16, n <= 2^8: sums of w x below 2^39,
  * of w dx^2 below 2^56. */
 uint32_t fl_mcl_internal_spread(const fl_mcl_core_t *c, const fl_mcl_particle_t *p, uint16_t n,
                                 const uint32_t *var)
 {
     uint64_t w = 0, sq = 0;
-    int64_t sx = 0, sy = 0;
-    int32_t mx, my;
+    int64_t sx = 0, sy = 0, mx, my;
     bool fold = c->track_valid && c->field->symmetric, flat;
     uint16_t i;
     for (i = 0; i < n; i++)
@@ -533,32 +550,18 @@ uint32_t fl_mcl_internal_spread(const fl_mcl_core_t *c, const fl_mcl_particle_t 
     if (w == 0u)
         return 0;
     for (i = 0; i < n; i++) {
-        int32_t x = p[i].x_mm, y = p[i].y_mm;
+        int64_t x, y;
         uint64_t pw = flat ? 1u : p[i].weight;
-        if (fold) {
-            int64_t dx = x - c->track_x_mm, dy = y - c->track_y_mm;
-            int64_t mx2 = -x - c->track_x_mm, my2 = -y - c->track_y_mm;
-            if (mx2 * mx2 + my2 * my2 < dx * dx + dy * dy) {
-                x = -x;
-                y = -y;
-            }
-        }
+        spread_point(c, fold, &p[i], &x, &y);
         sx += (int64_t)pw * x;
         sy += (int64_t)pw * y;
     }
-    mx = (int32_t)(sx / (int64_t)w);
-    my = (int32_t)(sy / (int64_t)w);
+    mx = sx / (int64_t)w;
+    my = sy / (int64_t)w;
     for (i = 0; i < n; i++) {
-        int64_t x = p[i].x_mm, y = p[i].y_mm;
+        int64_t x, y;
         uint64_t pw = flat ? 1u : p[i].weight;
-        if (fold) {
-            int64_t dx = x - c->track_x_mm, dy = y - c->track_y_mm;
-            int64_t mx2 = -x - c->track_x_mm, my2 = -y - c->track_y_mm;
-            if (mx2 * mx2 + my2 * my2 < dx * dx + dy * dy) {
-                x = -x;
-                y = -y;
-            }
-        }
+        spread_point(c, fold, &p[i], &x, &y);
         x -= mx;
         y -= my;
         sq += pw * (uint64_t)(x * x + y * y);
