@@ -11,10 +11,13 @@
  *           2 estimate, 3 reset ignorance, 4 reset pose, 5 penalty
  *           placement, 6 prior half, 7 prior pose, 8 clear prior,
  *           9 update with one observation repeated FL_OBS_MAX times and a
- *           view, 10 samples and possibility, 11 empty update
+ *           view, 10 samples and possibility, 11 empty update, or (byte 1
+ *           bit 7) a re-seed from a report built from the record (any
+ *           position, sd, confidence, age) and the spread query
  * After every operation the localizer's check must hold; every estimate
  * must lie on the carpet with its spread and state in range; every sample
- * must lie within the carpet plus a 1 m margin.
+ * must lie within the carpet plus a 1 m margin; a re-seed is accepted or
+ * refused with a report's status, and the spread is finite.
  */
 #include "fieldloc/fieldloc.h"
 
@@ -81,6 +84,26 @@ static void check_samples(const fl_localizer_t *loc, const fl_field_t *f)
             abort();
     }
     if (loc->belief_sample(state.b, n, &s))
+        abort();
+}
+
+static void reseed_from(const fl_localizer_t *loc, const uint8_t *r)
+{
+    fl_obs_report_t rep;
+    fl_status_t st;
+    uint32_t sp;
+    memset(&rep, 0, sizeof rep);
+    rep.x_mm = (r[2] & 0x80) ? rd32(r + 2) : rd16(r + 2);
+    rep.y_mm = (r[6] & 0x80) ? rd32(r + 6) : rd16(r + 6);
+    rep.sd_mm = rd16(r + 10);
+    rep.confidence = r[12];
+    rep.age_ms = rd16(r + 13);
+    rep.team = r[15];
+    st = fl_loc_reseed(loc, state.b, &rep);
+    if (st != FL_OK && st != FL_ERR_RANGE && st != FL_ERR_STALE)
+        abort();
+    sp = fl_loc_spread_mm(loc, state.b);
+    if (sp > 100000u)
         abort();
 }
 
@@ -163,6 +186,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             (void)loc->possibility_q16(state.b, rd32(r + 1), rd32(r + 5), rd16(r + 9));
             break;
         default:
+            if (r[1] & 0x80) {
+                reseed_from(loc, r);
+                break;
+            }
             fl_obs_list_clear(&list);
             (void)loc->update(state.b, &list, NULL);
             break;

@@ -51,8 +51,11 @@ typedef enum {
                               FINGERPRINT differs */
     FL_ERR_MISMATCH = -8,  /* a frame whose size differs from the camera
                               model's width_px x height_px */
-    FL_ERR_CAMERA = -9     /* a camera that is not initialized (its
+    FL_ERR_CAMERA = -9,    /* a camera that is not initialized (its
                               fl_camera_init failed or never ran) */
+    FL_ERR_STALE = -10,    /* a report older than its limit (obs.h) */
+    FL_ERR_STATE = -11     /* a localizer state that is not initialized
+                              (its init failed or never ran) */
 } fl_status_t;
 
 /* A point or vector in a metric frame (robot or field), millimetres. */

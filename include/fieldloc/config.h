@@ -30,7 +30,7 @@
  * a public struct that an init function takes changes shape (a field
  * added, removed, retyped or moved), so that a caller compiled against
  * the old headers gets FL_ERR_CONFIG instead of a wrong layout. */
-#define FL_ABI_VERSION 4
+#define FL_ABI_VERSION 5
 
 /* Largest image width or height accepted, pixels.  Default 1280 (NAO v6
  * full resolution is 1280x960).  Range 16..4096. */

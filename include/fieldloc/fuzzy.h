@@ -36,8 +36,8 @@
  *              8 B = 2,496 B) and the update's row accumulator with its
  *              region list (104 x 10 B + 48 x 36 B = 2,768 B): 2,768 B
  *     live column range per row    2 x 74 B =    148 B
- *     the rest (params, prior, track, counters)   236 B on x86-64
- *     sizeof(fl_fuzzy_t) = 64,720 B on x86-64, < 64 KiB (printed by the
+ *     the rest (params, prior, track, counters)   252 B on x86-64
+ *     sizeof(fl_fuzzy_t) = 64,736 B on x86-64, < 64 KiB (printed by the
  *     fuzzy suite).
  *     No heap; stack at most about 1 KB per call (make stack).
  * Cost: predict O(cells) per sub-step and per dilation; an observation
@@ -273,6 +273,10 @@ typedef struct {
     uint32_t kidnaps;            /* collapsing consistency -> ignorance */
     uint32_t mode_switches;      /* estimate left the tracked mode */
     uint32_t resets;             /* explicit resets (any kind) */
+    uint32_t reseeds;            /* fl_fuzzy_reseed applied */
+    uint32_t reseed_replaced;    /* ... of which the disc replaced an
+                                    empty intersection */
+    uint32_t reseeds_refused;    /* ... refused (bad report) */
 } fl_fuzzy_stats_t;
 
 /* One estimate. */
@@ -452,6 +456,28 @@ void fl_fuzzy_set_prior_half(fl_fuzzy_t *g, int half);   /* -1 own, +1 */
 void fl_fuzzy_set_prior_pose(fl_fuzzy_t *g, int32_t x_mm, int32_t y_mm,
                              fl_angle_t heading, int32_t radius_mm);
 void fl_fuzzy_clear_prior(fl_fuzzy_t *g);
+
+/* Re-seeding from an observer's report (obs.h; seed 003 section 3.4's
+ * re-sprinkling, for a possibility grid): the product intersection (the
+ * grid's fuzzy AND) of every cell with a disc around the foot, possibility
+ * 1 within the report's sd and falling linearly to 0 at 3 sd (evaluated
+ * where the cell's content is), each cell's heading trapezoid kept; then
+ * normalized.  An empty intersection (its peak below min_height_q8, the
+ * normalization's floor: the belief excluded the foot) is replaced by the
+ * disc alone, with the current estimate's heading (core max(pi/8, its
+ * heading sd), slope twice that; any heading when the estimate tells
+ * none), counted in stats.reseed_replaced.  The foot becomes the tracked
+ * mode (with the estimate's heading) and the half known, the consistency fresh,
+ * as fl_fuzzy_reset_pose; the prior kept.  FL_OK; FL_ERR_STATE
+ * (uninitialized); fl_obs_report_check's refusals (counted in
+ * stats.reseeds_refused, the grid unchanged). */
+fl_status_t fl_fuzzy_reseed(fl_fuzzy_t *g, const fl_obs_report_t *r);
+/* How far the belief has spread (localizer.h spread_mm): sqrt of the
+ * variance of x plus y of the possibility mass (each live cell weighted by
+ * its height, at its content's position); while a mode is tracked on a
+ * symmetric field each cell counted at the nearer of itself and its mirror
+ * to the track.  UINT32_MAX when uninitialized. */
+uint32_t fl_fuzzy_spread_mm(const fl_fuzzy_t *g);
 
 /* ---- per frame ---------------------------------------------------------- */
 

@@ -139,6 +139,7 @@ typedef struct {
     uint32_t obs_used, obs_gated, obs_ignored;
     uint32_t odo_rejected;
     uint32_t empty_resets, kidnaps, mode_switches, resets;
+    uint32_t reseeds, reseeds_refused;   /* fl_loc_reseed applied / refused */
 } fl_loc_stats_t;
 
 /* A tunable parameter: params block + offset, `size` bytes (1, 2 or 4),
@@ -243,7 +244,30 @@ typedef struct fl_localizer {
      * of samples, or uninitialized) and the i-th (false out of range). */
     uint16_t (*belief_samples)(const void *state);
     bool (*belief_sample)(const void *state, uint16_t i, fl_loc_sample_t *out);
+    /* Re-seeding from an observer's report (obs.h fl_obs_report_t; seed
+     * 003 section 3.4): the belief replaced by (particles: draws from) the
+     * foot's Gaussian with the report's sd in position and the current
+     * estimate's heading (sd pi/8 or the estimate's, if wider) in heading;
+     * a possibility grid intersects its belief with a disc around the foot
+     * instead (fuzzy.h fl_fuzzy_reseed).  The foot is tracked afterwards.
+     * FL_OK; FL_ERR_STATE (uninitialized); FL_ERR_NULL, FL_ERR_RANGE,
+     * FL_ERR_STALE (a bad report, fl_obs_report_check: counted in
+     * reseeds_refused, the state unchanged). */
+    fl_status_t (*reseed)(void *state, const fl_obs_report_t *r);
+    /* How far the belief has spread, mm: the root of the variance of x
+     * plus that of y over the whole belief (every mode, not only the
+     * estimate's; a tracked mode's mirror on a symmetric field folded
+     * onto it), UINT32_MAX when uninitialized.  A caller re-seeds when it
+     * exceeds its threshold (FL_LOC_RESEED_SPREAD_MM). */
+    uint32_t (*spread_mm)(const void *state);
 } fl_localizer_t;
+
+/* The spread (spread_mm) beyond which a belief is taken to have spread
+ * (seed 003 re-seeds "when particles spread"): FL_LOC_GOOD_MM, the
+ * tolerance within which an estimate counts as right.  Under total
+ * ignorance an SPL carpet's spread is about 3,000 mm; a converged belief's
+ * a few hundred at most. */
+#define FL_LOC_RESEED_SPREAD_MM FL_LOC_GOOD_MM
 
 /* ---- catalogue ---------------------------------------------------------- */
 
@@ -292,6 +316,13 @@ uint16_t fl_loc_update(const fl_localizer_t *loc, void *state,
 bool fl_loc_estimate(const fl_localizer_t *loc, void *state,
                      fl_loc_estimate_t *out);
 bool fl_loc_check(const fl_localizer_t *loc, const void *state);
+/* loc->reseed; FL_ERR_NULL for a NULL loc, state or report. */
+fl_status_t fl_loc_reseed(const fl_localizer_t *loc, void *state, const fl_obs_report_t *r);
+/* loc->spread_mm; UINT32_MAX for NULL. */
+uint32_t fl_loc_spread_mm(const fl_localizer_t *loc, const void *state);
+/* Whether the belief has spread beyond threshold_mm (false for NULL: an
+ * unusable state is no reason to re-seed; fl_loc_reseed refuses it). */
+bool fl_loc_spread_beyond(const fl_localizer_t *loc, const void *state, uint32_t threshold_mm);
 
 #ifdef __cplusplus
 }

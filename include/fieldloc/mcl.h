@@ -38,7 +38,7 @@
  * negative log-likelihood and the heading's cos and sin: 2,048 B),
  * landmark tables 264 B, the rest (params, prior, track, averages, the
  * frame's reset observations, counters) about 300 B: sizeof(fl_mcl_t) is
- * 6,680 B on x86-64 (printed by the mcl suite), below 24 B per particle
+ * 6,688 B on x86-64 (printed by the mcl suite), below 24 B per particle
  * + 1 KiB.  Stack below 1 KiB per call.
  * Cost: predict O(n); update O(n x observations x landmarks of the kind);
  * resample O(n); estimate O(n) (a few passes).  Measured by callgrind.
@@ -150,6 +150,7 @@ typedef enum {
 typedef struct {
     uint32_t predicts, updates, obs_used, obs_ignored, odo_rejected;
     uint32_t injected, kidnaps, mode_switches, resets;
+    uint32_t reseeds, reseeds_refused;   /* fl_mcl_reseed applied / refused */
 } fl_mcl_stats_t;
 
 /* The particle core: what the Monte Carlo filter and the unscented
@@ -256,6 +257,19 @@ void fl_mcl_set_prior_half(fl_mcl_t *s, int half);
 void fl_mcl_set_prior_pose(fl_mcl_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t heading,
                            int32_t radius_mm);
 void fl_mcl_clear_prior(fl_mcl_t *s);
+
+/* Re-seeding from an observer's report (obs.h; seed 003 section 3.4):
+ * every particle drawn again from N(foot, report sd) in position and
+ * N(the current estimate's heading, max(pi/8, its heading sd)) in heading
+ * (when the estimate tells none: n headings evenly spaced over the turn
+ * from a random start, no mode tracked), weights equal, the foot
+ * tracked, as fl_mcl_reset_pose does with that uncertainty (the prior
+ * kept).  FL_OK; FL_ERR_STATE (uninitialized); fl_obs_report_check's
+ * refusals (counted in stats.reseeds_refused, the state unchanged). */
+fl_status_t fl_mcl_reseed(fl_mcl_t *s, const fl_obs_report_t *r);
+/* How far the particles have spread (localizer.h spread_mm), mm;
+ * UINT32_MAX when uninitialized. */
+uint32_t fl_mcl_spread_mm(const fl_mcl_t *s);
 
 bool fl_mcl_check(const fl_mcl_t *s);
 uint32_t fl_mcl_possibility_q16(const fl_mcl_t *s, int32_t x_mm, int32_t y_mm,

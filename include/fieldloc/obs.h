@@ -73,6 +73,51 @@ typedef struct {
     int32_t near_mm, far_mm;
 } fl_obs_view_t;
 
+/*
+ * A report of the robot's own position from an external observer (seed
+ * 003's coach: a camera beside the field that finds each player's foot).
+ * It lives here, at the seam, rather than in localizer.h: the coach's image
+ * path is a vision-layer producer of reports and never includes a localizer
+ * header; the localizers consume them (localizer.h fl_loc_reseed), as they
+ * consume observations, and never see the pixels behind them.
+ *
+ *   x_mm, y_mm   the foot in the field frame (mm)
+ *   sd_mm        the position's standard deviation (mm): the spread a
+ *                re-seed draws with.  FL_OBS_REPORT_SD_MM is seed 003's
+ *                sigma = 1/alpha with alpha = 8: its field coordinates are
+ *                metres (1/8 mm would be far below a pixel of the coach's
+ *                top view, and 1/8 m = 125 mm is the size of its measured
+ *                foot errors, 80-199 mm), so sigma = 125 mm.
+ *   confidence   Q0.8 (255 = certain, 0 = ignore), as an observation's
+ *   team, player the observer's identification (jersey colour as
+ *                fl_color_t, player number; 0 = unknown): which report is
+ *                whose is decided by the caller before re-seeding
+ *   age_ms       how long ago the coach's frame was taken
+ *
+ * fl_obs_report_check refuses: FL_ERR_NULL (NULL), FL_ERR_RANGE (sd outside
+ * [FL_OBS_REPORT_SD_MIN_MM, FL_OBS_REPORT_SD_MAX_MM], confidence 0, a
+ * negative age, a foot off the carpet (field plus border, field.h), no
+ * field), FL_ERR_STALE (age above FL_OBS_REPORT_MAX_AGE_MS).
+ */
+#define FL_OBS_REPORT_SD_MM 125
+/* Below a pixel of a 640 px coach view of a 9 m field at 5 m: absurd. */
+#define FL_OBS_REPORT_SD_MIN_MM 10
+/* Beyond a third of an SPL field's width: tells nothing a re-seed could use. */
+#define FL_OBS_REPORT_SD_MAX_MM 2000
+/* A robot walking 250 mm/s moves about one FL_OBS_REPORT_SD_MM in 500 ms. */
+#define FL_OBS_REPORT_MAX_AGE_MS 500
+
+typedef struct {
+    int32_t x_mm, y_mm;
+    int32_t sd_mm;
+    uint8_t confidence;
+    uint8_t team;
+    uint8_t player;
+    int32_t age_ms;
+} fl_obs_report_t;
+
+fl_status_t fl_obs_report_check(const fl_obs_report_t *r, const fl_field_t *field);
+
 void fl_obs_list_clear(fl_obs_list_t *list);
 
 /* Append; when full, count it in `dropped` and return false. */

@@ -43,7 +43,7 @@
  * Memory (FL_UPF_MAX_PARTICLES = 12): per particle 8 B sample + 12 B mean
  * + 24 B covariance + 4 B log-weight (48 B); the core (landmark index,
  * reset observations, prior, track) 408 B; params 84 B, averages,
- * counters, the summed process noise: sizeof(fl_upf_t) is 1,184 B on
+ * counters, the summed process noise: sizeof(fl_upf_t) is 1,192 B on
  * x86-64, within 1.2 KiB (printed and asserted by the upf suite).  Stack
  * below 2.4 KiB per call (make stack).  Cost (callgrind, `fieldloc bench
  * --loc-frames upf`, 12 particles, 5 observations): about 0.46 M
@@ -107,6 +107,7 @@ typedef struct {
 typedef struct {
     uint32_t predicts, updates, obs_used, obs_ignored, odo_rejected;
     uint32_t injected, kidnaps, mode_switches, resets;
+    uint32_t reseeds, reseeds_refused;   /* fl_upf_reseed applied / refused */
     uint32_t resamples;          /* resamplings (effective size too low) */
     uint32_t ukf_updates;        /* UKF measurement updates applied */
     uint32_t gated;              /* (particle, observation) pairs gated */
@@ -160,6 +161,14 @@ void fl_upf_set_prior_half(fl_upf_t *s, int half);
 void fl_upf_set_prior_pose(fl_upf_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t heading,
                            int32_t radius_mm);
 void fl_upf_clear_prior(fl_upf_t *s);
+
+/* Re-seeding, as fl_mcl_reseed; each particle's Gaussian restarts at its
+ * draw with the draw's covariance (diagonal: the report's sd, the heading
+ * sd drawn with; with headings evenly spaced, half their spacing). */
+fl_status_t fl_upf_reseed(fl_upf_t *s, const fl_obs_report_t *r);
+/* The mixture's spread (its particles' means and covariances, weighted),
+ * as fl_mcl_spread_mm. */
+uint32_t fl_upf_spread_mm(const fl_upf_t *s);
 
 /* The core, every sample within the box, every covariance valid
  * (fl_ukf_cov_valid with the params' floors), the log-weights bounded. */

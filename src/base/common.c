@@ -17,6 +17,8 @@ const char *fl_status_str(fl_status_t s)
                "rebuild with the installed config.h";
     case FL_ERR_MISMATCH: return "frame size differs from the camera model";
     case FL_ERR_CAMERA: return "camera not initialized (fl_camera_init failed or never ran)";
+    case FL_ERR_STALE: return "report too old";
+    case FL_ERR_STATE: return "localizer state not initialized (its init failed or never ran)";
     }
     return "unknown status";
 }

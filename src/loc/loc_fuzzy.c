@@ -166,6 +166,8 @@ static void fz_stats(const void *state, fl_loc_stats_t *out)
     out->kidnaps = g->stats.kidnaps;
     out->mode_switches = g->stats.mode_switches;
     out->resets = g->stats.resets;
+    out->reseeds = g->stats.reseeds;
+    out->reseeds_refused = g->stats.reseeds_refused;
 }
 
 static bool fz_belief_grid(const void *state, fl_loc_grid_t *out)
@@ -239,6 +241,16 @@ static const fl_loc_param_t fz_param[] = {
     U8(neg_min_q8),
 };
 
+static fl_status_t fz_reseed(void *state, const fl_obs_report_t *r)
+{
+    return fl_fuzzy_reseed((fl_fuzzy_t *)state, r);
+}
+
+static uint32_t fz_spread_mm(const void *state)
+{
+    return fl_fuzzy_spread_mm((const fl_fuzzy_t *)state);
+}
+
 const fl_localizer_t fl_localizer_fuzzy = {
     "fuzzy",
     "fuzzy position grid (seed 004): heading trapezoid per 100 mm cell",
@@ -268,4 +280,6 @@ const fl_localizer_t fl_localizer_fuzzy = {
     fz_belief_cell,
     fz_belief_samples,
     fz_belief_sample,
+    fz_reseed,
+    fz_spread_mm,
 };

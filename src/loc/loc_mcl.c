@@ -176,6 +176,8 @@ static void mc_stats(const void *state, fl_loc_stats_t *out)
     out->kidnaps = s->stats.kidnaps;
     out->mode_switches = s->stats.mode_switches;
     out->resets = s->stats.resets;
+    out->reseeds = s->stats.reseeds;
+    out->reseeds_refused = s->stats.reseeds_refused;
 }
 
 /* Particles are not a grid. */
@@ -249,6 +251,16 @@ static const fl_loc_param_t mc_param[] = {
     U16(kidnap_q16), S32(cluster_mm), U8(switch_q8),
 };
 
+static fl_status_t mc_reseed(void *state, const fl_obs_report_t *r)
+{
+    return fl_mcl_reseed((fl_mcl_t *)state, r);
+}
+
+static uint32_t mc_spread_mm(const void *state)
+{
+    return fl_mcl_spread_mm((const fl_mcl_t *)state);
+}
+
 const fl_localizer_t fl_localizer_mcl = {
     "mcl",
     "augmented Monte Carlo localization (seed 000): particles, sensor resetting",
@@ -278,4 +290,6 @@ const fl_localizer_t fl_localizer_mcl = {
     fl_loc_internal_no_cell,
     mc_belief_samples,
     mc_belief_sample,
+    mc_reseed,
+    mc_spread_mm,
 };

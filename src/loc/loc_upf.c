@@ -145,6 +145,8 @@ static void up_stats(const void *state, fl_loc_stats_t *out)
     out->kidnaps = s->stats.kidnaps;
     out->mode_switches = s->stats.mode_switches;
     out->resets = s->stats.resets;
+    out->reseeds = s->stats.reseeds;
+    out->reseeds_refused = s->stats.reseeds_refused;
 }
 
 static uint16_t up_belief_samples(const void *state)
@@ -198,6 +200,16 @@ static const fl_loc_param_t up_param[] = {
     U16(gate_q8), U8(prior_mode), { "trans_q8", OFF(trans_q8), 2, false, 0, 256 },
 };
 
+static fl_status_t up_reseed(void *state, const fl_obs_report_t *r)
+{
+    return fl_upf_reseed((fl_upf_t *)state, r);
+}
+
+static uint32_t up_spread_mm(const void *state)
+{
+    return fl_upf_spread_mm((const fl_upf_t *)state);
+}
+
 const fl_localizer_t fl_localizer_upf = {
     "upf",
     "unscented particle filter (seed 003): few particles, a UKF each",
@@ -227,4 +239,6 @@ const fl_localizer_t fl_localizer_upf = {
     fl_loc_internal_no_cell,
     up_belief_samples,
     up_belief_sample,
+    up_reseed,
+    up_spread_mm,
 };

@@ -166,3 +166,23 @@ bool fl_loc_check(const fl_localizer_t *loc, const void *state)
         return false;
     return loc->check(state);
 }
+
+fl_status_t fl_loc_reseed(const fl_localizer_t *loc, void *state, const fl_obs_report_t *r)
+{
+    if (loc == NULL || state == NULL || r == NULL || loc->reseed == NULL)
+        return FL_ERR_NULL;
+    return loc->reseed(state, r);
+}
+
+uint32_t fl_loc_spread_mm(const fl_localizer_t *loc, const void *state)
+{
+    if (loc == NULL || state == NULL || loc->spread_mm == NULL)
+        return UINT32_MAX;
+    return loc->spread_mm(state);
+}
+
+bool fl_loc_spread_beyond(const fl_localizer_t *loc, const void *state, uint32_t threshold_mm)
+{
+    uint32_t s = fl_loc_spread_mm(loc, state);
+    return s != UINT32_MAX && s > threshold_mm;
+}

@@ -477,6 +477,100 @@ void fl_mcl_internal_core_clear_prior(fl_mcl_core_t *c)
     c->half_known = c->half_known && c->track_valid;
 }
 
+/* ---- re-seeding and spread on a particle core -------------------------------------- */
+
+/* pi/8 (seed 003's heading sd) and 90 deg, binary angles. */
+#define RESEED_SD_H 4096
+#define RESEED_SD_H_MAX FL_ANGLE_90
+
+bool fl_mcl_internal_reseed_paint(const fl_obs_report_t *r, const fl_mcl_estimate_t *e,
+                                  fl_mcl_paint_t *pose)
+{
+    int32_t sh = mcl_absang(e->sd_heading);
+    bool known = !e->ignorance && sh < RESEED_SD_H_MAX;
+    if (sh < RESEED_SD_H)
+        sh = RESEED_SD_H;
+    if (!known)
+        sh = RESEED_SD_H_MAX;
+    /* twice the sds: core_pose draws with half of them */
+    mcl_paint(pose, r->x_mm, r->y_mm, e->heading, 2 * r->sd_mm,
+              (fl_angle_t)(sh >= RESEED_SD_H_MAX ? 32767 : 2 * sh));
+    return known;
+}
+
+void fl_mcl_internal_core_reseed(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                                 const fl_mcl_paint_t *pose, bool heading_known)
+{
+    uint16_t i;
+    uint32_t base;
+    fl_mcl_internal_core_pose(c, p, n, pose);
+    if (heading_known || n == 0)
+        return;
+    /* any heading, stratified: n evenly spaced headings from one random
+     * start (a few particles, the UPF's 12, would leave gaps of random
+     * width that observations cannot fill) */
+    base = fl_mcl_rand(&c->rng) >> 16;
+    for (i = 0; i < n; i++)
+        p[i].heading = fl_angle_wrap((int32_t)((base + ((uint32_t)i << 16) / n) & 0xFFFFu));
+    c->track_valid = false;
+}
+
+/* A particle's position, folded onto the track's side of the mirror when
+ * fold (the nearer of itself and its mirror to the track). */
+static void spread_point(const fl_mcl_core_t *c, bool fold, const fl_mcl_particle_t *p,
+                         int64_t *x, int64_t *y)
+{
+    int64_t px = p->x_mm, py = p->y_mm;
+    if (fold) {
+        int64_t dx = px - c->track_x_mm, dy = py - c->track_y_mm;
+        int64_t ex = -px - c->track_x_mm, ey = -py - c->track_y_mm;
+        if (ex * ex + ey * ey < dx * dx + dy * dy) {
+            px = -px;
+            py = -py;
+        }
+    }
+    *x = px;
+    *y = py;
+}
+
+/* Scaling: |x| <= 2^15, weights < 2^16, n <= 2^8: sums of w x below 2^39,
+ * of w dx^2 below 2^56. */
+uint32_t fl_mcl_internal_spread(const fl_mcl_core_t *c, const fl_mcl_particle_t *p, uint16_t n,
+                                const uint32_t *var)
+{
+    uint64_t w = 0, sq = 0;
+    int64_t sx = 0, sy = 0, mx, my;
+    bool fold = c->track_valid && c->field->symmetric, flat;
+    uint16_t i;
+    for (i = 0; i < n; i++)
+        w += p[i].weight;
+    flat = w == 0u;
+    if (flat)
+        w = n;
+    if (w == 0u)
+        return 0;
+    for (i = 0; i < n; i++) {
+        int64_t x, y;
+        uint64_t pw = flat ? 1u : p[i].weight;
+        spread_point(c, fold, &p[i], &x, &y);
+        sx += (int64_t)pw * x;
+        sy += (int64_t)pw * y;
+    }
+    mx = sx / (int64_t)w;
+    my = sy / (int64_t)w;
+    for (i = 0; i < n; i++) {
+        int64_t x, y;
+        uint64_t pw = flat ? 1u : p[i].weight;
+        spread_point(c, fold, &p[i], &x, &y);
+        x -= mx;
+        y -= my;
+        sq += pw * (uint64_t)(x * x + y * y);
+        if (var != NULL)
+            sq += pw * var[i];
+    }
+    return fl_isqrt64(sq / w);
+}
+
 bool fl_mcl_internal_core_check(const fl_mcl_core_t *c, const fl_mcl_particle_t *p, uint16_t n)
 {
     uint16_t i;
@@ -555,6 +649,35 @@ void fl_mcl_clear_prior(fl_mcl_t *s)
     if (!mcl_ready(s))
         return;
     fl_mcl_internal_core_clear_prior(&s->core);
+}
+
+fl_status_t fl_mcl_reseed(fl_mcl_t *s, const fl_obs_report_t *r)
+{
+    fl_mcl_estimate_t e;
+    fl_mcl_paint_t c;
+    fl_status_t st;
+    bool known;
+    if (!mcl_ready(s))
+        return FL_ERR_STATE;
+    st = fl_obs_report_check(r, s->core.field);
+    if (st != FL_OK) {
+        s->stats.reseeds_refused = mcl_sat_inc(s->stats.reseeds_refused);
+        return st;
+    }
+    (void)fl_mcl_estimate(s, &e);        /* the previous heading */
+    known = fl_mcl_internal_reseed_paint(r, &e, &c);
+    fresh(s);
+    fl_mcl_internal_core_reseed(&s->core, mcl_live(s), s->n, &c, known);
+    s->ignorance = false;
+    s->stats.reseeds = mcl_sat_inc(s->stats.reseeds);
+    return FL_OK;
+}
+
+uint32_t fl_mcl_spread_mm(const fl_mcl_t *s)
+{
+    if (!mcl_ready(s))
+        return UINT32_MAX;
+    return fl_mcl_internal_spread(&s->core, mcl_live_c(s), s->n, NULL);
 }
 
 bool fl_mcl_check(const fl_mcl_t *s)

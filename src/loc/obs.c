@@ -76,3 +76,21 @@ bool fl_landmark_orientation(const fl_landmark_t *lm, fl_angle_t *orientation)
         return false;
     }
 }
+
+fl_status_t fl_obs_report_check(const fl_obs_report_t *r, const fl_field_t *field)
+{
+    int32_t hx, hy;
+    if (r == NULL)
+        return FL_ERR_NULL;
+    if (field == NULL)
+        return FL_ERR_RANGE;
+    hx = fl_field_carpet_half_x_mm(field);
+    hy = fl_field_carpet_half_y_mm(field);
+    if (r->sd_mm < FL_OBS_REPORT_SD_MIN_MM || r->sd_mm > FL_OBS_REPORT_SD_MAX_MM ||
+        r->confidence == 0 || r->age_ms < 0 || r->x_mm < -hx || r->x_mm > hx ||
+        r->y_mm < -hy || r->y_mm > hy)
+        return FL_ERR_RANGE;
+    if (r->age_ms > FL_OBS_REPORT_MAX_AGE_MS)
+        return FL_ERR_STALE;
+    return FL_OK;
+}

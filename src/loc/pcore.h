@@ -56,6 +56,27 @@ void fl_mcl_internal_core_prior_half(fl_mcl_core_t *c, fl_mcl_particle_t *p, uin
 void fl_mcl_internal_core_prior_pose(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
                                      bool ignorance, const fl_mcl_paint_t *pose);
 void fl_mcl_internal_core_clear_prior(fl_mcl_core_t *c);
+/* A re-seed from an observer's report (obs.h; seed 003 section 3.4): the
+ * paint it draws from: the foot with the report's sd, the estimate's
+ * heading with sd max(pi/8, the estimate's heading sd) (pose->pos_unc and
+ * heading_unc are twice the sds: core_pose draws with half of them).
+ * False when the estimate tells no heading (ignorance, or a heading sd of
+ * 90 deg or more): the draw then takes any heading. */
+bool fl_mcl_internal_reseed_paint(const fl_obs_report_t *r, const fl_mcl_estimate_t *e,
+                                  fl_mcl_paint_t *pose);
+/* core_pose with that paint (the foot tracked); with !heading_known the
+ * headings evenly spaced over the turn from a random start instead (n
+ * headings 360/n deg apart) and no mode tracked. */
+void fl_mcl_internal_core_reseed(fl_mcl_core_t *c, fl_mcl_particle_t *p, uint16_t n,
+                                 const fl_mcl_paint_t *pose, bool heading_known);
+/* The belief's spread (localizer.h spread_mm): sqrt of the weighted
+ * variance of x plus y of n points about their weighted mean, each point
+ * with its own further variance var[i] (mm^2; NULL: none); while a mode is
+ * tracked on a symmetric field, each point counted at the nearer of itself
+ * and its mirror to the track (the mirror is the half's question, not the
+ * spread's).  Equal weights when they sum to 0. */
+uint32_t fl_mcl_internal_spread(const fl_mcl_core_t *c, const fl_mcl_particle_t *p, uint16_t n,
+                                const uint32_t *var);
 /* The core's tables and the particles within the box. */
 bool fl_mcl_internal_core_check(const fl_mcl_core_t *c, const fl_mcl_particle_t *p, uint16_t n);
 

@@ -288,6 +288,50 @@ void fl_upf_reset_penalty(fl_upf_t *s, int32_t x_mm, int32_t pos_unc_mm,
     s->stats.resets = upf_sat_inc(s->stats.resets);
 }
 
+fl_status_t fl_upf_reseed(fl_upf_t *s, const fl_obs_report_t *r)
+{
+    fl_mcl_estimate_t e;
+    fl_mcl_paint_t c;
+    fl_status_t st;
+    bool known;
+    if (!upf_ready(s))
+        return FL_ERR_STATE;
+    st = fl_obs_report_check(r, s->core.field);
+    if (st != FL_OK) {
+        s->stats.reseeds_refused = upf_sat_inc(s->stats.reseeds_refused);
+        return st;
+    }
+    (void)fl_upf_estimate(s, &e);        /* the previous heading */
+    known = fl_mcl_internal_reseed_paint(r, &e, &c);
+    fresh(s);
+    fl_mcl_internal_core_reseed(&s->core, s->part, s->n, &c, known);
+    if (!known)   /* headings 360/n apart: each covers half the gap (sd) */
+        c.heading_unc = (fl_angle_t)(s->n < 3 ? 32767 : 65536 / s->n);
+    reset_cov(s, &c);
+    s->drawn = false;
+    s->ignorance = false;
+    s->stats.reseeds = upf_sat_inc(s->stats.reseeds);
+    return FL_OK;
+}
+
+/* The mixture: each particle's mean with its weight and the trace of its
+ * position covariance. */
+uint32_t fl_upf_spread_mm(const fl_upf_t *s)
+{
+    fl_mcl_particle_t m[FL_UPF_MAX_PARTICLES];
+    uint32_t var[FL_UPF_MAX_PARTICLES];
+    uint16_t i;
+    if (!upf_ready(s) || s->n > FL_UPF_MAX_PARTICLES)
+        return UINT32_MAX;
+    for (i = 0; i < s->n; i++) {
+        m[i] = s->part[i];
+        m[i].x_mm = (int16_t)s->g[i].mean.x_mm;
+        m[i].y_mm = (int16_t)s->g[i].mean.y_mm;
+        var[i] = (uint32_t)s->g[i].cov.xx + (uint32_t)s->g[i].cov.yy;
+    }
+    return fl_mcl_internal_spread(&s->core, m, s->n, var);
+}
+
 /* ---- priors ---------------------------------------------------------------- */
 
 /* After a prior moved samples (drawn again under ignorance, or mirrored):
