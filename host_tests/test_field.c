@@ -229,6 +229,9 @@ static const spec_t specs[] = {
     /* numbers of src/model/field.c (uncertain, see there); 4 corner beacons */
     {"aibo2004", 4200, 2700, 25, 150, 150, 650, 1000, 0, 0, 0, 0, 600, 50, 300,
      FL_COLOR_SKYBLUE, FL_COLOR_YELLOW, 0, {8, 6, 2, 0, 0, 4, 1, 4}},
+    /* seed 003's field: spl2013's lines, white goals, marks at 3200 */
+    {"spl2016", 9000, 6000, 50, 700, 750, 600, 2200, 0, 0, 3200, 100, 1600, 100, 800,
+     FL_COLOR_WHITE, FL_COLOR_WHITE, 1, {8, 6, 2, 2, 1, 4, 1, 0}},
 };
 #define N_SPECS (sizeof specs / sizeof specs[0])
 

@@ -76,7 +76,8 @@ typedef struct {
 } fl_field_line_t;
 
 typedef struct {
-    const char *name;            /* "spl2013", "uva2013", "spl2020", "aibo2004"
+    const char *name;            /* "spl2013", "uva2013", "spl2020", "aibo2004",
+                                    "spl2016"
                                     (aibo2004: partly unverified numbers,
                                     sources and uncertainty in src/model/field.c) */
     int32_t length_mm;           /* between goal line centres (x extent) */
@@ -105,8 +106,7 @@ typedef struct {
  * (length/2 truncated toward zero; saturated to int32; NULL gives 0). */
 int32_t fl_field_carpet_half_x_mm(const fl_field_t *f);
 int32_t fl_field_carpet_half_y_mm(const fl_field_t *f);
-
-/* The catalogue: "spl2013", "uva2013", "spl2020", "aibo2004" (in that
+/* The catalogue: "spl2013", "uva2013", "spl2020", "aibo2004", "spl2016" (in that
  * order; see src/model/field.c for every number and its source).  Names are
  * compared exactly (case-sensitive); NULL name gives NULL. */
 const fl_field_t *fl_field_find(const char *name);  /* NULL if unknown */

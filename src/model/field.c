@@ -28,6 +28,17 @@
  *           2200, penalty area 1650 x 4000, marks 1300 from the goal line
  *           (x = +-3200), circle d 1500, white posts (d 100, h 800) at
  *           (+-4525, +-800), border 700, line 50.
+ *  spl2016  Seed 003's field (SPL 2015-2017 rules): the spl2013 lines and
+ *           box (9000 x 6000, penalty area 600 x 2200, circle d 1500,
+ *           border 700, line 50) with white goals, posts (d 100, h 800)
+ *           at (+-4525, +-800), and the penalty marks 1300 mm from the goal
+ *           line (x = +-3200).  Checked against a public SPL field
+ *           dimensions file of that era (B-Human's fieldDimensions.cfg:
+ *           xPosOpponentPenaltyArea 3900, yPosLeftPenaltyArea 1100,
+ *           xPosOpponentPenaltyMark 3200, xPosOpponentGoalPost 4525).
+ *           Seed 003 calls the 600 x 2200 box the "penalty area"; spl2020's
+ *           has the same box as its goal area and a 1650 x 4000 penalty
+ *           area around it, so the two models differ.
  *  aibo2004 Four-legged league 2004.  NOT verified against the 2004 rule
  *           book (no copy was available); each number's basis:
  *           - lines 4200 x 2700 (DESIGN.md; agrees with our recollection of
@@ -181,6 +192,25 @@ static const fl_field_line_t spl2020_lines[] = {
     BOX_LINES(4500, 2850, 2000)
 };
 
+/* ---- spl2016 ------------------------------------------------------------ */
+
+static const fl_landmark_t spl2016_lm[] = {
+    CORNERS(4500, 3000),
+    BOX_CROSSINGS(4500, 3900, 1100),
+    HALFWAY_CROSSINGS(3000, 750),
+    LM_CROSS4(FL_LM_PENALTY_MARK, 3200, 0),
+    LM_CROSS4(FL_LM_PENALTY_MARK, -3200, 0),
+    LM_CROSS4(FL_LM_CENTRE_MARK, 0, 0),
+    POSTS(4525, 800, 1, FL_COLOR_WHITE),
+    POSTS(-4525, 800, -1, FL_COLOR_WHITE),
+    CIRCLE_CENTRE
+};
+
+static const fl_field_line_t spl2016_lines[] = {
+    BOUNDARY_LINES(4500, 3000),
+    BOX_LINES(4500, 3900, 1100)
+};
+
 /* ---- aibo2004 (numbers and their uncertainty: file top) ----------------- */
 
 static const fl_landmark_t aibo2004_lm[] = {
@@ -227,6 +257,12 @@ static const fl_field_t fields[] = {
         600, 50, 300, { FL_COLOR_SKYBLUE, FL_COLOR_YELLOW }, false,
         aibo2004_lm, COUNT_OF(aibo2004_lm), aibo2004_lines, COUNT_OF(aibo2004_lines),
         100, 400
+    },
+    {
+        "spl2016", 9000, 6000, 50, 700, 750, 600, 2200, 0, 0, 3200, 100,
+        1600, 100, 800, { FL_COLOR_WHITE, FL_COLOR_WHITE }, true,
+        spl2016_lm, COUNT_OF(spl2016_lm), spl2016_lines, COUNT_OF(spl2016_lines),
+        0, 0
     }
 };
 

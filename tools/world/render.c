@@ -1080,18 +1080,25 @@ static void build_robot(world_t *w, const render_robot_t *rb)
     group_end(w);
 }
 
+/* The black-and-white foam ball (100 mm) of the white-goal fields
+ * (SPL from 2016); the orange street hockey ball (65 mm) before. */
+static int modern_ball(const world_t *w)
+{
+    return strcmp(w->field->name, "spl2020") == 0 || strcmp(w->field->name, "spl2016") == 0;
+}
+
 static double ball_radius(const world_t *w)
 {
     if (w->aibo)
         return 42.5;
-    return strcmp(w->field->name, "spl2020") == 0 ? 50.0 : 32.5;
+    return modern_ball(w) ? 50.0 : 32.5;
 }
 
 static void build_ball(world_t *w)
 {
     double c[3];
     frame2_t F = {0, 0, 1, 0};
-    int spl2020 = strcmp(w->field->name, "spl2020") == 0;
+    int spl2020 = modern_ball(w);
     prim_t *p;
     F.ox = w->sc->ball_x_mm;
     F.oy = w->sc->ball_y_mm;
