@@ -42,7 +42,9 @@ typedef enum {
     FL_COLOR_WHITE = 1,
     FL_COLOR_YELLOW = 2,
     FL_COLOR_SKYBLUE = 3,
-    FL_COLOR_PINK = 4
+    FL_COLOR_PINK = 4,
+    FL_COLOR_RED = 5,       /* jerseys (SPL team colours; obs.h reports) */
+    FL_COLOR_BLUE = 6
 } fl_color_t;
 
 #define FL_FIELD_MAX_ARMS 4
