@@ -145,6 +145,8 @@ typedef struct {
     uint16_t runs_dropped;   /* mask runs beyond FL_COACH_MAX_RUNS */
     uint16_t regions_dropped;/* regions beyond FL_COACH_MAX_REGIONS */
     uint32_t field_px;       /* pixels at or below the threshold */
+    uint16_t duplicates;     /* feet of a jersey part whose foot was already
+                                found (an arm splits a jersey), not reported */
 } fl_coach_result_t;
 
 /* Private: a run of set mask bits in one row, and a region's sums. */
