@@ -170,6 +170,39 @@ static int32_t column_edge_q8(const fl_coach_t *c, const fl_image_t *img, int32_
     return vb * 256 - 128 + sum;
 }
 
+/* A foot pixel in row vf or the row above it. */
+static bool foot_at(const fl_coach_t *c, const fl_image_t *img, const walk_t *k, int32_t u,
+                    int32_t vf)
+{
+    bool nf;
+    return foot_px(c, img, k, u, vf, &nf) || (vf > 0 && foot_px(c, img, k, u, vf - 1, &nf));
+}
+
+/* The feet's column: the middle of the run of foot pixels (rows vf - 1
+ * and vf) through the band's, followed beyond the band by at most its
+ * width on each side.  A robot seen turned shows its jersey beside the arm
+ * in front of it, so the band may sit over one side of the feet. */
+static void foot_centre(const fl_coach_t *c, const fl_image_t *img, const walk_t *k, int32_t vf,
+                        int32_t u0, int32_t u1, int32_t *u_q4)
+{
+    int32_t lo = -1, hi = -1, u, lim;
+    for (u = u0; u <= u1; u++)
+        if (foot_at(c, img, k, u, vf)) {
+            if (lo < 0)
+                lo = u;
+            hi = u;
+        }
+    if (lo < 0)
+        return;
+    lim = u0 - (u1 - u0) < 0 ? 0 : u0 - (u1 - u0);
+    while (lo - 1 >= lim && foot_at(c, img, k, lo - 1, vf))
+        lo--;
+    lim = u1 + (u1 - u0) > k->w - 1 ? k->w - 1 : u1 + (u1 - u0);
+    while (hi + 1 <= lim && foot_at(c, img, k, hi + 1, vf))
+        hi++;
+    *u_q4 = (lo + hi) * 8;
+}
+
 /* The foot pixel (Q4) below foot row vf. */
 static void foot_pixel(const fl_coach_t *c, const fl_image_t *img, const walk_t *k, int32_t vf,
                        int32_t *u_q4, int32_t *v_q4)
@@ -197,6 +230,7 @@ static void foot_pixel(const fl_coach_t *c, const fl_image_t *img, const walk_t 
     }
     *u_q4 = (su * 16 + n / 2) / n;
     *v_q4 = (sv / n + 8) >> 4;
+    foot_centre(c, img, k, vf, u0, u1, u_q4);
 }
 
 /* The field point of a foot pixel, moved foot_offset_mm away from the

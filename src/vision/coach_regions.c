@@ -140,9 +140,10 @@ static bool near_boxes(const fl_coach_region_t *a, const fl_coach_region_t *b, i
 
 /* Parts of one jersey: an arm or a leg of the robot in front of its
  * jersey splits it, and each part alone would give a line along one side
- * of the body.  Regions of one team whose boxes come within half the
- * smaller one's height (the arm's width is about a third of the jersey's
- * height) are joined into the larger; the joined one is left with n = 0.
+ * of the body.  Regions of one team whose boxes come within the smaller
+ * one's height (an arm seen from the side hides up to ~80 mm of a 115 mm
+ * high jersey's width) are joined into the larger; the joined one is left
+ * with n = 0.
  * Two robots of one team whose jerseys overlap in the image become one
  * (the front one's feet are found).  At most FL_COACH_MAX_REGIONS^2 / 2
  * box tests, repeated while a join happens (at most REGIONS - 1 times). */
@@ -160,7 +161,7 @@ static void join_parts(fl_coach_t *c)
                     continue;
                 ha = a->v_max - a->v_min + 1;
                 hb = b->v_max - b->v_min + 1;
-                m = (ha < hb ? ha : hb) / 2;
+                m = ha < hb ? ha : hb;
                 if (!near_boxes(a, b, m < 2 ? 2 : m))
                     continue;
                 big = a->n >= b->n ? a : b;
