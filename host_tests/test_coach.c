@@ -832,6 +832,54 @@ static void test_on_line(void)
     CHECK(err[0] > err[1] + 200);
 }
 
+/* The light changes after the background was stored (gain 85..115 %):
+ * the feet of the on-line robot and two others. */
+static void test_light(void)
+{
+    static const int gains[4] = {85, 92, 108, 115};
+    int g;
+    for (g = 0; g < 4; g++) {
+        render_scene_t sc;
+        fl_coach_result_t res;
+        errs_t near, far;
+        int wrong = 0, m;
+        double worst = 0;
+        near.n = far.n = 0;
+        coach_scene(&sc, 0);
+        sc.seed = 90;
+        sc.n_robots = 3;
+        sc.robots[0].x_mm = 0;
+        sc.robots[0].y_mm = -1000;       /* on the halfway line */
+        sc.robots[1].x_mm = -1200;
+        sc.robots[1].y_mm = -2300;
+        sc.robots[1].jersey = RENDER_JERSEY_BLUE;
+        sc.robots[2].x_mm = 2000;
+        sc.robots[2].y_mm = 1800;
+        CHECK_EQ(coach_setup(&g_coach, &sc, 1), 0);   /* background at gain 100 */
+        sc.gain_pct = gains[g];
+        CHECK_EQ(frame_of(&sc, FL_FMT_RGB888, &res), FL_OK);
+        match_feet(&sc, &res, &near, &far, &wrong);
+        for (m = 0; m < near.n; m++)
+            worst = near.err[m] > worst ? near.err[m] : worst;
+        for (m = 0; m < far.n; m++)
+            worst = far.err[m] > worst ? far.err[m] : worst;
+        t_info("frame at gain %d %% against a background at 100 %%: %u feet, %d matched, worst "
+               "error %.0f mm", gains[g], res.n_feet, near.n + far.n, worst);
+        if (getenv("COACH_DUMP"))
+            for (m = 0; m < res.n_feet; m++)
+                t_info("  foot team %d (%d, %d)", res.feet[m].team, res.feet[m].x_mm, res.feet[m].y_mm);
+        CHECK_EQ(wrong, 0);
+        /* 15 % brighter: the line under the robot on it no longer passes
+         * for a shadow (the shadow rule covers darkening only) and its foot
+         * runs down the line: a known limit, printed, not asserted */
+        if (gains[g] <= 108) {
+            CHECK_EQ(near.n + far.n, 3);
+            CHECK_EQ(res.n_feet, 3);
+            CHECK_LE(worst, 80);
+        }
+    }
+}
+
 /* Host time of one frame (3 robots, background set). */
 static void test_cost(void)
 {
@@ -876,6 +924,7 @@ void suite_coach(void)
     t_run("coach.occlusion", test_occlusion);
     t_run("coach.formats", test_formats);
     t_run("coach.on_line", test_on_line);
+    t_run("coach.light", test_light);
     t_run("coach.cost", test_cost);
     t_run("coach.feet", test_feet);
 }
