@@ -202,6 +202,10 @@ typedef struct {
     uint32_t now_ms;             /* the robot's clock when the reports arrive
                                     (a report was seen at now_ms - age_ms) */
     const fl_field_t *field;     /* for fl_obs_report_check */
+    const fl_loc_estimate_t *est;/* this frame's fl_loc_estimate, for
+                                    fl_report_apply (which must not call it:
+                                    an estimate updates the localizer's mode
+                                    bookkeeping); unused by fl_report_pick */
 } fl_report_self_t;
 
 /* The player's memory between frames: the last accepted report (for the
@@ -247,8 +251,8 @@ fl_report_result_t fl_report_pick(const fl_obs_report_t *reports, size_t n,
 
 /*
  * The step a robot's runtime calls each frame that brings reports (n may
- * be 0): fl_report_pick against the localizer's current estimate and
- * spread; then, for an accepted report, fl_loc_reseed only when
+ * be 0): fl_report_pick against me->est (the caller's fl_loc_estimate of
+ * this frame; NULL: FL_REPORT_BAD_CALL) and the localizer's spread; then, for an accepted report, fl_loc_reseed only when
  * fl_loc_spread_beyond(loc, state, spread_threshold_mm) (0:
  * FL_LOC_RESEED_SPREAD_MM).  The state is written only by that re-seed: a
  * refused report, or one that is not needed, leaves it untouched.  Counted
