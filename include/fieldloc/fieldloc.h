@@ -29,5 +29,6 @@
 #include "fieldloc/fuzzy.h"
 #include "fieldloc/mcl.h"
 #include "fieldloc/localizer.h"
+#include "fieldloc/report.h"
 
 #endif /* FIELDLOC_FIELDLOC_H */
