@@ -236,10 +236,44 @@ static void test_points_file(void)
     CHECK(strstr(err, "cannot open") != NULL);
 }
 
+/* The committed fixtures/coach/ are what coach_write_fixtures writes now
+ * (byte for byte: `make fixtures` leaves them unchanged). */
+static void test_fixtures(void)
+{
+    static const char *const files[] = {"coach_empty.ppm", "coach_empty.scene", "coach_two.ppm",
+                                        "coach_two.scene", "coach.points"};
+    char dir[] = "build/coach_fixtures_XXXXXX", a[1200], b[1200];
+    int i;
+    if (t_quick) /* two full renders: too slow under qemu */
+        return;
+    if (!mkdtemp(dir)) {
+        t_fail_msg(__FILE__, __LINE__, "mkdtemp %s", dir);
+        return;
+    }
+    CHECK_EQ(coach_write_fixtures(dir), 0);
+    for (i = 0; i < (int)(sizeof files / sizeof files[0]); i++) {
+        size_t na = 0, nb = 0;
+        char *x, *y;
+        snprintf(a, sizeof a, "%s/%s", dir, files[i]);
+        snprintf(b, sizeof b, "fixtures/coach/%s", files[i]);
+        x = t_read_file(a, &na);
+        y = t_read_file(b, &nb);
+        if (!x || !y || na != nb || memcmp(x, y, na) != 0)
+            t_fail_msg(__FILE__, __LINE__, "%s differs from a fresh render (make fixtures)", b);
+        else
+            CHECK(1);
+        free(x);
+        free(y);
+        remove(a);
+    }
+    remove(dir);
+}
+
 void suite_coach_scene(void)
 {
     t_run("coach_scene.pose", test_pose);
     t_run("coach_scene.clear_view", test_clear_view);
     t_run("coach_scene.points", test_points);
     t_run("coach_scene.points_file", test_points_file);
+    t_run("coach_scene.fixtures", test_fixtures);
 }

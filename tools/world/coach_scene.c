@@ -202,3 +202,60 @@ int coach_points_write(FILE *f, const fl_homog_pair_t *pairs, const char **names
     }
     return ferror(f) ? -1 : 0;
 }
+
+/* ---- the committed coach fixtures ---------------------------------------------- */
+
+int coach_fixture_scene(int which, render_scene_t *sc)
+{
+    coach_scene_default(sc, fl_field_find("spl2016"));
+    if (which == 0) /* the empty field, per-frame noise of its own */
+        return 0;
+    if (which != 1)
+        return -1;
+    sc->seed = 2;
+    /* robot A 4.6 m from the coach (red), robot B 8 m away (blue) */
+    sc->n_robots = 2;
+    sc->robots[0].x_mm = -1500;
+    sc->robots[0].y_mm = -1700;
+    sc->robots[0].heading = fl_angle_from_mdeg(30000);
+    sc->robots[0].jersey = RENDER_JERSEY_RED;
+    sc->robots[1].x_mm = 1800;
+    sc->robots[1].y_mm = 1500;
+    sc->robots[1].heading = fl_angle_from_mdeg(-150000);
+    sc->robots[1].jersey = RENDER_JERSEY_BLUE;
+    return 0;
+}
+
+int coach_write_fixtures(const char *dir)
+{
+    static const char *const names[2] = {"coach_empty", "coach_two"};
+    fl_homog_pair_t pairs[FL_HOMOG_FIELD_POINTS];
+    const char *pnames[FL_HOMOG_FIELD_POINTS];
+    char path[1024];
+    int i, n, bad = 0;
+    FILE *f;
+    if (!dir)
+        return -1;
+    for (i = 0; i < 2; i++) {
+        render_scene_t sc;
+        render_frame_t fr;
+        coach_fixture_scene(i, &sc);
+        if (render_frame(&sc, &fr) != 0)
+            return -1;
+        snprintf(path, sizeof path, "%s/%s.ppm", dir, names[i]);
+        bad |= render_write_frame(path, &fr) != 0;
+        render_frame_free(&fr);
+        snprintf(path, sizeof path, "%s/%s.scene", dir, names[i]);
+        bad |= render_scene_save(path, &sc) != 0;
+        if (i == 0) {
+            n = coach_scene_points(&sc, 0.0, 0, pairs, pnames, FL_HOMOG_FIELD_POINTS);
+            snprintf(path, sizeof path, "%s/coach.points", dir);
+            if (n < 0 || (f = fopen(path, "w")) == NULL)
+                return -1;
+            fprintf(f, "# the coach's view of seed 003's points (coach_empty.scene), exact pixels\n");
+            bad |= coach_points_write(f, pairs, pnames, n) != 0;
+            bad |= fclose(f) != 0;
+        }
+    }
+    return bad ? -1 : 0;
+}

@@ -74,4 +74,13 @@ int coach_points_load(const char *path, const fl_field_t *field, fl_homog_pair_t
  * (names may be NULL); U and V exactly (Q4 has four decimals). 0 on success. */
 int coach_points_write(FILE *f, const fl_homog_pair_t *pairs, const char **names, int n);
 
+/* The committed coach fixtures (fixtures/coach/, written by `make
+ * fixtures`): scene 0 "coach_empty" (the default coach on spl2016, nobody
+ * on the field), 1 "coach_two" (red robot A 4.6 m from the coach at
+ * (-1500, -1700), blue robot B 8 m away at (1800, 1500), another noise
+ * seed); coach_write_fixtures writes DIR/NAME.{ppm,scene} of both and
+ * DIR/coach.points (the empty view's exact points).  0 on success. */
+int coach_fixture_scene(int which, render_scene_t *sc);
+int coach_write_fixtures(const char *dir);
+
 #endif /* FL_TOOLS_COACH_SCENE_H */
