@@ -56,6 +56,8 @@ static void test_clear_view(void)
     render_scene_t sc, plain, bare;
     render_frame_t a, b, c;
     int u, v, diff_clear = 0, diff_plain = 0;
+    if (t_quick) /* five full renders: too slow under qemu */
+        return;
     coach_scene_default(&sc, spl2016());
     sc.supersample = 1;
     sc.noise_x10 = 0;
@@ -136,7 +138,8 @@ static void test_points(void)
     fl_homog_error_t e;
     char list[512] = "";
     int n, i, s;
-    double mean, mx, mean5, max5, worst_noisy = 0, worst_noisy5 = 0, sum_noisy = 0;
+    double mean, mx, mean5, max5, worst_noisy = 0, worst_noisy5 = 0, sum_noisy = 0, sum_rms = 0;
+    uint32_t worst_rms = 0;
     coach_scene_default(&sc, spl2016());
     n = coach_scene_points(&sc, 0, 0, p, nm, FL_HOMOG_FIELD_POINTS);
     for (i = 0; i < n; i++) {
@@ -161,14 +164,19 @@ static void test_points(void)
         CHECK_EQ(n, 5);
         CHECK_EQ(fl_homog_fit(&h, p, (size_t)n), FL_HOMOG_OK);
         fit_error(&sc, &h, &mean, &mx, &mean5, &max5);
+        CHECK_EQ(fl_homog_error(&h, p, (size_t)n, &e), FL_HOMOG_OK);
+        sum_rms += e.rms_px_q4 / 16.0;
+        if (worst_rms < e.rms_px_q4) worst_rms = e.rms_px_q4;
         sum_noisy += mean;
         if (worst_noisy < mx) worst_noisy = mx;
         if (worst_noisy5 < max5) worst_noisy5 = max5;
     }
-    fl_homog_error(&h, p, (size_t)n, &e);
-    t_info("# +-0.5 px points (20 draws): carpet grid error mean %.1f mm, worst %.1f mm "
-           "(worst within 5 m of the coach %.1f mm); last draw rms %.3f px",
-           sum_noisy / 20, worst_noisy, worst_noisy5, e.rms_px_q4 / 16.0);
+    t_info("# +-0.5 px points (20 draws): reprojection rms mean %.3f px, worst %.3f px; carpet grid "
+           "error mean %.1f mm, worst %.1f mm (worst within 5 m of the coach %.1f mm)",
+           sum_rms / 20, worst_rms / 16.0, sum_noisy / 20, worst_noisy, worst_noisy5);
+    /* five points, eight unknowns: two residual degrees of freedom (the
+     * far corners' pixels are the lever); measured worst 1.44 px */
+    CHECK_LE(worst_rms, 32);
     CHECK_LE(worst_noisy5, 150.0);
     /* noise is deterministic */
     {
