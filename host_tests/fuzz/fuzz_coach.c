@@ -32,6 +32,7 @@
 #define HDR 64
 
 static fl_coach_t coach;
+static int ready, last_custom;
 
 /* the default coach's five points (fixtures/coach/coach.points) */
 static const fl_homog_pair_t default_points[5] = {
@@ -138,14 +139,23 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         p.blue.h_hi = q[15];
         p.blue.v_lo = q[16];
     }
-    st = fl_coach_init(&coach, &p);
-    if ((st == FL_OK) != (fl_coach_params_check(&p, NULL) == FL_OK))
-        abort();
-    if (st != FL_OK) {
-        /* a refused init leaves a state every call refuses */
-        fl_coach_params_default(&p);
-        if (fl_coach_init(&coach, &p) != FL_OK)
+    /* init builds the colour tables (the slow part of a run): once with
+     * the defaults, again only for parameters from the input; otherwise the
+     * state of the previous run carries over (its background cleared), which
+     * also checks that any run leaves it usable */
+    if (!ready || (flags & 2) || last_custom) {
+        st = fl_coach_init(&coach, &p);
+        if ((st == FL_OK) != (fl_coach_params_check(&p, NULL) == FL_OK))
             abort();
+        if (st != FL_OK) {
+            fl_coach_params_default(&p);
+            if (fl_coach_init(&coach, &p) != FL_OK)
+                abort();
+        }
+        ready = 1;
+        last_custom = (flags & 2) != 0;
+    } else {
+        fl_coach_clear_background(&coach);
     }
     for (k = 0; k < 9; k++) {
         const uint8_t *q = data + 8 + 4 * k;

@@ -16,7 +16,7 @@
  * red or blue jersey, with the same background (many small regions and
  * runs: the worst case for the region stage).  The peer's top view covers
  * the carpet at COACH_TOP_MM_PER_PX (20 mm per pixel: 521 x 371).
- * The same chain in image space is a second peer (rows ending _imgpeer):
+ * The same chain in image space is a second peer (rows ending _img):
  * the firmware's order of work (search the frame, map only the feet) in
  * OpenCV.  Seed 003's top view does not suit a coach camera at a standing
  * NAO's height: a jersey 0.3-0.45 m above the carpet, seen from 0.51 m,
@@ -26,8 +26,8 @@
  * operations.
  * Rows (ns per frame, best of 7 runs, 2 with --quick):
  *   coach_frame_640x480        the frame with two robots
- *   coach_frame_640x480_imgpeer  the same, image-space peer
- *   coach_classnoise_640x480   the class-noise frame (and _imgpeer)
+ *   coach_frame_640x480_img    the same, image-space peer
+ *   coach_noise_640x480        the class-noise frame (and _img)
  *   coach_homog_fit_4pt        fl_homog_fit of 4 pairs (peer:
  *                              getPerspectiveTransform)
  *   coach_homog_fit_5pt        fl_homog_fit of the 5 pairs the coach sees
@@ -140,7 +140,7 @@ static void bc_time_frame(bench_ctx_t *ctx, bc_ctx_t *b, const char *row, const 
                     best_cv = t0;
             }
             snprintf(desc, sizeof desc, "feet %d / peer %d; %s", feet, n, bc_peer_desc[k]);
-            snprintf(name, sizeof name, "%s%s", row, k ? "_imgpeer" : "");
+            snprintf(name, sizeof name, "%s%s", row, k ? "_img" : "");
             bench_row(ctx, name, best, best_cv, desc);
             any = 1;
         }
@@ -255,7 +255,7 @@ void bench_coach(bench_ctx_t *ctx)
     bc_time_frame(ctx, &b, "coach_frame_640x480", &two);
     bc_classnoise(&two, &noise);
     if (noise.rgb)
-        bc_time_frame(ctx, &b, "coach_classnoise_640x480", &noise);
+        bc_time_frame(ctx, &b, "coach_noise_640x480", &noise);
     {
         /* four of the five with no three collinear: leave out the far T
          * (on the far touchline between the two far corners) */
