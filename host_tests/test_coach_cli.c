@@ -130,6 +130,7 @@ static void test_fixture(void)
     t_info("# coach fixture: %d feet for 2 robots; nearest to red A (4.6 m) %.0f mm, to blue B (8 m) "
            "%.0f mm", n, err_a, err_b);
     CHECK(err_a >= 0 && err_b >= 0);
+    CHECK_EQ(n, 2); /* one foot per robot */
     /* the picture: the frame beside the top view, legend below */
     CHECK(stat(path, &st) == 0);
     if (ppm_read(path, &pic, err, sizeof err) == 0) {

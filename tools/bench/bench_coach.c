@@ -99,10 +99,12 @@ typedef struct {
     int reps;
 } bc_ctx_t;
 
+#ifdef FL_HAVE_OPENCV
 static const char *const bc_peer_desc[2] = {
     "OpenCV seed 003 chain: warpPerspective to the top view, inRange, morphologyEx, components, "
     "fitLine, Lab a* Otsu, absdiff",
     "OpenCV, same chain on the frame (no warp), feet by perspectiveTransform"};
+#endif
 
 static void bc_time_frame(bench_ctx_t *ctx, bc_ctx_t *b, const char *row, const host_image_t *img)
 {
