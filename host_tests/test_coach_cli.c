@@ -159,6 +159,45 @@ static void test_fixture(void)
     CHECK(strstr(t_out, "background no\n") != NULL);
 }
 
+/* The same view as a robot's camera gives it (YUYV422 in the FLRAW
+ * container), background too: the firmware reads that format itself. */
+static void test_yuyv(void)
+{
+    coach_cli_opts_t o;
+    render_scene_t sc;
+    render_frame_t fr;
+    char err[600] = "", a[256], b[256], team[8][8];
+    double xy[8][2];
+    int k, n;
+    if (t_quick) /* two full renders */
+        return;
+    snprintf(a, sizeof a, "build/test_coach_cli_%d_two.raw", (int)getpid());
+    snprintf(b, sizeof b, "build/test_coach_cli_%d_empty.raw", (int)getpid());
+    for (k = 0; k < 2; k++) {
+        coach_fixture_scene(1 - k, &sc);
+        sc.format = FL_FMT_YUYV422;
+        sc.supersample = 1;
+        CHECK(render_frame(&sc, &fr) == 0);
+        CHECK(render_write_frame(k ? b : a, &fr) == 0);
+        render_frame_free(&fr);
+    }
+    base_opts(&o);
+    o.image = a;
+    o.background = b;
+    CHECK_EQ(run(&o, err, sizeof err), 0);
+    n = parse_feet(xy, team, 8);
+    coach_fixture_scene(1, &sc);
+    CHECK_EQ(n, 2);
+    for (k = 0; k < n; k++) {
+        int r = !strcmp(team[k], "blue");
+        double d = hypot(xy[k][0] - sc.robots[r].x_mm, xy[k][1] - sc.robots[r].y_mm);
+        t_info("# coach yuyv: foot %s %.0f mm from its robot", team[k], d);
+        CHECK_LE(d, r ? 500.0 : 300.0);
+    }
+    remove(a);
+    remove(b);
+}
+
 static int write_file(const char *path, const char *text)
 {
     FILE *f = fopen(path, "w");
@@ -258,5 +297,6 @@ void suite_coach_cli(void)
 {
     t_run("coach_cli.matrix", test_matrix);
     t_run("coach_cli.fixture", test_fixture);
+    t_run("coach_cli.yuyv", test_yuyv);
     t_run("coach_cli.bad_input", test_bad_input);
 }

@@ -2,10 +2,12 @@
  * tools/cli/cmd_coach.c - `fieldloc coach`: the coach's frame (seed 003,
  * sections 3.1-3.3) from the command line.
  *
- *   fieldloc coach IMAGE.ppm --points FILE [--background EMPTY.ppm]
+ *   fieldloc coach IMAGE.ppm|FRAME.raw --points FILE [--background EMPTY.ppm|.raw]
  *        [--field spl2016] [--out PICTURE.png|.ppm] [--scale MM_PER_PX]
  *        [--repeat N]
  *
+ * Frames: PPM, or the FLRAW container of YUYV422 / planar frames
+ * (fixtures/README.md), given to the firmware in their own format.
  * Fits the image -> field homography from the points file
  * (tools/world/coach_scene.h: "NAME U V" or "U V X_MM Y_MM" lines), prints
  * it with its reprojection error and status, runs the firmware's coach
@@ -28,7 +30,7 @@
 static int usage(void)
 {
     fprintf(stderr,
-            "usage: fieldloc coach IMAGE.ppm --points FILE [--background EMPTY.ppm]\n"
+            "usage: fieldloc coach IMAGE.ppm|FRAME.raw --points FILE [--background EMPTY.ppm|.raw]\n"
             "         [--field NAME] [--out PICTURE.png|.ppm] [--scale MM_PER_PX] [--repeat N]\n"
             "  points file: one 'NAME U V' (e.g. centre_mark 319.5 88.2; names of\n"
             "  the field's 17 homography points) or 'U V X_MM Y_MM' per line, '#' comments;\n"

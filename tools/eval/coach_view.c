@@ -4,10 +4,12 @@
  */
 #include "eval/coach_view.h"
 
+#include "eval/detect.h"
 #include "eval/picture.h"
 #include "fieldloc/coach.h"
 #include "io/font.h"
 #include "world/coach_scene.h"
+#include "world/render.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -240,12 +242,25 @@ static int write_picture(const coach_cli_opts_t *o, const fl_field_t *f, const f
     return rc != 0 ? -1 : 0;
 }
 
-/* read a frame; -1 with the reason in err */
-static int load_frame(const char *what, const char *path, host_image_t *img, char *err, int err_len)
+/* A frame file in any of the renderer's formats (PPM, or the FLRAW
+ * container of YUYV422 / planar frames: what a robot's camera gives): the
+ * firmware gets it in its format, the picture an RGB copy.  -1 with the
+ * reason in err. */
+static int load_frame(const char *what, const char *path, render_frame_t *fr, host_image_t *rgb,
+                      char *err, int err_len)
 {
     char e[256];
-    if (ppm_read(path, img, e, sizeof e) != 0) {
+    rgb->rgb = NULL;
+    if (render_read_frame(path, fr, e, sizeof e) != 0) {
         snprintf(err, (size_t)err_len, "%s %s", what, e);
+        return -1;
+    }
+    rgb->width = fr->width;
+    rgb->height = fr->height;
+    rgb->rgb = det_rgb_copy(&fr->view);
+    if (!rgb->rgb) {
+        snprintf(err, (size_t)err_len, "%s %s: out of memory", what, path);
+        render_frame_free(fr);
         return -1;
     }
     return 0;
@@ -262,6 +277,7 @@ int coach_cli_run(const coach_cli_opts_t *o, FILE *out, char *err, int err_len)
     fl_homog_status_t hs;
     double m[9];
     host_image_t img = {0, 0, NULL}, bg = {0, 0, NULL};
+    render_frame_t img_fr, bg_fr;
     fl_coach_t *c = NULL;
     fl_coach_params_t cp;
     fl_coach_result_t res;
@@ -281,7 +297,9 @@ int coach_cli_run(const coach_cli_opts_t *o, FILE *out, char *err, int err_len)
         snprintf(err, (size_t)err_len, "--field: unknown field \"%s\"", o->field);
         return 2;
     }
-    if (load_frame("image", o->image, &img, err, err_len) != 0)
+    memset(&img_fr, 0, sizeof img_fr);
+    memset(&bg_fr, 0, sizeof bg_fr);
+    if (load_frame("image", o->image, &img_fr, &img, err, err_len) != 0)
         return 2;
     if (coach_points_load(o->points, f, pairs, names, COACH_POINTS_MAX, &n, err, err_len) != 0)
         goto done;
@@ -333,24 +351,23 @@ int coach_cli_run(const coach_cli_opts_t *o, FILE *out, char *err, int err_len)
     }
     if (o->background) {
         fl_image_t bview;
-        if (load_frame("background", o->background, &bg, err, err_len) != 0)
+        if (load_frame("background", o->background, &bg_fr, &bg, err, err_len) != 0)
             goto done;
         if (bg.width != img.width || bg.height != img.height) {
             snprintf(err, (size_t)err_len, "background %s is %d x %d, the image %d x %d",
                      o->background, bg.width, bg.height, img.width, img.height);
             goto done;
         }
-        st = fl_image_init_packed(&bview, FL_FMT_RGB888, bg.rgb, bg.width, bg.height, 3 * bg.width);
-        if (st == FL_OK)
-            st = fl_coach_set_background(c, &bview);
+        bview = bg_fr.view;
+        st = fl_coach_set_background(c, &bview);
         if (st != FL_OK) {
             snprintf(err, (size_t)err_len, "background %s refused: %s", o->background,
                      fl_status_str(st));
             goto done;
         }
     }
-    st = fl_image_init_packed(&view, FL_FMT_RGB888, img.rgb, img.width, img.height, 3 * img.width);
-    if (st == FL_OK) {
+    view = img_fr.view;
+    {
         long r;
         st = fl_coach_frame(c, &view, &res);
         for (r = 1; r < o->repeat; r++)
@@ -392,5 +409,7 @@ done:
     free(c);
     host_image_free(&img);
     host_image_free(&bg);
+    render_frame_free(&img_fr);
+    render_frame_free(&bg_fr);
     return rc;
 }

@@ -45,9 +45,10 @@ void coach_mark(host_image_t *im, double u, double v, fl_color_t team);
 
 /* The command's inputs. */
 typedef struct {
-    const char *image;        /* frame, PPM (P6) */
+    const char *image;        /* frame: PPM (P6), or the FLRAW container of
+                                 a YUYV422 / planar frame (render.h) */
     const char *points;       /* points file (world/coach_scene.h) */
-    const char *background;   /* empty-field frame, PPM, or NULL */
+    const char *background;   /* empty-field frame (the same kinds), or NULL */
     const char *field;        /* field name, default "spl2016" */
     const char *out;          /* picture (.png: PNG, else PPM), or NULL */
     int mm_per_px;            /* top view scale, 0: COACH_TOP_MM_PER_PX */
