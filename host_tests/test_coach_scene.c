@@ -197,6 +197,54 @@ static void test_points(void)
     CHECK_EQ(coach_scene_points(NULL, 0, 0, p, nm, 5), -1);
 }
 
+/* The coach's distance from the touchline: at each, the pitch chosen by the
+ * same rule (the largest whole degree with both far corners
+ * COACH_EDGE_MARGIN_PX inside; the far touchline itself must be in view),
+ * the points seen and whether they fit.  Seed 003's coach needs the far
+ * corners: nearer than about 2.5 m only the three collinear points of the
+ * halfway line remain. */
+static void test_distance(void)
+{
+    static const int beyond_mm[] = {1000, 2000, 2500, 3000, 3500, 4000};
+    int i;
+    for (i = 0; i < (int)(sizeof beyond_mm / sizeof beyond_mm[0]); i++) {
+        render_scene_t sc;
+        fl_homog_pair_t p[FL_HOMOG_FIELD_POINTS];
+        fl_homog_t h;
+        double ul, ur, vl, vr, vt;
+        int deg, best = -1000, n = 0;
+        fl_homog_status_t st = FL_HOMOG_TOO_FEW;
+        coach_scene_default(&sc, spl2016());
+        sc.robot_y_mm = -3000 - beyond_mm[i];
+        for (deg = 0; deg <= 29; deg++) {
+            sc.head.head_pitch = fl_angle_from_mdeg(deg * 1000);
+            if (px(&sc, -4500, 3000, &ul, &vl) && px(&sc, 4500, 3000, &ur, &vr) &&
+                px(&sc, 0, 3000, &vt, &vt) && vt >= COACH_EDGE_MARGIN_PX &&
+                fmin(ul, 639 - ur) >= COACH_EDGE_MARGIN_PX)
+                best = deg;
+        }
+        if (best >= 0) {
+            sc.head.head_pitch = fl_angle_from_mdeg(best * 1000);
+            n = coach_scene_points(&sc, 0, 0, p, NULL, FL_HOMOG_FIELD_POINTS);
+            st = fl_homog_fit(&h, p, (size_t)(n > 0 ? n : 0));
+        } else {
+            /* the far corners never fit: pitch down to 20 deg for the points */
+            sc.head.head_pitch = fl_angle_from_mdeg(COACH_HEAD_PITCH_MDEG);
+            n = coach_scene_points(&sc, 0, 0, p, NULL, FL_HOMOG_FIELD_POINTS);
+            st = fl_homog_fit(&h, p, (size_t)(n > 0 ? n : 0));
+        }
+        t_info("# coach %d mm beyond the touchline: pitch %s%d deg, %d points, fit %s",
+               beyond_mm[i], best >= 0 ? "" : "(no pitch keeps the far corners) ",
+               best >= 0 ? best : COACH_HEAD_PITCH_MDEG / 1000, n, fl_homog_status_str(st));
+        if (beyond_mm[i] <= 2000)
+            CHECK(st != FL_HOMOG_OK);
+        if (beyond_mm[i] >= 3000)
+            CHECK(best >= 0 && n >= 5 && st == FL_HOMOG_OK);
+        if (beyond_mm[i] == 3000)
+            CHECK_EQ(best * 1000, COACH_HEAD_PITCH_MDEG);
+    }
+}
+
 static void test_points_file(void)
 {
     render_scene_t sc;
@@ -282,6 +330,7 @@ void suite_coach_scene(void)
     t_run("coach_scene.pose", test_pose);
     t_run("coach_scene.clear_view", test_clear_view);
     t_run("coach_scene.points", test_points);
+    t_run("coach_scene.distance", test_distance);
     t_run("coach_scene.points_file", test_points_file);
     t_run("coach_scene.fixtures", test_fixtures);
 }
