@@ -21,6 +21,7 @@ T_SUITE(ukf);
 T_SUITE(upf);
 T_SUITE(confidence);
 T_SUITE(reseed);
+T_SUITE(team);
 T_SUITE(lines);
 T_SUITE(features);
 T_SUITE(robots);
