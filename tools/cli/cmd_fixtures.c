@@ -2,8 +2,9 @@
  * tools/cli/cmd_fixtures.c - `fieldloc fixtures [--out DIR] [--only NAME]`
  * (`make fixtures`): regenerates the committed rendered fixture set
  * DIR/frames/ (frame, truth and scene per fixture, plus index.txt) from the
- * table below, and the walk scenarios DIR/walks/ through the simulator's
- * sim_write_walk_fixtures when it is linked in.
+ * table below, the walk scenarios DIR/walks/ through the simulator's
+ * sim_write_walk_fixtures when it is linked in, and the coach's views
+ * DIR/coach/ (tools/world/coach_scene.h coach_write_fixtures).
  *
  * Each table row is turned into scene text (render_scene_read), so a row
  * says exactly what its .scene file will say; `extra` lines come last and
@@ -29,6 +30,8 @@
 
 /* The simulator's walk fixtures (tools/world/sim.c), when linked. */
 int sim_write_walk_fixtures(const char *out_dir) __attribute__((weak));
+/* The coach's fixtures (tools/world/coach_scene.c). */
+int coach_write_fixtures(const char *dir) __attribute__((weak));
 
 static int ensure_dir(const char *path)
 {
@@ -73,7 +76,7 @@ int cmd_fixtures(int argc, char **argv)
         else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             fprintf(stderr, "usage: fieldloc fixtures [--out DIR] [--only NAME]\n"
                             "  writes DIR/frames/NAME.{ppm|raw,truth,scene} and DIR/frames/index.txt,\n"
-                            "  and DIR/walks/ when the walk simulator is built in\n");
+                            "  DIR/walks/ when the walk simulator is built in, and DIR/coach/\n");
             return 0;
         } else
             return arg_unknown("fixtures", argv[i], "--out=1 --only=1");
@@ -158,6 +161,15 @@ int cmd_fixtures(int argc, char **argv)
             }
         } else {
             printf("fixtures: walk simulator not built in; %s/walks left alone\n", out);
+        }
+        if (coach_write_fixtures) {
+            snprintf(path, sizeof path, "%s/coach", out);
+            if (ensure_dir(path) != 0 || coach_write_fixtures(path) != 0) {
+                fprintf(stderr, "fixtures: coach fixtures failed in %s\n", path);
+                errors++;
+            } else {
+                printf("fixtures: coach views written to %s\n", path);
+            }
         }
     }
     return errors ? 1 : 0;

@@ -895,6 +895,10 @@ static void build_room(world_t *w, rnd_t *r)
         double s;
         /* along-wall axis (ax, ay) */
         double ax = -ny, ay = nx;
+        /* a cleared side still draws its pieces from r and then drops them,
+         * so the other sides keep their clutter */
+        int clear = (w->sc->clear_sides >> side) & 1;
+        int np0, ng0;
         frame2_t F;
         if (!w->sc->background)
             continue;
@@ -905,9 +909,15 @@ static void build_room(world_t *w, rnd_t *r)
             F.sn = ny;
             F.ox = -nx * wall + ax * s;
             F.oy = -ny * wall + ay * s;
+            np0 = w->np;
+            ng0 = w->ng;
             group_begin(w);
             add_wall_decor(w, r, &F, rnd_int(r, 0, 3));
             group_end(w);
+            if (clear) {
+                w->np = np0;
+                w->ng = ng0;
+            }
             s += rnd_range(r, 1500, 3500);
         }
         /* floor clutter */
@@ -946,9 +956,15 @@ static void build_room(world_t *w, rnd_t *r)
             }
             F.ox = -nx * (wall - depth_from_wall) + ax * s;
             F.oy = -ny * (wall - depth_from_wall) + ay * s;
+            np0 = w->np;
+            ng0 = w->ng;
             group_begin(w);
             add_clutter(w, r, &F, type);
             group_end(w);
+            if (clear) {
+                w->np = np0;
+                w->ng = ng0;
+            }
             s += rnd_range(r, 900, 2200);
         }
     }

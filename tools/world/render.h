@@ -114,6 +114,13 @@ typedef struct {
     int32_t ball_x_mm, ball_y_mm;       /* field frame */
     int background;                     /* 1: cluttered room beyond the carpet
                                            (default); 0: plain grey walls */
+    int32_t clear_sides;                /* bit mask of room sides left without
+                                           floor clutter and wall decoration
+                                           (an observer's line of sight to the
+                                           field): 1 the +x end, 2 the -x
+                                           end, 4 the +y side, 8 the -y side;
+                                           the other sides keep exactly the
+                                           clutter they have with 0 (default) */
 
     /* photometry (integer units, see each) */
     int32_t gain_pct;           /* overall brightness, 100 = nominal */

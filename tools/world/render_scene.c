@@ -15,6 +15,8 @@
  *   seed N                      per-frame noise
  *   world_seed N                room clutter, carpet texture, shadows
  *   background 0|1
+ *   clear_sides MASK            room sides without clutter (written only
+ *                               when not 0)
  *   ball 0|1 X_MM Y_MM
  *   light GAIN_PCT GRAD_X_PCT GRAD_Y_PCT SHADOWS
  *   noise NOISE_X10
@@ -55,6 +57,8 @@ int render_scene_write(FILE *f, const render_scene_t *sc)
     fprintf(f, "seed %lu\n", (unsigned long)sc->seed);
     fprintf(f, "world_seed %lu\n", (unsigned long)sc->world_seed);
     fprintf(f, "background %d\n", sc->background);
+    if (sc->clear_sides != 0)
+        fprintf(f, "clear_sides %d\n", (int)sc->clear_sides);
     fprintf(f, "ball %d %d %d\n", sc->ball, (int)sc->ball_x_mm, (int)sc->ball_y_mm);
     fprintf(f, "light %d %d %d %d\n", (int)sc->gain_pct, (int)sc->grad_x_pct, (int)sc->grad_y_pct,
             (int)sc->shadows);
@@ -141,6 +145,10 @@ int render_scene_read(FILE *f, render_scene_t *sc, char *err, int err_len)
             if (sscanf(line, "%*s %ld", &v[0]) != 1)
                 BAD("background 0|1");
             s.background = v[0] != 0;
+        } else if (!strcmp(key, "clear_sides")) {
+            if (sscanf(line, "%*s %ld", &v[0]) != 1 || v[0] < 0 || v[0] > 15)
+                BAD("clear_sides 0..15");
+            s.clear_sides = (int32_t)v[0];
         } else if (!strcmp(key, "ball")) {
             if (sscanf(line, "%*s %ld %ld %ld", &v[0], &v[1], &v[2]) != 3)
                 BAD("ball 0|1 X Y");
