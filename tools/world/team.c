@@ -8,17 +8,14 @@
 
 void team_coach_default(team_coach_t *c)
 {
+    render_scene_t sc;
     memset(c, 0, sizeof *c);
-    c->model = fl_camera_model_find(TEAM_COACH_CAMERA);
-    c->x_mm = TEAM_COACH_X_MM;
-    c->y_mm = TEAM_COACH_Y_MM;
-    c->heading = fl_angle_from_mdeg(TEAM_COACH_HEADING_DEG * 1000);
-    if (c->model != NULL) {
-        c->head.neck_height_mm = c->model->default_neck_height_mm;
-        c->head.pitch_offset = c->model->default_pitch_offset;
-    }
-    c->head.head_pitch = fl_angle_from_mdeg(TEAM_COACH_PITCH_DEG * 1000);
-    c->head.head_yaw = 0;
+    coach_scene_default(&sc, NULL);
+    c->model = sc.camera;
+    c->x_mm = sc.robot_x_mm;
+    c->y_mm = sc.robot_y_mm;
+    c->heading = sc.robot_heading;
+    c->head = sc.head;
     c->jersey = RENDER_JERSEY_RED;
     c->in_players_world = 1;
 }
@@ -122,7 +119,8 @@ int team_all_arrived(const team_t *t)
 void team_coach_scene(const team_t *t, uint32_t seed, render_scene_t *scene)
 {
     int i;
-    render_scene_default(scene, t->field, t->coach.model);
+    coach_scene_default(scene, t->field);
+    scene->camera = t->coach.model;
     scene->robot_x_mm = t->coach.x_mm;
     scene->robot_y_mm = t->coach.y_mm;
     scene->robot_heading = t->coach.heading;

@@ -29,27 +29,21 @@
 #define FL_TOOLS_TEAM_H
 
 #include "fieldloc/fieldloc.h"
+#include "world/coach_scene.h"
 #include "world/render.h"
 #include "world/sim.h"
 
 #define TEAM_MAX_PLAYERS 4
 
-/* The coach of seed 003 (its figure 1): a NAO standing still outside the -y
- * touchline at the halfway line, 3 m beyond it, facing the field, with the
- * camera model's standing neck height.  Its head pitch puts the far (+y)
- * touchline just inside the top of the image: with "nao6-top-640" (vertical
- * field of view about 48 deg, camera mount tilt 1.2 deg) the far touchline
- * at 9 m from a camera ~0.5 m high lies 3.2 deg below the horizon, so a
- * total tilt of ~3.2 + 22 = ~25 deg puts it about 2 deg under the top edge;
- * the head pitch is that minus the mount tilt (rounded to whole degrees). */
-#define TEAM_COACH_X_MM 0
-#define TEAM_COACH_Y_MM (-6000)
-#define TEAM_COACH_HEADING_DEG 90
-#define TEAM_COACH_PITCH_DEG 20
-#define TEAM_COACH_CAMERA "nao6-top-640"
+/* The coach of seed 003 (its figure 1): tools/world/coach_scene.h's default
+ * (a NAO standing still 3 m beyond the -y touchline at the halfway line,
+ * facing the field, "nao6-top-640" at the model's standing neck height,
+ * head pitched so that the far touchline is just inside the image). */
+#define TEAM_COACH_X_MM COACH_X_MM
+#define TEAM_COACH_Y_MM COACH_Y_MM
 
 typedef struct {
-    const fl_camera_model_t *model;   /* TEAM_COACH_CAMERA */
+    const fl_camera_model_t *model;   /* COACH_CAMERA */
     int32_t x_mm, y_mm;
     fl_angle_t heading;
     fl_camera_pose_t head;            /* the model's neck height and pitch
