@@ -4,6 +4,7 @@ T_SUITE(image);
 T_SUITE(png);
 T_SUITE(camera);
 T_SUITE(homography);
+T_SUITE(coach);
 T_SUITE(calib);
 T_SUITE(field);
 T_SUITE(obs);

@@ -263,6 +263,56 @@
 #error "FL_HOMOG_MAX_POINTS must be in 4..64"
 #endif
 
+/* ---- the coach's image path (coach.h, seed 003) ---------------------------
+ * FL_COACH_MAX_WIDTH/HEIGHT  largest coach frame, pixels.  Default 640 x 480
+ *                    (NAO v6 top camera at the coach's resolution).  Range
+ *                    32..FL_IMAGE_MAX_DIM each.  Memory: 2 bytes per pixel
+ *                    (stored background) + 4 bit masks (coach.h).
+ * FL_COACH_MAX_RUNS  set-bit runs of the two jersey masks in one frame.
+ *                    Default 4096, range 64..65535 (16-bit union-find);
+ *                    extra runs are dropped and counted.
+ * FL_COACH_MAX_REGIONS  connected jersey regions in one frame.  Default 64,
+ *                    range 4..1024; extra regions are dropped and counted.
+ * FL_COACH_MAX_FEET  feet reported per frame (players seen).  Default 12
+ *                    (two teams of six), range 1..64.
+ * FL_COACH_MAX_BAND_PX  half width of the band searched for the legs on
+ *                    each side of a robot's line, pixels.  Default 48,
+ *                    range 4..255. */
+#ifndef FL_COACH_MAX_WIDTH
+#define FL_COACH_MAX_WIDTH 640
+#endif
+#ifndef FL_COACH_MAX_HEIGHT
+#define FL_COACH_MAX_HEIGHT 480
+#endif
+#if FL_COACH_MAX_WIDTH < 32 || FL_COACH_MAX_WIDTH > FL_IMAGE_MAX_DIM || \
+    FL_COACH_MAX_HEIGHT < 32 || FL_COACH_MAX_HEIGHT > FL_IMAGE_MAX_DIM
+#error "FL_COACH_MAX_WIDTH and FL_COACH_MAX_HEIGHT must be in 32..FL_IMAGE_MAX_DIM"
+#endif
+#ifndef FL_COACH_MAX_RUNS
+#define FL_COACH_MAX_RUNS 4096
+#endif
+#if FL_COACH_MAX_RUNS < 64 || FL_COACH_MAX_RUNS > 65535
+#error "FL_COACH_MAX_RUNS must be in 64..65535"
+#endif
+#ifndef FL_COACH_MAX_REGIONS
+#define FL_COACH_MAX_REGIONS 64
+#endif
+#if FL_COACH_MAX_REGIONS < 4 || FL_COACH_MAX_REGIONS > 1024
+#error "FL_COACH_MAX_REGIONS must be in 4..1024"
+#endif
+#ifndef FL_COACH_MAX_FEET
+#define FL_COACH_MAX_FEET 12
+#endif
+#if FL_COACH_MAX_FEET < 1 || FL_COACH_MAX_FEET > 64
+#error "FL_COACH_MAX_FEET must be in 1..64"
+#endif
+#ifndef FL_COACH_MAX_BAND_PX
+#define FL_COACH_MAX_BAND_PX 48
+#endif
+#if FL_COACH_MAX_BAND_PX < 4 || FL_COACH_MAX_BAND_PX > 255
+#error "FL_COACH_MAX_BAND_PX must be in 4..255"
+#endif
+
 /* ---- the configuration fingerprint ---------------------------------------
  * FNV-1a over 32-bit words: the layout version, then every option above
  * (each one guarded by #ifndef in this file; the host test config.
@@ -277,6 +327,7 @@
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
     FL_ABI_VERSION), \
     FL_IMAGE_MAX_DIM), \
@@ -288,6 +339,8 @@
     FL_CIRCLE_MAX_CHORDS), FL_CIRCLE_MAX_POINTS), FL_LINES_NEAR_MAX), \
     FL_OBS_MAX), \
     FL_BEACON_MAX_RUNS), FL_BEACON_MAX_BLOBS), FL_BEACON_MAX_FOUND), \
-    FL_HOMOG_MAX_POINTS)))
+    FL_HOMOG_MAX_POINTS), \
+    FL_COACH_MAX_WIDTH), FL_COACH_MAX_HEIGHT), FL_COACH_MAX_RUNS), \
+    FL_COACH_MAX_REGIONS), FL_COACH_MAX_FEET), FL_COACH_MAX_BAND_PX)))
 
 #endif /* FIELDLOC_CONFIG_H */

@@ -35,6 +35,7 @@ HEADER_LAYER = {
     "text.h": "base",            # the text formats' words, numbers, writer
     "camera.h": "model", "calib.h": "model", "field.h": "model",
     "homography.h": "model",     # image <-> field plane geometry, like camera.h
+    "coach.h": "vision",         # the coach's image path: pixels to reports
     "obs.h": "obs",              # the seam between vision and localization
     "color.h": "vision", "scan.h": "vision", "lines.h": "vision",
     "crossings.h": "vision", "circle.h": "vision", "goal.h": "vision",
