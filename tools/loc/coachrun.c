@@ -2,7 +2,9 @@
  * tools/loc/coachrun.c - seed 003's experiments (tools/loc/coachrun.h).
  */
 #include "loc/coachrun.h"
+#include "fieldloc/coach.h"
 #include "loc/locrun.h"
+#include "world/coach_scene.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -194,28 +196,89 @@ static int cr_walk_leg(cr_world_t *w, int *timeout)
 }
 
 typedef struct {
-    int32_t x_mm, y_mm;
+    int32_t x_mm, y_mm, sd_mm;
     int team;
     int confidence;
 } cr_foot_t;
+
+/* The coach's own setup for one run: its homography from the pixel
+ * positions of the homography points in its view (coach_scene_points: the
+ * true pixels plus CR_POINT_NOISE_PX of uniform noise, as points picked by
+ * hand) and its empty-field background (the same world, no players, a
+ * frame of its own noise). */
+#define CR_POINT_NOISE_PX 1.0
+
+static int cr_coach_setup(fl_coach_t *c, const team_t *team, uint64_t seed, int *n_points)
+{
+    render_scene_t scene;
+    render_frame_t fr;
+    fl_homog_pair_t pairs[COACH_POINTS_MAX];
+    fl_homog_t h;
+    fl_coach_params_t prm;
+    int n;
+    team_coach_scene(team, (uint32_t)(seed * 2654435761u) ^ 0xb6u, &scene);
+    scene.n_robots = 0;
+    n = coach_scene_points(&scene, CR_POINT_NOISE_PX, (uint32_t)seed, pairs, NULL,
+                           COACH_POINTS_MAX);
+    *n_points = n;
+    fl_coach_params_default(&prm);
+    if (n < 4 || fl_homog_fit(&h, pairs, (size_t)n) != FL_HOMOG_OK ||
+        fl_coach_init(c, &prm) != FL_OK || fl_coach_set_homography(c, &h, team->field) != FL_OK)
+        return -1;
+    if (render_frame(&scene, &fr) != 0)
+        return -1;
+    n = fl_coach_set_background(c, &fr.view) == FL_OK ? 0 : -1;
+    render_frame_free(&fr);
+    return n;
+}
 
 /* The coach's feet on its frame of the current step. */
 static int cr_coach_feet(const cr_world_t *w, uint64_t seed, cr_foot_t *out, int max)
 {
     int n = 0, p;
     render_scene_t scene;
-    team_coach_scene(&w->team, (uint32_t)(seed * 2654435761u) ^ 0x5eed003u, &scene);
+    render_frame_t fr;
+    fl_coach_t *c;
+    fl_coach_result_t *res;
+    int n_points = 0;
     if (w->o->feet == CR_FEET_TRUTH_DEBUG) {
         for (p = 0; p < w->team.n && n < max; p++, n++) {
             out[n].x_mm = w->team.p[p].st.x_mm;
             out[n].y_mm = w->team.p[p].st.y_mm;
+            out[n].sd_mm = FL_OBS_REPORT_SD_MM;
             out[n].team = FL_COLOR_RED;
             out[n].confidence = 255;
         }
         return n;
     }
-    /* the coach's image path is not in this build */
-    return -1;
+    c = malloc(sizeof *c);
+    res = malloc(sizeof *res);
+    if (c == NULL || res == NULL || cr_coach_setup(c, &w->team, seed, &n_points) != 0) {
+        free(c);
+        free(res);
+        return -1;
+    }
+    team_coach_scene(&w->team, (uint32_t)(seed * 2654435761u) ^ 0x5eed003u, &scene);
+    if (render_frame(&scene, &fr) != 0) {
+        free(c);
+        free(res);
+        return -1;
+    }
+    if (fl_coach_frame(c, &fr.view, res) == FL_OK) {
+        fl_obs_report_t rep[FL_COACH_MAX_FEET];
+        size_t i, k = fl_coach_reports(res, 0, rep, FL_COACH_MAX_FEET);
+        for (i = 0; i < k && n < max; i++, n++) {
+            out[n].x_mm = rep[i].x_mm;
+            out[n].y_mm = rep[i].y_mm;
+            out[n].sd_mm = rep[i].sd_mm;
+            out[n].team = rep[i].team;
+            out[n].confidence = rep[i].confidence;
+        }
+    }
+    render_frame_free(&fr);
+    free(c);
+    free(res);
+    return n;
 }
 
 static double cr_dist(double ax, double ay, double bx, double by)
@@ -336,7 +399,7 @@ static int cr_one_run(const cr_opts_t *o, const fl_localizer_t *loc, int r, cr_r
                 memset(&rep, 0, sizeof rep);
                 rep.x_mm = feet[f].x_mm;
                 rep.y_mm = feet[f].y_mm;
-                rep.sd_mm = FL_OBS_REPORT_SD_MM;
+                rep.sd_mm = feet[f].sd_mm;
                 rep.confidence = (uint8_t)feet[f].confidence;
                 rep.team = (uint8_t)feet[f].team;
                 rep.age_ms = 0;
