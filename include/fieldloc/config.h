@@ -313,6 +313,29 @@
 #error "FL_COACH_MAX_BAND_PX must be in 4..255"
 #endif
 
+/* ---- observer reports (report.h, seed 003) -------------------------------
+ * FL_REPORT_MAX        reports one coach frame (and one message) carries.
+ *                      Default 10 (two SPL teams of 5).  Range 1..12 (the
+ *                      assignment's tie-breaking perturbation needs
+ *                      (FL_REPORT_MAX_PLAYERS + 1)^FL_REPORT_MAX < 2^39).
+ *                      Sizes fl_report_msg_t and the message
+ *                      (FL_REPORT_MSG_BYTES = 12 + 12 x FL_REPORT_MAX).
+ * FL_REPORT_MAX_PLAYERS  claims (players) per team the coach's assignment
+ *                      matches.  Default 6 (5 players and a substitute).
+ *                      Range 1..8. */
+#ifndef FL_REPORT_MAX
+#define FL_REPORT_MAX 10
+#endif
+#if FL_REPORT_MAX < 1 || FL_REPORT_MAX > 12
+#error "FL_REPORT_MAX must be in 1..12"
+#endif
+#ifndef FL_REPORT_MAX_PLAYERS
+#define FL_REPORT_MAX_PLAYERS 6
+#endif
+#if FL_REPORT_MAX_PLAYERS < 1 || FL_REPORT_MAX_PLAYERS > 8
+#error "FL_REPORT_MAX_PLAYERS must be in 1..8"
+#endif
+
 /* ---- the configuration fingerprint ---------------------------------------
  * FNV-1a over 32-bit words: the layout version, then every option above
  * (each one guarded by #ifndef in this file; the host test config.
@@ -324,6 +347,7 @@
 #define FL_CFG_MIX_(h, v) \
     (((((h) ^ ((unsigned long)(v) & 0xFFFFFFFFUL)) * 16777619UL)) & 0xFFFFFFFFUL)
 #define FL_CONFIG_FINGERPRINT ((uint32_t)( \
+    FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
@@ -341,6 +365,7 @@
     FL_BEACON_MAX_RUNS), FL_BEACON_MAX_BLOBS), FL_BEACON_MAX_FOUND), \
     FL_HOMOG_MAX_POINTS), \
     FL_COACH_MAX_WIDTH), FL_COACH_MAX_HEIGHT), FL_COACH_MAX_RUNS), \
-    FL_COACH_MAX_REGIONS), FL_COACH_MAX_FEET), FL_COACH_MAX_BAND_PX)))
+    FL_COACH_MAX_REGIONS), FL_COACH_MAX_FEET), FL_COACH_MAX_BAND_PX), \
+    FL_REPORT_MAX), FL_REPORT_MAX_PLAYERS)))
 
 #endif /* FIELDLOC_CONFIG_H */
