@@ -294,6 +294,7 @@ static void test_deterministic(void)
     CHECK(a->coach_dist_mm[0][1] > 5000);
     CHECK_EQ(a->leg_timeouts, 0);
     CHECK_EQ(a->reseeds, 2);
+    CHECK_EQ(a->wrong_assignments, 0);
     free(a);
     free(b);
 }

@@ -3,6 +3,7 @@
  */
 #include "loc/coachrun.h"
 #include "fieldloc/coach.h"
+#include "fieldloc/report.h"
 #include "loc/locrun.h"
 #include "world/coach_scene.h"
 
@@ -292,25 +293,6 @@ static double cr_err(const cr_world_t *w, int p)
     return cr_dist(w->pl[p].est.x_mm, w->pl[p].est.y_mm, st->x_mm, st->y_mm);
 }
 
-/* Assignment stand-in (player side): the report of the own team nearest
- * the player's own estimate.  Returns the foot index or -1. */
-static int cr_assign(const cr_world_t *w, int p, const cr_foot_t *feet, int n)
-{
-    int i, best = -1;
-    double bd = 0;
-    for (i = 0; i < n; i++) {
-        double d;
-        if (feet[i].team != FL_COLOR_RED)
-            continue;
-        d = cr_dist(feet[i].x_mm, feet[i].y_mm, w->pl[p].est.x_mm, w->pl[p].est.y_mm);
-        if (best < 0 || d < bd) {
-            best = i;
-            bd = d;
-        }
-    }
-    return best;
-}
-
 /* The foot that truly belongs to player p: nearest its true foot within
  * 500 mm; -1 when the coach found none there. */
 static int cr_true_foot(const cr_world_t *w, int p, const cr_foot_t *feet, int n)
@@ -326,6 +308,77 @@ static int cr_true_foot(const cr_world_t *w, int p, const cr_foot_t *feet, int n
         }
     }
     return best;
+}
+
+/* The reports of the coach's frame, numbered by the coach (report.h
+ * fl_report_assign against the players' broadcast estimates and spreads)
+ * unless o->assign_player_side; then each player takes its report
+ * (fl_report_pick: its number, or the nearest of its team to its own
+ * estimate) and re-seeds (fl_report_apply; threshold 1 mm with
+ * reseed_always: seed 003's one correction, else the spread rule).  A
+ * report taken by a player whose true foot is another is a wrong
+ * assignment. */
+static void cr_correct(cr_world_t *w, const cr_opts_t *o, const fl_localizer_t *loc,
+                       const cr_foot_t *feet, int nf, cr_result_t *res, int *assigned,
+                       const char **what)
+{
+    fl_obs_report_t rep[FL_REPORT_MAX];
+    fl_report_claim_t claim[2];
+    fl_report_stats_t cst;
+    size_t n = 0;
+    int i, p;
+    memset(&cst, 0, sizeof cst);
+    for (i = 0; i < nf && n < FL_REPORT_MAX; i++, n++) {
+        memset(&rep[n], 0, sizeof rep[n]);
+        rep[n].x_mm = feet[i].x_mm;
+        rep[n].y_mm = feet[i].y_mm;
+        rep[n].sd_mm = feet[i].sd_mm;
+        rep[n].confidence = (uint8_t)feet[i].confidence;
+        rep[n].team = (uint8_t)feet[i].team;
+        rep[n].age_ms = 0;
+    }
+    for (p = 0; p < 2; p++) {
+        claim[p].x_mm = w->pl[p].est.x_mm;
+        claim[p].y_mm = w->pl[p].est.y_mm;
+        claim[p].spread_mm = fl_loc_spread_mm(loc, w->pl[p].lr.state);
+        claim[p].team = FL_COLOR_RED;
+        claim[p].player = (uint8_t)(p + 1);
+    }
+    if (!o->assign_player_side)
+        fl_report_assign(rep, n, claim, 2, w->team.field, 0, &cst);
+    for (p = 0; p < 2; p++) {
+        fl_report_tracker_t tr, probe;
+        fl_report_self_t me;
+        fl_report_result_t r;
+        size_t idx = 0;
+        int truth = cr_true_foot(w, p, feet, nf);
+        memset(&me, 0, sizeof me);
+        me.team = FL_COLOR_RED;
+        me.player = o->assign_player_side ? 0 : (uint8_t)(p + 1);
+        me.now_ms = (uint32_t)w->team.p[p].st.t_ms;
+        me.field = w->team.field;
+        me.est = &w->pl[p].est;
+        fl_report_tracker_init(&tr);
+        probe = tr;
+        /* which report it takes (the pick alone touches no filter) */
+        r = fl_report_pick(rep, n, &me, w->pl[p].est.x_mm, w->pl[p].est.y_mm,
+                           claim[p].spread_mm, &probe, &idx);
+        assigned[p] = r == FL_REPORT_NOT_NEEDED ? (int)idx : -1;
+        if (assigned[p] >= 0) {
+            res->assigned++;
+            res->wrong_assignments += assigned[p] != truth;
+        } else
+            res->unassigned++;
+        r = fl_report_apply(loc, w->pl[p].lr.state, rep, n, &me, o->reseed_always ? 1u : 0u,
+                            &tr);
+        what[p] = fl_report_result_str(r);
+        if (r == FL_REPORT_RESEEDED)
+            res->reseeds++;
+        else if (r == FL_REPORT_NOT_NEEDED)
+            res->not_needed++;
+        else
+            res->refused++;
+    }
 }
 
 static int cr_second_leg(cr_world_t *w, int *timeout)
@@ -347,6 +400,7 @@ static int cr_one_run(const cr_opts_t *o, const fl_localizer_t *loc, int r, cr_r
     uint64_t seed = o->seed + (uint64_t)r;
     cr_foot_t feet[8];
     int nf = 0, p, pass, to = 0, assigned[2] = {-1, -1}, rc = -1;
+    const char *what[2] = {"-", "-"};
     cr_obs_rec_t rec[2];
     memset(rec, 0, sizeof rec);
     if (w == NULL)
@@ -384,30 +438,7 @@ static int cr_one_run(const cr_opts_t *o, const fl_localizer_t *loc, int r, cr_r
             }
         } else {
             /* one correction at the blue circles */
-            for (p = 0; p < 2; p++) {
-                int f = cr_assign(w, p, feet, nf);
-                int truth = cr_true_foot(w, p, feet, nf);
-                fl_obs_report_t rep;
-                assigned[p] = f;
-                if (f < 0)
-                    continue;
-                res->assigned++;
-                res->wrong_assignments += f != truth;
-                if (!o->reseed_always &&
-                    !fl_loc_spread_beyond(loc, w->pl[p].lr.state, FL_LOC_RESEED_SPREAD_MM))
-                    continue;
-                memset(&rep, 0, sizeof rep);
-                rep.x_mm = feet[f].x_mm;
-                rep.y_mm = feet[f].y_mm;
-                rep.sd_mm = feet[f].sd_mm;
-                rep.confidence = (uint8_t)feet[f].confidence;
-                rep.team = (uint8_t)feet[f].team;
-                rep.age_ms = 0;
-                if (fl_loc_reseed(loc, w->pl[p].lr.state, &rep) == FL_OK)
-                    res->reseeds++;
-                else
-                    res->refused++;
-            }
+            cr_correct(w, o, loc, feet, nf, res, assigned, what);
         }
         if (cr_second_leg(w, &to) != 0) {
             cr_world_free(w);
@@ -429,11 +460,12 @@ static int cr_one_run(const cr_opts_t *o, const fl_localizer_t *loc, int r, cr_r
         fprintf(o->log,
                 "# run %d seed %llu: A at %.0f mm from the coach: coach %.0f own %.0f "
                 "exp2 %.0f nocoach %.0f; B at %.0f mm: coach %.0f own %.0f exp2 %.0f "
-                "nocoach %.0f; assigned %d %d\n",
+                "nocoach %.0f; report taken A %d (%s) B %d (%s)\n",
                 r, (unsigned long long)seed, res->coach_dist_mm[r][0], res->coach_err[r][0],
                 res->own_err[r][0], res->exp2_err[r][0], res->exp2_nocoach_err[r][0],
                 res->coach_dist_mm[r][1], res->coach_err[r][1], res->own_err[r][1],
-                res->exp2_err[r][1], res->exp2_nocoach_err[r][1], assigned[0], assigned[1]);
+                res->exp2_err[r][1], res->exp2_nocoach_err[r][1], assigned[0], what[0],
+                assigned[1], what[1]);
 out:
     free(rec[0].obs);
     free(rec[1].obs);
@@ -508,10 +540,11 @@ void cr_print_summary(FILE *f, const cr_result_t *res)
     fprintf(f, "# coach: %d runs; robot A (near) %.0f mm, robot B (far) %.0f mm from the "
                "coach at the blue circle (mean)\n",
             res->runs, dmean[0], dmean[1]);
-    fprintf(f, "# coach: feet missed %d, reports assigned %d, re-seeds %d, refused %d, "
-               "legs timed out %d, wall %.1f s (rendering the players' views %.1f s)\n",
-            res->coach_missed, res->assigned, res->reseeds, res->refused, res->leg_timeouts,
-            res->wall_s, res->render_s);
+    fprintf(f, "# coach: feet missed %d (no reported foot within 500 mm of a player), reports "
+               "taken %d, none taken %d, re-seeds %d, not needed %d, refused %d, legs timed "
+               "out %d, wall %.1f s (rendering the players' views %.1f s)\n",
+            res->coach_missed, res->assigned, res->unassigned, res->reseeds, res->not_needed,
+            res->refused, res->leg_timeouts, res->wall_s, res->render_s);
     for (i = 0; i < 4; i++)
         for (p = 0; p < 2; p++)
             fprintf(f, "# median %s %.0f\n", name[i][p], median[i][p]);

@@ -28,10 +28,11 @@
  * (Experiment 1: each player's true foot against the nearest foot the
  * coach reports, and against the player's own estimate).  The run then
  * continues twice from the same state: without the coach, and with one
- * application of the reports (each player takes the report assigned to it
- * and re-seeds through fl_loc_reseed when its belief has spread beyond
- * FL_LOC_RESEED_SPREAD_MM); both walk the second leg and the error of each
- * player's estimate at the grey circle is Experiment 2.  The two
+ * application of the reports (report.h: the coach numbers its reports
+ * against the estimates the players broadcast, fl_report_assign; each
+ * player takes its own, fl_report_pick, and re-seeds through
+ * fl_report_apply -> fl_loc_reseed); both walk the second leg and the
+ * error of each player's estimate at the grey circle is Experiment 2.  The two
  * continuations are computed by running the same deterministic world twice
  * (identical up to the blue circle).
  */
@@ -65,6 +66,12 @@ typedef struct {
                                     circles"); 0: only a player whose belief
                                     has spread beyond FL_LOC_RESEED_SPREAD_MM
                                     (the online rule of its section 3) */
+    int assign_player_side;      /* 1: no numbering by the coach; each
+                                    player takes the report of its team
+                                    nearest its own estimate (report.h
+                                    fl_report_pick); 0: the coach numbers
+                                    the reports (fl_report_assign) against
+                                    the players' broadcast estimates */
     FILE *log;                   /* per-run "# run ..." lines, or NULL */
     FILE *trace;                 /* per-step "# step ..." lines, or NULL */
 } cr_opts_t;
@@ -79,7 +86,7 @@ typedef struct {
     double exp2_err[CR_MAX_RUNS][2];
     double exp2_nocoach_err[CR_MAX_RUNS][2];
     double coach_dist_mm[CR_MAX_RUNS][2];   /* true distance coach -> foot */
-    int reseeds, refused, assigned, wrong_assignments, coach_missed;
+    int reseeds, not_needed, refused, assigned, unassigned, wrong_assignments, coach_missed;
     int leg_timeouts;
     double wall_s, render_s;
 } cr_result_t;
