@@ -69,6 +69,7 @@ typedef struct {
     cr_obs_rec_t *rec;          /* [2]: recording (pass 0) or replaying */
     int replay;
     double render_s;
+    long rendered;
 } cr_world_t;
 
 static void cr_world_free(cr_world_t *w)
@@ -155,6 +156,7 @@ static int cr_world_step(cr_world_t *w)
                     clock_gettime(CLOCK_MONOTONIC, &t1);
                     w->render_s += (double)(t1.tv_sec - t0.tv_sec) +
                                    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+                    w->rendered++;
                     lr_frame(&pl->lr, &fr.view, &st->head);
                     render_frame_free(&fr);
                     if (rec->n == rec->cap) {
@@ -453,6 +455,7 @@ static int cr_one_run(const cr_opts_t *o, const fl_localizer_t *loc, int r, cr_r
                 res->exp2_nocoach_err[r][p] = cr_err(w, p);
         }
         res->render_s += w->render_s;
+        res->rendered += w->rendered;
         cr_world_free(w);
     }
     rc = 0;
@@ -542,9 +545,9 @@ void cr_print_summary(FILE *f, const cr_result_t *res)
             res->runs, dmean[0], dmean[1]);
     fprintf(f, "# coach: feet missed %d (no reported foot within 500 mm of a player), reports "
                "taken %d, none taken %d, re-seeds %d, not needed %d, refused %d, legs timed "
-               "out %d, wall %.1f s (rendering the players' views %.1f s)\n",
+               "out %d, wall %.1f s (rendering %ld player views: %.1f s)\n",
             res->coach_missed, res->assigned, res->unassigned, res->reseeds, res->not_needed,
-            res->refused, res->leg_timeouts, res->wall_s, res->render_s);
+            res->refused, res->leg_timeouts, res->wall_s, res->rendered, res->render_s);
     for (i = 0; i < 4; i++)
         for (p = 0; p < 2; p++)
             fprintf(f, "# median %s %.0f\n", name[i][p], median[i][p]);

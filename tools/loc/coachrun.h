@@ -89,6 +89,7 @@ typedef struct {
     int reseeds, not_needed, refused, assigned, unassigned, wrong_assignments, coach_missed;
     int leg_timeouts;
     double wall_s, render_s;
+    long rendered;
 } cr_result_t;
 
 /* The scenario of player p (0 = A, 1 = B) for run seed s: leg 1 route. */
