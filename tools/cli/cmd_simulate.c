@@ -10,6 +10,34 @@
  *                     [--colors default|auto|FILE]
  *                     [--export-stream FILE]
  *
+ *   fieldloc simulate --coach [--localizer upf|mcl|fuzzy] [--seed N] [--runs N]
+ *                     [--features | --frames] [--every N] [--quiet]
+ *                     [--reseed once|spread] [--assign coach|player]
+ *                     [--coach-feet coach|truth]
+ *
+ * --coach runs seed 003's experiments 1 and 2 (tools/loc/coachrun.h: two
+ * red players side-stepping along the touchlines facing out, a coach
+ * beside the field finding their feet) over --runs runs (default 20) with
+ * seeds N, N+1, ... (default localizer upf, seed 1; the players see
+ * through rendered frames and the vision path on every 6th step unless
+ * --features / --every say otherwise).  Output: one "# run" line per run
+ * (unless --quiet), "#" information lines (distances to the coach,
+ * reports taken and refused, re-seeds, medians, wall time) and exactly the
+ * summary lines (means over the runs, mm)
+ *   coach_foot_err_near_mm X   coach's foot vs truth, robot A (3.6 m away)
+ *   coach_foot_err_far_mm X    the same, robot B (8.5 m away)
+ *   own_foot_err_near_mm X     robot A's own estimate vs truth, blue circle
+ *   own_foot_err_far_mm X      robot B's
+ *   exp2_err_a_mm X            robot A's error at the grey circle after one
+ *                              correction from the coach at the blue one
+ *   exp2_err_b_mm X            robot B's
+ *   exp2_err_a_nocoach_mm X    the same without the correction
+ *   exp2_err_b_nocoach_mm X
+ *   wrong_assignments N        reports a player took that were the other
+ *                              player's foot (over all runs)
+ * --coach-feet truth makes the coach report the true feet: DEBUG only
+ * (says so in its output), to check the rest of the chain.
+ *
  * The walk is the built-in scenario of the field (fixtures/walks/NAME.walk:
  * >= 120 s of walking with head scanning, one kidnap, one penalty), with its
  * PRNG seed replaced by --seed.  --steps N stops after N simulator steps.
