@@ -295,6 +295,34 @@ static void test_deterministic(void)
     CHECK_EQ(a->leg_timeouts, 0);
     CHECK_EQ(a->reseeds, 2);
     CHECK_EQ(a->wrong_assignments, 0);
+    {
+        /* the summary: exactly these lines, in this order, at the end */
+        static const char *const names[9] = {
+            "coach_foot_err_near_mm ", "coach_foot_err_far_mm ", "own_foot_err_near_mm ",
+            "own_foot_err_far_mm ", "exp2_err_a_mm ", "exp2_err_b_mm ",
+            "exp2_err_a_nocoach_mm ", "exp2_err_b_nocoach_mm ", "wrong_assignments "};
+        char *buf = NULL, *q;
+        size_t len = 0;
+        int i;
+        FILE *f = open_memstream(&buf, &len);
+        CHECK(f != NULL);
+        if (f != NULL) {
+            cr_print_summary(f, a);
+            fclose(f);
+            q = buf;
+            for (i = 0; i < 9 && q != NULL; i++) {
+                char key[64];
+                snprintf(key, sizeof key, "\n%s", names[i]);
+                q = strstr(q, key);
+                CHECK(q != NULL);
+                if (q != NULL)
+                    q++;
+            }
+            CHECK(q != NULL && strchr(q, '\n') != NULL && strchr(q, '\n')[1] == '\0');
+            CHECK(strstr(buf, "wrong_assignments 0\n") != NULL);
+            free(buf);
+        }
+    }
     free(a);
     free(b);
 }
