@@ -432,6 +432,8 @@ static int cr_one_run(const cr_opts_t *o, const fl_localizer_t *loc, int r, cr_r
                 const sim_step_t *st = &w->team.p[p].st;
                 int f = cr_true_foot(w, p, feet, nf);
                 res->own_err[r][p] = cr_err(w, p);
+                res->own_head_err[r][p] =
+                    fabs(lr_deg((fl_angle_t)(w->pl[p].est.heading - st->heading)));
                 res->coach_dist_mm[r][p] = cr_dist(st->x_mm, st->y_mm, w->team.coach.x_mm,
                                                    w->team.coach.y_mm);
                 res->coach_err[r][p] =
@@ -533,13 +535,15 @@ void cr_print_summary(FILE *f, const cr_result_t *res)
         {"exp2_err_a_nocoach_mm", "exp2_err_b_nocoach_mm"}};
     const double(*tab[4])[2] = {res->coach_err, res->own_err, res->exp2_err,
                                 res->exp2_nocoach_err};
-    double mean[4][2], median[4][2], dmean[2], dmed[2];
+    double mean[4][2], median[4][2], dmean[2], dmed[2], hmean[2], hmed[2];
     int i, p;
     for (i = 0; i < 4; i++)
         for (p = 0; p < 2; p++)
             cr_stats(tab[i], res->runs, p, &mean[i][p], &median[i][p]);
     cr_stats(res->coach_dist_mm, res->runs, 0, &dmean[0], &dmed[0]);
     cr_stats(res->coach_dist_mm, res->runs, 1, &dmean[1], &dmed[1]);
+    cr_stats(res->own_head_err, res->runs, 0, &hmean[0], &hmed[0]);
+    cr_stats(res->own_head_err, res->runs, 1, &hmean[1], &hmed[1]);
     fprintf(f, "# coach: %d runs; robot A (near) %.0f mm, robot B (far) %.0f mm from the "
                "coach at the blue circle (mean)\n",
             res->runs, dmean[0], dmean[1]);
@@ -548,6 +552,9 @@ void cr_print_summary(FILE *f, const cr_result_t *res)
                "out %d, wall %.1f s (rendering %ld player views: %.1f s)\n",
             res->coach_missed, res->assigned, res->unassigned, res->reseeds, res->not_needed,
             res->refused, res->leg_timeouts, res->wall_s, res->rendered, res->render_s);
+    fprintf(f, "# the players' own heading error at the blue circle (kept by the re-seed): "
+               "A %.1f deg, B %.1f deg (mean; medians %.1f, %.1f)\n",
+            hmean[0], hmean[1], hmed[0], hmed[1]);
     for (i = 0; i < 4; i++)
         for (p = 0; p < 2; p++)
             fprintf(f, "# median %s %.0f\n", name[i][p], median[i][p]);

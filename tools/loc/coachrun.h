@@ -83,6 +83,7 @@ typedef struct {
     /* per run, per player (0 = A near, 1 = B far) */
     double coach_err[CR_MAX_RUNS][2];    /* NAN: the coach found no foot */
     double own_err[CR_MAX_RUNS][2];
+    double own_head_err[CR_MAX_RUNS][2];    /* degrees, 0..180 */
     double exp2_err[CR_MAX_RUNS][2];
     double exp2_nocoach_err[CR_MAX_RUNS][2];
     double coach_dist_mm[CR_MAX_RUNS][2];   /* true distance coach -> foot */
