@@ -8,6 +8,7 @@
 #include "world/coach_scene.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -122,12 +123,68 @@ static int cr_world_init(cr_world_t *w, const cr_opts_t *o, const fl_localizer_t
     return 0;
 }
 
+/* Rendering one player's view (in a thread of its own for the second
+ * player: each frame comes from its own scene, so the bytes do not depend
+ * on it). */
+typedef struct {
+    render_scene_t scene;
+    render_frame_t fr;
+    int rc;
+} cr_job_t;
+
+static void *cr_render_job(void *arg)
+{
+    cr_job_t *j = arg;
+    j->rc = render_frame(&j->scene, &j->fr);
+    return NULL;
+}
+
+/* The views of the players that have a vision step now, rendered two at a
+ * time.  0, or -1 on a render failure (nothing to free then). */
+static int cr_render_views(cr_world_t *w, const int *need, cr_job_t *job)
+{
+    pthread_t th;
+    int p, threaded = 0;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (p = 0; p < 2; p++) {
+        job[p].rc = 0;
+        if (need[p])
+            team_player_scene(&w->team, p, &job[p].scene);
+    }
+    if (need[1] && lr_threads_default() > 1)
+        threaded = pthread_create(&th, NULL, cr_render_job, &job[1]) == 0;
+    if (need[1] && !threaded)
+        cr_render_job(&job[1]);
+    if (need[0])
+        cr_render_job(&job[0]);
+    if (threaded)
+        pthread_join(th, NULL);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    w->render_s += (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    for (p = 0; p < 2; p++)
+        if (need[p] && job[p].rc != 0) {
+            if (need[1 - p] && job[1 - p].rc == 0)
+                render_frame_free(&job[1 - p].fr);
+            return -1;
+        }
+    w->rendered += need[0] + need[1];
+    return 0;
+}
+
 /* One team step: simulators, then every player's localizer. */
 static int cr_world_step(cr_world_t *w)
 {
-    int p;
+    int p, need[2] = {0, 0};
+    cr_job_t job[2];
     if (team_step(&w->team) != 1)
         return 0;
+    if (w->o->frames && !w->replay) {
+        for (p = 0; p < 2; p++)
+            need[p] = w->team.p[p].st.index % (uint32_t)w->o->every == 0;
+        if ((need[0] || need[1]) && cr_render_views(w, need, job) != 0)
+            return -1;
+    }
     for (p = 0; p < 2; p++) {
         cr_player_t *pl = &w->pl[p];
         const sim_step_t *st = &w->team.p[p].st;
@@ -146,24 +203,17 @@ static int cr_world_step(cr_world_t *w)
                         return -1;
                     lr_frame_obs(&pl->lr, &st->head, &rec->obs[rec->next++]);
                 } else {
-                    render_scene_t scene;
-                    render_frame_t fr;
-                    struct timespec t0, t1;
-                    clock_gettime(CLOCK_MONOTONIC, &t0);
-                    team_player_scene(&w->team, p, &scene);
-                    if (render_frame(&scene, &fr) != 0)
-                        return -1;
-                    clock_gettime(CLOCK_MONOTONIC, &t1);
-                    w->render_s += (double)(t1.tv_sec - t0.tv_sec) +
-                                   1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-                    w->rendered++;
-                    lr_frame(&pl->lr, &fr.view, &st->head);
-                    render_frame_free(&fr);
+                    lr_frame(&pl->lr, &job[p].fr.view, &st->head);
+                    render_frame_free(&job[p].fr);
+                    need[p] = 0;
                     if (rec->n == rec->cap) {
                         long cap = rec->cap ? 2 * rec->cap : 1024;
                         fl_obs_list_t *q = realloc(rec->obs, (size_t)cap * sizeof *q);
-                        if (q == NULL)
+                        if (q == NULL) {
+                            if (p == 0 && need[1])
+                                render_frame_free(&job[1].fr);
                             return -1;
+                        }
                         rec->obs = q;
                         rec->cap = cap;
                     }
