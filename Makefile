@@ -16,7 +16,8 @@ SHELL := /bin/bash
 #   make test-exhaustive  the sweeps too long for every run (all uint32 isqrt)
 #   make sanitize   test suite under ASan + UBSan (clang, integer checks too)
 #   make bench      benchmarks, writes build/bench.tsv; callgrind counts
-#                   (scanner; every localizer: instructions per frame)
+#                   (scanner; every localizer; the coach's frame:
+#                   instructions per frame)
 #   make perf       hot functions of the scanner (perf record)
 #   make golden     rewrite fixtures/golden/ (expected detections)
 #   make fuzz-smoke every libFuzzer harness for FUZZ_SECONDS (default 20)
@@ -201,6 +202,7 @@ bench: $(CLI)
 	@$(CLI) bench --out $(BUILD)/bench.tsv
 	@sh tools/bench/callgrind.sh $(BUILD)
 	@sh tools/bench/callgrind_loc.sh $(BUILD)
+	@sh tools/bench/callgrind_coach.sh $(BUILD)
 
 # The main job: a bundled simulated walk (spl2013, 130 s, head scanning, a
 # kidnap and a penalty) rendered frame by frame, run through the vision path

@@ -10,6 +10,7 @@ T_SUITE(field);
 T_SUITE(obs);
 T_SUITE(render);
 T_SUITE(coach_scene);
+T_SUITE(coach_cli);
 T_SUITE(sim);
 T_SUITE(realdata);
 T_SUITE(color);

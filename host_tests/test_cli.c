@@ -775,6 +775,39 @@ static void t_spl2020(void)
         t_fail_msg(__FILE__, __LINE__, "demo spl2020 picture readable");
 }
 
+/* `fieldloc coach` as a user meets it: its options and files (the path
+ * itself: host_tests/test_coach_cli.c). */
+static void t_coach(void)
+{
+    char out[8192], err[512], args[1400];
+    if (cli_find() != 0) {
+        t_info("cli.coach: %s not built, skipped", t_cli);
+        return;
+    }
+    expect_error("coach", "fieldloc coach: needs IMAGE.ppm and --points FILE (fieldloc coach --help)");
+    expect_error("coach a.ppm --points p --scale 3",
+                 "fieldloc coach: --scale: 3 is out of range 5..200 mm per pixel");
+    expect_error("coach a.ppm --points", "fieldloc coach: --points needs 1 value");
+    expect_error("coach a.ppm --points p --bogus",
+                 "fieldloc coach: unknown option --bogus (fieldloc coach --help)");
+    expect_error("coach /nonexistent.ppm --points fixtures/coach/coach.points",
+                 "fieldloc coach: image /nonexistent.ppm: cannot open");
+    expect_error("coach fixtures/coach/coach_two.ppm --points /nonexistent.points",
+                 "fieldloc coach: /nonexistent.points: cannot open");
+    if (t_quick)
+        return;
+    snprintf(args, sizeof args,
+             "coach fixtures/coach/coach_two.ppm --points fixtures/coach/coach.points "
+             "--background fixtures/coach/coach_empty.ppm --out %s/coach.png",
+             t_dir);
+    CHECK_EQ(cli_run(args, out, sizeof out, err, sizeof err), 0);
+    CHECK(strstr(out, "homography_status ok\n") != NULL);
+    CHECK(strstr(out, "\nfoot red ") != NULL);
+    CHECK(strstr(out, "\nfoot blue ") != NULL);
+    CHECK(strstr(out, "\npicture ") != NULL);
+    CHECK_EQ(err[0], 0);
+}
+
 void suite_cli(void)
 {
     t_run("cli.font", t_font);
@@ -788,4 +821,5 @@ void suite_cli(void)
     t_run("cli.stream", t_stream);
     t_run("cli.physar", t_physar_cli);
     t_run("cli.spl2020", t_spl2020);
+    t_run("cli.coach", t_coach);
 }

@@ -23,18 +23,25 @@
  *      then closing with square structuring elements (word-parallel shifts,
  *      ands and ors; outside the image counts as set for erosion and clear
  *      for dilation, as OpenCV's default border).
- *   4. Connected regions (4-connected runs, union-find) per jersey;
- *      regions below min_region_px are dropped.
+ *   4. Connected regions (4-connected runs, union-find) per jersey; parts
+ *      of one jersey split by an arm in front of it (same team, boxes
+ *      within the smaller part's height) are joined; regions below
+ *      min_region_px are dropped.
  *   5. Per region, the least-squares line u = a + b v through its pixels
  *      (the robot's body axis: upright robots are near-vertical in the
- *      image, so u is regressed on v).
+ *      image, so u is regressed on v), its slope limited to +-1/4 (an
+ *      upright robot's lean in the image).
  *   6. The foot: walking down that line from the jersey, the run of rows
  *      whose band (the jersey's half width on each side of the line) holds
  *      a non-field pixel, connected to the jersey, is the robot's
  *      non-field region on the line; the lowest row of it holding a pixel
  *      that is both non-field and moved is the foot row, refined to a
- *      fraction of a pixel from the background difference across the
- *      bottom edge over the band's columns.  The foot pixel maps through
+ *      fraction of a pixel from the a* difference to the background across
+ *      the bottom edge over the band's columns; the foot column is the
+ *      middle of that row's run of foot pixels.  A jersey of another
+ *      robot met in the band below the region ends the walk with no foot
+ *      (that robot stands in front: its legs would pass for this one's).
+ *      The foot pixel maps through
  *      the homography to the field; foot_offset_mm moves it away from the
  *      camera (the lowest visible point is the front of the feet, not
  *      their centre).
@@ -54,15 +61,20 @@
  * on the stack beyond a few hundred bytes).  At the defaults
  * (FL_COACH_MAX_WIDTH x FL_COACH_MAX_HEIGHT = 640 x 480): the background
  * (Y and a*: 2 bytes per pixel) 614400 bytes, four bit masks 4 x 38400,
- * the RGB cell table 32768, runs and regions ~50 KB, about 850 KB in all
- * (sizeof(fl_coach_t); the host test coach.sizes prints it).
+ * the RGB cell table 32768, runs 49152, regions 3584: 856632 bytes in all
+ * on x86-64 (sizeof(fl_coach_t); the host test coach.sizes prints it).
  *
  * Work per frame (worst case, W x H pixels): one pass over the pixels
  * (class and a* lookups, histogram, background difference), morphology
- * 2 * (open_radius + close_radius) word passes over each of two masks,
- * run extraction over the mask words, at most FL_COACH_MAX_RUNS runs and
- * FL_COACH_MAX_REGIONS regions, and per foot (at most FL_COACH_MAX_FEET)
- * at most H rows of at most 2 * FL_COACH_MAX_BAND_PX + 1 pixels.
+ * 4 * (open_radius + close_radius) word passes over each of two masks
+ * (W / 32 x H words each), run extraction over the mask bits, at most
+ * FL_COACH_MAX_RUNS runs and FL_COACH_MAX_REGIONS regions (joining parts:
+ * at most REGIONS^3 / 2 box tests), and per region kept (at most
+ * FL_COACH_MAX_REGIONS walks; at most FL_COACH_MAX_FEET reported) at most
+ * H rows of at most 2 * max_band_px + 1 pixels plus the sub-pixel row
+ * (5 pixels per band column) and the foot run (2 rows of at most 3 band
+ * widths).  At the defaults the pixel pass dominates: ~3.3 ms per
+ * 640 x 480 RGB frame on the development host (coach.cost).
  *
  * Bad input: NULL, a frame of another size than the background (or beyond
  * the capacities), an unknown format, no homography set, a degenerate
@@ -145,6 +157,8 @@ typedef struct {
     uint16_t runs_dropped;   /* mask runs beyond FL_COACH_MAX_RUNS */
     uint16_t regions_dropped;/* regions beyond FL_COACH_MAX_REGIONS */
     uint32_t field_px;       /* pixels at or below the threshold */
+    uint16_t duplicates;     /* feet of a jersey part whose foot was already
+                                found (an arm splits a jersey), not reported */
 } fl_coach_result_t;
 
 /* Private: a run of set mask bits in one row, and a region's sums. */

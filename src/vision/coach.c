@@ -36,7 +36,7 @@ void fl_coach_params_default(fl_coach_params_t *p)
     p->field_a_max = 120;
     p->gap_rows = 2;
     p->max_band_px = 40;
-    p->foot_offset_mm = 40;
+    p->foot_offset_mm = 75;
 }
 
 static bool box_ok(const fl_hsv_box_t *b)

@@ -7,15 +7,16 @@
  * The line.  u = a + b v over the region's pixels: b = (n Suv - Su Sv) /
  * (n Svv - Sv^2), a = (Su - b Sv) / n.  Numerator and denominator (< 2^58
  * for 2^24 pixels of coordinates < 2^12) are shifted right together until
- * the numerator fits 2^46, then b = num * 2^16 / den; b is clamped to +-4
- * (a robot's axis is steep in the image; a flat region is no upright
- * robot).  a in Q16 from (Su * 2^16 - b Sv) / n (< 2^58).  One row
+ * the numerator fits 2^46, then b = num * 2^16 / den; b is clamped to
+ * +-1/4 (COACH_MAX_SLOPE_Q16).  a in Q16 from (Su * 2^16 - b Sv) / n (< 2^58).  One row
  * (den = 0): b = 0 through the mean column.
  *
  * The band.  Row v of the walk looks at the pixels within hw of the line
  * (hw = half the jersey's width + 1, at most max_band_px): the legs stand
  * inside the jersey's width, and the line, through the middle of the
- * body, may pass between them.
+ * body, may pass between them.  A jersey split in parts by an arm in front
+ * of it is joined first (coach_regions.c), or a part's line would run
+ * along one side of the body and miss the legs.
  *
  * The sub-pixel row.  For each band column whose lowest foot pixel is in
  * the foot row or the one above it (row vb), the edge is the top of row vb
@@ -39,6 +40,16 @@
 
 #include <string.h>
 
+/* |du/dv| of an upright robot's axis: world verticals meet in the image
+ * at the vertical vanishing point, f / tan(tilt) below the principal
+ * point (about 2000 px for a NAO top camera tilted 17 deg), so across a
+ * 640 px frame they lean at most ~320 / 2000; 1/4 leaves room for a
+ * little roll.  A jersey is not much taller than wide, so its own fit is
+ * poorly conditioned and a clutter pixel or a shoulder edge can tilt it
+ * far beyond that (seed 003 fits in the top view, where the warp smears
+ * the jersey along the viewing ray and makes it long). */
+#define COACH_MAX_SLOPE_Q16 16384
+
 /* The line of region g: a, b in Q16. */
 static void fit_line(const fl_coach_region_t *g, int32_t *a_q16, int32_t *b_q16)
 {
@@ -48,10 +59,10 @@ static void fit_line(const fl_coach_region_t *g, int32_t *a_q16, int32_t *b_q16)
         den /= 2;
     }
     b = den > 0 ? (num * 65536) / den : 0;
-    if (b > 4 * 65536)
-        b = 4 * 65536;
-    if (b < -4 * 65536)
-        b = -4 * 65536;
+    if (b > COACH_MAX_SLOPE_Q16)
+        b = COACH_MAX_SLOPE_Q16;
+    if (b < -COACH_MAX_SLOPE_Q16)
+        b = -COACH_MAX_SLOPE_Q16;
     *b_q16 = (int32_t)b;
     *a_q16 = (int32_t)((g->su * 65536 - b * g->sv) / n);
 }
@@ -85,9 +96,24 @@ static bool foot_px(const fl_coach_t *c, const fl_image_t *img, const walk_t *k,
     return *nonfield && (!c->has_background || moved_bit(c, img->width, u, v));
 }
 
+/* Any jersey pixel (either team) in row v, columns u0..u1. */
+static bool jersey_in(const fl_coach_t *c, int32_t w, int32_t v, int32_t u0, int32_t u1)
+{
+    size_t row = (size_t)v * (size_t)fl_coach_words(w);
+    int32_t u;
+    for (u = u0; u <= u1; u++)
+        if (((c->mask[0][row + (size_t)(u >> 5)] | c->mask[1][row + (size_t)(u >> 5)]) >>
+             (u & 31)) & 1u)
+            return true;
+    return false;
+}
+
 /* Walk down from row v0: the lowest foot row of the non-field run that
- * starts there (-1: none). */
-static int32_t walk_down(const fl_coach_t *c, const fl_image_t *img, const walk_t *k, int32_t v0)
+ * starts there (-1: none).  A jersey below the region's own (v_end) in
+ * the band is another robot in front: its body would pass for this one's
+ * legs, so the walk gives up (no foot rather than the front robot's). */
+static int32_t walk_down(const fl_coach_t *c, const fl_image_t *img, const walk_t *k, int32_t v0,
+                         int32_t v_end)
 {
     int32_t v, gap = 0, foot = -1;
     for (v = v0; v < k->h; v++) {
@@ -95,6 +121,8 @@ static int32_t walk_down(const fl_coach_t *c, const fl_image_t *img, const walk_
         bool nf_row = false, foot_row = false;
         if (!band(k, v, &u0, &u1))
             break;
+        if (v > v_end + 2 && jersey_in(c, img->width, v, u0, u1))
+            return -1;
         for (u = u0; u <= u1; u++) {
             bool nf;
             if (foot_px(c, img, k, u, v, &nf))
@@ -142,6 +170,39 @@ static int32_t column_edge_q8(const fl_coach_t *c, const fl_image_t *img, int32_
     return vb * 256 - 128 + sum;
 }
 
+/* A foot pixel in row vf or the row above it. */
+static bool foot_at(const fl_coach_t *c, const fl_image_t *img, const walk_t *k, int32_t u,
+                    int32_t vf)
+{
+    bool nf;
+    return foot_px(c, img, k, u, vf, &nf) || (vf > 0 && foot_px(c, img, k, u, vf - 1, &nf));
+}
+
+/* The feet's column: the middle of the run of foot pixels (rows vf - 1
+ * and vf) through the band's, followed beyond the band by at most its
+ * width on each side.  A robot seen turned shows its jersey beside the arm
+ * in front of it, so the band may sit over one side of the feet. */
+static void foot_centre(const fl_coach_t *c, const fl_image_t *img, const walk_t *k, int32_t vf,
+                        int32_t u0, int32_t u1, int32_t *u_q4)
+{
+    int32_t lo = -1, hi = -1, u, lim;
+    for (u = u0; u <= u1; u++)
+        if (foot_at(c, img, k, u, vf)) {
+            if (lo < 0)
+                lo = u;
+            hi = u;
+        }
+    if (lo < 0)
+        return;
+    lim = u0 - (u1 - u0) < 0 ? 0 : u0 - (u1 - u0);
+    while (lo - 1 >= lim && foot_at(c, img, k, lo - 1, vf))
+        lo--;
+    lim = u1 + (u1 - u0) > k->w - 1 ? k->w - 1 : u1 + (u1 - u0);
+    while (hi + 1 <= lim && foot_at(c, img, k, hi + 1, vf))
+        hi++;
+    *u_q4 = (lo + hi) * 8;
+}
+
 /* The foot pixel (Q4) below foot row vf. */
 static void foot_pixel(const fl_coach_t *c, const fl_image_t *img, const walk_t *k, int32_t vf,
                        int32_t *u_q4, int32_t *v_q4)
@@ -169,6 +230,7 @@ static void foot_pixel(const fl_coach_t *c, const fl_image_t *img, const walk_t 
     }
     *u_q4 = (su * 16 + n / 2) / n;
     *v_q4 = (sv / n + 8) >> 4;
+    foot_centre(c, img, k, vf, u0, u1, u_q4);
 }
 
 /* The field point of a foot pixel, moved foot_offset_mm away from the
@@ -218,7 +280,7 @@ static bool region_foot(const fl_coach_t *c, const fl_image_t *img, uint8_t otsu
     k.w = img->width;
     k.h = img->height;
     k.otsu = otsu;
-    vf = walk_down(c, img, &k, (int32_t)(g->sv / (int64_t)g->n));
+    vf = walk_down(c, img, &k, (int32_t)(g->sv / (int64_t)g->n), g->v_max);
     if (vf < 0)
         return false;
     memset(f, 0, sizeof *f);
@@ -237,6 +299,23 @@ static bool region_foot(const fl_coach_t *c, const fl_image_t *img, uint8_t otsu
     return true;
 }
 
+/* The new foot (out->feet[n_feet]) is one already found: a jersey split
+ * in parts (an arm in front of it) walks down to the same feet.  Same
+ * team, foot rows within 2 px and columns within the part's width. */
+static bool duplicate(const fl_coach_result_t *out, const fl_coach_region_t *g)
+{
+    const fl_coach_foot_t *f = &out->feet[out->n_feet];
+    int32_t w_q4 = (g->u_max - g->u_min + 1) * 16;
+    uint16_t i;
+    for (i = 0; i < out->n_feet; i++) {
+        const fl_coach_foot_t *e = &out->feet[i];
+        int32_t du = e->u_q4 - f->u_q4, dv = e->v_q4 - f->v_q4;
+        if (e->team == f->team && dv <= 32 && dv >= -32 && du <= w_q4 && du >= -w_q4)
+            return true;
+    }
+    return false;
+}
+
 static void bump(uint16_t *n)
 {
     if (*n < 0xFFFFu)
@@ -248,6 +327,8 @@ void fl_coach_int_feet(fl_coach_t *c, const fl_image_t *img, fl_coach_result_t *
     uint16_t i;
     for (i = 0; i < c->n_regions; i++) {
         c->regions[i].reserved[0] = c->regions[i].n < c->params.min_region_px;
+        if (c->regions[i].n == 0)
+            continue;           /* joined into another part */
         if (c->regions[i].reserved[0])
             bump(&out->small_regions);
         else
@@ -266,8 +347,12 @@ void fl_coach_int_feet(fl_coach_t *c, const fl_image_t *img, fl_coach_result_t *
             bump(&out->dropped);
             continue;
         }
-        if (region_foot(c, img, out->otsu, &c->regions[best], &out->feet[out->n_feet], &off))
-            out->n_feet++;
+        if (region_foot(c, img, out->otsu, &c->regions[best], &out->feet[out->n_feet], &off)) {
+            if (duplicate(out, &c->regions[best]))
+                bump(&out->duplicates);
+            else
+                out->n_feet++;
+        }
         else if (off)
             bump(&out->off_field);
         else

@@ -134,9 +134,9 @@ void fl_coach_int_pixels(fl_coach_t *c, const fl_image_t *img)
 /*
  * Otsu (1979): the t maximising the between-class variance
  *     s_B(t) = w0 w1 (m0 - m1)^2      (w = pixel counts, m = class means)
- * over t = 0..254 (class 0: bins 0..t).  In integers: m0, m1 in Q8 from
- * 64-bit divisions (s0 << 8 < 2^8 * 255 * 2^24 = 2^40), (m0 - m1)^2 <
- * 2^32; w0 w1 <= (n/2)^2 < 2^48 for histograms of at most 2^24 pixels,
+ * over t = 0..254 (class 0: bins 0..t).  In integers: m0, m1 in Q16 from
+ * 64-bit divisions (s0 << 16 < 2^16 * 255 * 2^24 < 2^48), (m0 - m1)^2 <
+ * 2^48 taken >> 16 (< 2^32); w0 w1 <= (n/2)^2 < 2^48 for histograms of at most 2^24 pixels,
  * shifted right by the smallest sh that brings (n/2)^2 below 2^32 (0 for
  * up to 2^17 pixels, 5 at 640 x 480) before the product (< 2^64 as
  * uint64).  The rounding of the means and the shift make s_B exact to a
@@ -164,10 +164,10 @@ uint8_t fl_coach_otsu(const uint32_t hist[256])
         w1 = n - w0;
         if (w0 == 0 || w1 == 0)
             continue;
-        m0 = (s0 << 8) / w0;
-        m1 = ((s - s0) << 8) / w1;
+        m0 = (s0 << 16) / w0;
+        m1 = ((s - s0) << 16) / w1;
         d = m1 > m0 ? m1 - m0 : m0 - m1;
-        var = ((w0 * w1) >> sh) * (d * d);
+        var = ((w0 * w1) >> sh) * ((d * d) >> 16);
         if (var > best) {
             best = var;
             bt = t;

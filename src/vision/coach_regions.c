@@ -131,6 +131,57 @@ static void gather(fl_coach_t *c, fl_coach_result_t *out)
     }
 }
 
+/* Boxes of a and b, each grown by m pixels, overlap. */
+static bool near_boxes(const fl_coach_region_t *a, const fl_coach_region_t *b, int32_t m)
+{
+    return a->u_min - m <= b->u_max && b->u_min - m <= a->u_max && a->v_min - m <= b->v_max &&
+           b->v_min - m <= a->v_max;
+}
+
+/* Parts of one jersey: an arm or a leg of the robot in front of its
+ * jersey splits it, and each part alone would give a line along one side
+ * of the body.  Regions of one team whose boxes come within the smaller
+ * one's height (an arm seen from the side hides up to ~80 mm of a 115 mm
+ * high jersey's width) are joined into the larger; the joined one is left
+ * with n = 0.
+ * Two robots of one team whose jerseys overlap in the image become one
+ * (the front one's feet are found).  At most FL_COACH_MAX_REGIONS^2 / 2
+ * box tests, repeated while a join happens (at most REGIONS - 1 times). */
+static void join_parts(fl_coach_t *c)
+{
+    bool again = true;
+    while (again) {
+        uint16_t i, j;
+        again = false;
+        for (i = 0; i < c->n_regions; i++)
+            for (j = (uint16_t)(i + 1); j < c->n_regions; j++) {
+                fl_coach_region_t *a = &c->regions[i], *b = &c->regions[j], *big, *sm;
+                int32_t ha, hb, m;
+                if (a->n == 0 || b->n == 0 || a->team != b->team)
+                    continue;
+                ha = a->v_max - a->v_min + 1;
+                hb = b->v_max - b->v_min + 1;
+                m = ha < hb ? ha : hb;
+                if (!near_boxes(a, b, m < 2 ? 2 : m))
+                    continue;
+                big = a->n >= b->n ? a : b;
+                sm = big == a ? b : a;
+                big->n += sm->n;
+                big->su += sm->su;
+                big->sv += sm->sv;
+                big->suu += sm->suu;
+                big->suv += sm->suv;
+                big->svv += sm->svv;
+                big->u_min = sm->u_min < big->u_min ? sm->u_min : big->u_min;
+                big->u_max = sm->u_max > big->u_max ? sm->u_max : big->u_max;
+                big->v_min = sm->v_min < big->v_min ? sm->v_min : big->v_min;
+                big->v_max = sm->v_max > big->v_max ? sm->v_max : big->v_max;
+                sm->n = 0;
+                again = true;
+            }
+    }
+}
+
 void fl_coach_int_regions(fl_coach_t *c, int32_t w, int32_t h, fl_coach_result_t *out)
 {
     int32_t t, v, words = fl_coach_words(w);
@@ -145,4 +196,5 @@ void fl_coach_int_regions(fl_coach_t *c, int32_t w, int32_t h, fl_coach_result_t
         }
     }
     gather(c, out);
+    join_parts(c);
 }

@@ -32,6 +32,7 @@
     X(replay, "--stream FILE [--localizer NAME]: a localizer on an input stream") \
     X(reliability, "reliability diagram and calibration check (held-out walks)") \
     X(demo, "the bundled walk, with pictures")                                \
+    X(coach, "IMAGE.ppm --points FILE [--background EMPTY.ppm] [--out PIC.png]: the coach's feet") \
     X(bench, "[--out FILE.tsv]: benchmarks")                                  \
     X(ukf_check, "[--n N] [--seed S]: the fixed-point UKF step against double")
 

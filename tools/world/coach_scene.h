@@ -16,7 +16,11 @@
  * touchline about 44 px below the top; at 21 deg the margin is under
  * 1 px; at 23.5 deg, where the touchline itself reaches the top row, the
  * corners are 4 px outside and only the three collinear points on the
- * halfway line remain).  Measured by the suite coach_scene.
+ * halfway line remain).  Measured by the suite coach_scene, which also
+ * moves the coach (same rule for the pitch): 1, 2 and 2.5 m beyond the
+ * touchline no pitch keeps both far corners in view and the coach sees
+ * only the three collinear points of the halfway line (no fit); 3 m: 20
+ * deg, 5 points; 3.5 m: 23 deg, 7; 4 m: 23 deg, 9.
  * The room side behind the coach (-y) has no clutter (clear_sides), so
  * nothing of the room stands between the coach and the field.
  */
