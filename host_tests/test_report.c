@@ -142,9 +142,12 @@ static void test_assign_vs_brute(void)
                 for (k = 0; k < j; k++)
                     dup = dup || c[k].player == num;
             } while (dup);
-            c[j] = claim(coarse ? (int32_t)(rnd() % 5) * 500 - 1000 : (int32_t)(rnd() % 6000) - 3000,
-                         coarse ? (int32_t)(rnd() % 3) * 500 - 500 : (int32_t)(rnd() % 4000) - 2000,
-                         coarse ? 400u : 100u + rnd() % 2000u, FL_COLOR_RED, num);
+            {   /* one draw per statement: argument order is unspecified */
+                int32_t x = coarse ? (int32_t)(rnd() % 5) * 500 - 1000 : (int32_t)(rnd() % 6000) - 3000;
+                int32_t y = coarse ? (int32_t)(rnd() % 3) * 500 - 500 : (int32_t)(rnd() % 4000) - 2000;
+                uint32_t sp = coarse ? 400u : 100u + rnd() % 2000u;
+                c[j] = claim(x, y, sp, FL_COLOR_RED, num);
+            }
         }
         CHECK_EQ(fl_report_assign(r, nr + nother, c, nc, field, gate, &st), FL_OK);
         /* the reference, claims in number order */
@@ -657,8 +660,9 @@ static void scenes(int n_scenes, bool spread_known, tally_t *greedy, tally_t *pa
         }
         for (i = 0; i < 2 * np; i++) {
             uint8_t team = i < np ? FL_COLOR_RED : FL_COLOR_BLUE;
-            r[n] = rep(tx[i] + (int32_t)lround(gauss() * 125), ty[i] + (int32_t)lround(gauss() * 125),
-                       team, 0);
+            int32_t ex = (int32_t)lround(gauss() * 125);
+            int32_t ey = (int32_t)lround(gauss() * 125);
+            r[n] = rep(tx[i] + ex, ty[i] + ey, team, 0);
             owner[n++] = i < np ? i + 1 : 0;
         }
         /* shuffle the coach's order */

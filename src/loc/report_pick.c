@@ -168,15 +168,23 @@ static bool jumped(const fl_obs_report_t *r, uint32_t seen_ms, const fl_report_t
     return dist2(r->x_mm, r->y_mm, t->last_x_mm, t->last_y_mm) > reach * reach;
 }
 
-fl_report_result_t fl_report_pick(const fl_obs_report_t *reports, size_t n,
-                                  const fl_report_self_t *me, int32_t est_x_mm,
-                                  int32_t est_y_mm, uint32_t est_spread_mm,
-                                  fl_report_tracker_t *t, size_t *index)
+/* fl_report_pick's inputs in one block (a call with more arguments than
+ * registers pushes them: a dynamic frame for the stack report). */
+typedef struct {
+    const fl_obs_report_t *reports;
+    size_t n;
+    const fl_report_self_t *me;
+    int32_t est_x_mm, est_y_mm;
+    uint32_t est_spread_mm;
+} pick_in_t;
+
+static fl_report_result_t pick(const pick_in_t *in, fl_report_tracker_t *t, size_t *index)
 {
     bool ok[FL_REPORT_MAX], numbered = false;
     fl_report_result_t why = FL_REPORT_NONE, res;
-    size_t i, best = n;
-    const fl_obs_report_t *r;
+    const fl_obs_report_t *reports = in->reports, *r;
+    const fl_report_self_t *me = in->me;
+    size_t i, n = in->n, best = n;
     uint32_t seen_ms;
     if (t == NULL || t->magic != TRACKER_MAGIC)
         return FL_REPORT_BAD_CALL;
@@ -191,7 +199,8 @@ fl_report_result_t fl_report_pick(const fl_obs_report_t *reports, size_t n,
     if (numbered)
         res = pick_numbered(reports, n, ok, t, &best);
     else
-        res = pick_nearest(reports, n, ok, est_x_mm, est_y_mm, est_spread_mm, t, &best);
+        res = pick_nearest(reports, n, ok, in->est_x_mm, in->est_y_mm, in->est_spread_mm, t,
+                           &best);
     if (res == FL_REPORT_NONE)
         return why;
     if (res != FL_REPORT_NOT_NEEDED)
@@ -212,6 +221,21 @@ fl_report_result_t fl_report_pick(const fl_obs_report_t *reports, size_t n,
     return FL_REPORT_NOT_NEEDED;
 }
 
+fl_report_result_t fl_report_pick(const fl_obs_report_t *reports, size_t n,
+                                  const fl_report_self_t *me, int32_t est_x_mm,
+                                  int32_t est_y_mm, uint32_t est_spread_mm,
+                                  fl_report_tracker_t *t, size_t *index)
+{
+    pick_in_t in;
+    in.reports = reports;
+    in.n = n;
+    in.me = me;
+    in.est_x_mm = est_x_mm;
+    in.est_y_mm = est_y_mm;
+    in.est_spread_mm = est_spread_mm;
+    return pick(&in, t, index);
+}
+
 fl_report_result_t fl_report_apply(const fl_localizer_t *loc, void *state,
                                    const fl_obs_report_t *reports, size_t n,
                                    const fl_report_self_t *me,
@@ -229,7 +253,16 @@ fl_report_result_t fl_report_apply(const fl_localizer_t *loc, void *state,
         COUNT(t, bad_calls);
         return FL_REPORT_BAD_CALL;
     }
-    res = fl_report_pick(reports, n, me, me->est->x_mm, me->est->y_mm, spread, t, &idx);
+    {
+        pick_in_t in;
+        in.reports = reports;
+        in.n = n;
+        in.me = me;
+        in.est_x_mm = me->est->x_mm;
+        in.est_y_mm = me->est->y_mm;
+        in.est_spread_mm = spread;
+        res = pick(&in, t, &idx);
+    }
     if (res == FL_REPORT_NONE)
         COUNT(t, none);
     if (res != FL_REPORT_NOT_NEEDED)
