@@ -24,6 +24,7 @@ T_SUITE(ukf);
 T_SUITE(upf);
 T_SUITE(confidence);
 T_SUITE(reseed);
+T_SUITE(team);
 T_SUITE(report);
 T_SUITE(lines);
 T_SUITE(features);

@@ -10,6 +10,34 @@
  *                     [--colors default|auto|FILE]
  *                     [--export-stream FILE]
  *
+ *   fieldloc simulate --coach [--localizer upf|mcl|fuzzy] [--seed N] [--runs N]
+ *                     [--features | --frames] [--every N] [--quiet]
+ *                     [--reseed once|spread] [--assign coach|player]
+ *                     [--coach-feet coach|truth]
+ *
+ * --coach runs seed 003's experiments 1 and 2 (tools/loc/coachrun.h: two
+ * red players side-stepping along the touchlines facing out, a coach
+ * beside the field finding their feet) over --runs runs (default 20) with
+ * seeds N, N+1, ... (default localizer upf, seed 1; the players see
+ * through rendered frames and the vision path on every 6th step unless
+ * --features / --every say otherwise).  Output: one "# run" line per run
+ * (unless --quiet), "#" information lines (distances to the coach,
+ * reports taken and refused, re-seeds, medians, wall time) and exactly the
+ * summary lines (means over the runs, mm)
+ *   coach_foot_err_near_mm X   coach's foot vs truth, robot A (3.6 m away)
+ *   coach_foot_err_far_mm X    the same, robot B (8.5 m away)
+ *   own_foot_err_near_mm X     robot A's own estimate vs truth, blue circle
+ *   own_foot_err_far_mm X      robot B's
+ *   exp2_err_a_mm X            robot A's error at the grey circle after one
+ *                              correction from the coach at the blue one
+ *   exp2_err_b_mm X            robot B's
+ *   exp2_err_a_nocoach_mm X    the same without the correction
+ *   exp2_err_b_nocoach_mm X
+ *   wrong_assignments N        reports a player took that were the other
+ *                              player's foot (over all runs)
+ * --coach-feet truth makes the coach report the true feet: DEBUG only
+ * (says so in its output), to check the rest of the chain.
+ *
  * The walk is the built-in scenario of the field (fixtures/walks/NAME.walk:
  * >= 120 s of walking with head scanning, one kidnap, one penalty), with its
  * PRNG seed replaced by --seed.  --steps N stops after N simulator steps.
@@ -129,6 +157,7 @@
  */
 #include "fieldloc/fieldloc.h"
 #include "cli/args.h"
+#include "loc/coachrun.h"
 #include "loc/locrun.h"
 #include "cli/registry.h"
 #include "loc/stream.h"
@@ -168,7 +197,64 @@ static void usage(void)
             "  --kidnaps 0..16 (default: the walk's own)\n"
             "  --export-stream FILE: the localizer's inputs and the truth (docs/STREAM.md;\n"
             "            fieldloc replay --stream FILE runs any localizer on them)\n"
-            "  --colors: frames mode colour classes (default: auto on white-goal fields)\n");
+            "  --colors: frames mode colour classes (default: auto on white-goal fields)\n"
+            "       fieldloc simulate --coach [--localizer upf|mcl|fuzzy] [--seed N] [--runs N]\n"
+            "                         [--features | --frames] [--every N] [--quiet]\n"
+            "                         [--reseed once|spread] [--assign coach|player]\n"
+            "                         [--coach-feet coach|truth]\n"
+            "  --coach: seed 003's experiments 1 and 2 (two players, a coach beside the\n"
+            "           field; tools/loc/coachrun.h), runs seeds N..N+runs-1 (default 1, 20)\n"
+            "  --reseed once (default): one correction at the end of the first leg (seed\n"
+            "           003's protocol); spread: only when the belief spread beyond 500 mm\n"
+            "  --assign coach (default): the coach numbers its reports against the players'\n"
+            "           broadcast estimates; player: each takes its team's report nearest\n"
+            "           its own estimate\n"
+            "  --coach-feet truth: DEBUG ONLY, the coach reports the true feet\n");
+}
+
+/* `simulate --coach`: seed 003's two experiments (tools/loc/coachrun.h). */
+static int simulate_coach(const char *localizer, long seed, long runs, int frames, long every,
+                          int quiet, int truth_feet, int reseed_always, int player_side)
+{
+    cr_opts_t o;
+    cr_result_t *res;
+    char err[256];
+    memset(&o, 0, sizeof o);
+    if ((o.loc = lr_localizer(localizer != NULL ? localizer : "upf", err, (int)sizeof err)) ==
+        NULL) {
+        fprintf(stderr, "simulate: %s\n", err);
+        return 2;
+    }
+    o.seed = (uint64_t)(seed >= 0 ? seed : 1);
+    o.runs = (int)runs;
+    o.frames = frames;
+    o.every = (int)every;
+    o.feet = truth_feet ? CR_FEET_TRUTH_DEBUG : CR_FEET_COACH;
+    o.reseed_always = reseed_always;
+    o.assign_player_side = player_side;
+    o.log = quiet ? NULL : stdout;
+    o.trace = getenv("FIELDLOC_COACH_TRACE") != NULL ? stdout : NULL;
+    if ((res = malloc(sizeof *res)) == NULL) {
+        fprintf(stderr, "simulate: out of memory\n");
+        return 1;
+    }
+    printf("# simulate --coach localizer %s seeds %llu..%llu, players %s (vision every %d%s)\n",
+           o.loc->name, (unsigned long long)o.seed,
+           (unsigned long long)(o.seed + (uint64_t)o.runs - 1),
+           frames ? "rendered frames -> vision" : "feature observations",
+           frames ? o.every : 1, frames ? "" : ": every step");
+    if (truth_feet)
+        printf("# DEBUG: --coach-feet truth: the coach reports the TRUE feet; the coach_foot_* "
+               "and exp2_* numbers below measure nothing of the coach's vision\n");
+    fflush(stdout);
+    if (cr_run(&o, res, err, (int)sizeof err) != 0) {
+        fprintf(stderr, "simulate: %s\n", err);
+        free(res);
+        return 1;
+    }
+    cr_print_summary(stdout, res);
+    free(res);
+    return 0;
 }
 
 int cmd_simulate(int argc, char **argv)
@@ -182,7 +268,8 @@ int cmd_simulate(int argc, char **argv)
     char err[256];
     const char *obs_cache = NULL, *param[64], *stream_path = NULL;
     colors_opt_t colors;
-    long kidnaps = -1;
+    long kidnaps = -1, runs = 20;
+    int coach = 0, truth_feet = 0, reseed_always = 1, player_side = 0, mode_given = 0, every_given = 0;
     FILE *stream = NULL;
     int n_param = 0;
     const fl_localizer_t *loc;
@@ -210,6 +297,7 @@ int cmd_simulate(int argc, char **argv)
         } else if (!strcmp(argv[k], "--every") && k + 1 < argc) {
             if (arg_long("simulate", "--every", argv[++k], 1, 1000, NULL, &every) != 0)
                 return 2;
+            every_given = 1;
         } else if (!strcmp(argv[k], "--param") && k + 1 < argc) {
             if (n_param < 64)
                 param[n_param++] = argv[++k];
@@ -222,10 +310,44 @@ int cmd_simulate(int argc, char **argv)
                 return 2;
         } else if (!strcmp(argv[k], "--scenario") && k + 1 < argc)
             scen_path = argv[++k];
-        else if (!strcmp(argv[k], "--frames"))
+        else if (!strcmp(argv[k], "--coach"))
+            coach = 1;
+        else if (!strcmp(argv[k], "--runs") && k + 1 < argc) {
+            if (arg_long("simulate", "--runs", argv[++k], 1, CR_MAX_RUNS, NULL, &runs) != 0)
+                return 2;
+        } else if (!strcmp(argv[k], "--reseed") && k + 1 < argc) {
+            ++k;
+            if (!strcmp(argv[k], "once") || !strcmp(argv[k], "spread"))
+                reseed_always = !strcmp(argv[k], "once");
+            else {
+                fprintf(stderr, "simulate: --reseed once|spread\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[k], "--assign") && k + 1 < argc) {
+            ++k;
+            if (!strcmp(argv[k], "coach") || !strcmp(argv[k], "player"))
+                player_side = !strcmp(argv[k], "player");
+            else {
+                fprintf(stderr, "simulate: --assign coach|player\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[k], "--coach-feet") && k + 1 < argc) {
+            ++k;
+            if (!strcmp(argv[k], "truth"))
+                truth_feet = 1;
+            else if (!strcmp(argv[k], "coach"))
+                truth_feet = 0;
+            else {
+                fprintf(stderr, "simulate: --coach-feet coach|truth\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[k], "--frames")) {
             frames = 1;
-        else if (!strcmp(argv[k], "--features"))
+            mode_given = 1;
+        } else if (!strcmp(argv[k], "--features")) {
             frames = 0;
+            mode_given = 1;
+        }
         else if (!strcmp(argv[k], "--quiet"))
             quiet = 1;
         else if (!strcmp(argv[k], "--print-obs"))
@@ -240,8 +362,15 @@ int cmd_simulate(int argc, char **argv)
             return arg_unknown("simulate", argv[k],
                                "--field=1 --localizer=1 --seed=1 --steps=1 --every=1 --param=1 "
                                "--obs-cache=1 --scenario=1 --post-sides=1 --export-stream=1 "
-                               "--kidnaps=1 --colors=1");
+                               "--kidnaps=1 --colors=1 --runs=1 --coach-feet=1 --reseed=1 --assign=1");
     }
+    if (coach)
+        /* the players see through rendered frames and the vision path
+         * unless --features; vision every 6th step (5 Hz) keeps 20 runs
+         * at a few minutes */
+        return simulate_coach(localizer, seed, runs, mode_given ? frames : 1,
+                              every_given ? every : 6, quiet, truth_feet, reseed_always,
+                              player_side);
     if (scen_path == NULL && field_name == NULL) {
         usage();
         return 2;

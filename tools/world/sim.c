@@ -506,6 +506,18 @@ int sim_scenario_parse(sim_scenario_t *sc, const char *text, char *err,
                 sc->neck_height_mm = (int32_t)v;
             else
                 sc->fov_margin_px = (int32_t)v;
+        } else if (strcmp(key, "face_deg") == 0 || strcmp(key, "route_once") == 0) {
+            double v[1];
+            if (parse_doubles(rest, v, 1) != 1 || !(v[0] >= -360 && v[0] <= 360)) {
+                set_err(err, err_len, key[0] == 'f' ? "face_deg DEG (-360..360)"
+                                                    : "route_once 0|1", line);
+                return -1;
+            }
+            if (key[0] == 'f') {
+                sc->hold_heading = 1;
+                sc->face_deg = v[0];
+            } else
+                sc->route_once = v[0] != 0;
         } else if (strcmp(key, "waypoint") == 0) {
             double v[2];
             if (sc->n_waypoints >= SIM_MAX_WAYPOINTS || parse_doubles(rest, v, 2) != 2) {
@@ -645,6 +657,10 @@ int sim_scenario_write(FILE *f, const sim_scenario_t *sc)
         }
         fputc('\n', f);
     }
+    if (sc->hold_heading)
+        fprintf(f, "face_deg %.17g\n", sc->face_deg);
+    if (sc->route_once)
+        fprintf(f, "route_once 1\n");
     for (j = 0; j < sc->n_waypoints; j++)
         fprintf(f, "waypoint %.17g %.17g\n", sc->waypoint[j].x_mm, sc->waypoint[j].y_mm);
     for (j = 0; j < sc->n_events; j++) {
@@ -910,6 +926,32 @@ uint32_t sim_step_count(const sim_t *sim)
     return sim == NULL ? 0 : sim->n_steps;
 }
 
+int sim_set_others(sim_t *sim, const sim_other_t *other, int n)
+{
+    if (sim == NULL || n < 0 || n > SIM_MAX_OTHERS || (n > 0 && other == NULL))
+        return -1;
+    if (n > 0)
+        memcpy(sim->sc.other, other, (size_t)n * sizeof *other);
+    sim->sc.n_others = n;
+    return 0;
+}
+
+int sim_set_route(sim_t *sim, const sim_waypoint_t *wp, int n)
+{
+    if (sim == NULL || wp == NULL || n < 1 || n > SIM_MAX_WAYPOINTS)
+        return -1;
+    memcpy(sim->sc.waypoint, wp, (size_t)n * sizeof *wp);
+    sim->sc.n_waypoints = n;
+    sim->wp = 0;
+    sim->arrived = 0;
+    return 0;
+}
+
+int sim_arrived(const sim_t *sim)
+{
+    return sim != NULL && sim->arrived;
+}
+
 /* Head angles at time t (triangle-wave yaw, two-level pitch). */
 static void sim_head(const sim_scenario_t *sc, double t, double *pitch,
                      double *yaw)
@@ -1160,14 +1202,17 @@ static void sim_control(sim_t *s, double dt)
     double tx, ty, dx, dy, rx, ry, dist, b, ch, sh;
     double want_v, want_s, want_w, dv, dw;
     int guard;
-    for (guard = 0; guard < sc->n_waypoints; guard++) {
+    for (guard = 0; guard < sc->n_waypoints && !s->arrived; guard++) {
         tx = sc->waypoint[s->wp].x_mm;
         ty = sc->waypoint[s->wp].y_mm;
         dx = tx - s->x;
         dy = ty - s->y;
         if (sqrt(dx * dx + dy * dy) > sc->arrive_mm)
             break;
-        s->wp = (s->wp + 1) % sc->n_waypoints;
+        if (sc->route_once && s->wp == sc->n_waypoints - 1)
+            s->arrived = 1;
+        else
+            s->wp = (s->wp + 1) % sc->n_waypoints;
     }
     tx = sc->waypoint[s->wp].x_mm;
     ty = sc->waypoint[s->wp].y_mm;
@@ -1179,7 +1224,19 @@ static void sim_control(sim_t *s, double dt)
     dist = sqrt(rx * rx + ry * ry);
     b = sim_atan2(ry, rx);
     want_w = sim_clamp(2.0 * b, sc->turn_deg_s * SIM_DEG);
-    if (sim_abs(b) < 60 * SIM_DEG) {
+    if (s->arrived) {
+        /* stand at the end of the route, facing as it is */
+        want_v = want_s = want_w = 0;
+    } else if (sc->hold_heading) {
+        /* keep facing face_deg; walk toward the waypoint with the gait's
+         * forward and sideways speeds (same proportional gain as the side
+         * step below, so the robot slows down on arrival) */
+        want_w = sim_clamp(2.0 * sim_wrap(sc->face_deg * SIM_DEG - s->h),
+                           sc->turn_deg_s * SIM_DEG);
+        want_v = rx >= 0 ? sim_clamp(0.5 * rx, sc->v_forward_mm_s)
+                         : sim_clamp(0.5 * rx, sc->v_backward_mm_s);
+        want_s = sim_clamp(0.5 * ry, sc->v_side_mm_s);
+    } else if (sim_abs(b) < 60 * SIM_DEG) {
         want_v = sc->v_forward_mm_s * (1.0 - sim_abs(b) / (60 * SIM_DEG));
         want_s = sim_clamp(0.5 * ry, sc->v_side_mm_s);
     } else {

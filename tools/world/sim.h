@@ -189,6 +189,19 @@ typedef struct {
     /* robots standing on the field */
     sim_other_t other[SIM_MAX_OTHERS];    /* [other X Y DEG red|blue] */
     int n_others;
+
+    /* route variants (both off by default; the text form names them only
+     * when on, so the built-in walks' text and traces are unchanged) */
+    int hold_heading;                     /* [face_deg DEG] sets it: the
+                                             robot keeps facing face_deg and
+                                             walks omnidirectionally toward
+                                             the waypoint (forward/sideways
+                                             within the gait limits), e.g.
+                                             along a touchline facing out */
+    double face_deg;
+    int route_once;                       /* [route_once 0|1] 1: stand still
+                                             at the last waypoint instead of
+                                             looping (sim_arrived) */
 } sim_scenario_t;
 
 /* Robot-typical defaults (speeds, rates, noise; values and sources in
@@ -285,6 +298,7 @@ typedef struct {
                                        odo dx dy dth */
     double penalty_until_s;         /* > t while penalized */
     int next_event;
+    int arrived;                    /* route_once: the last waypoint reached */
 } sim_t;
 
 /* Validate the scenario (field and camera found, rates and limits sane)
@@ -297,6 +311,17 @@ int sim_step(sim_t *sim, sim_step_t *out);
 
 /* Number of steps of the whole walk: floor(duration_s * frame_hz) + 1. */
 uint32_t sim_step_count(const sim_t *sim);
+
+/* Between steps, for several robots walking at once (tools/world/team.h):
+ * replace the robots standing on the field (the others as they are now:
+ * drawn in the frames and hiding landmarks from the next step on;
+ * n <= SIM_MAX_OTHERS), or the route (n waypoints, followed from the first
+ * with the scenario's heading mode; clears sim_arrived).  0, or -1 on bad
+ * arguments (state unchanged). */
+int sim_set_others(sim_t *sim, const sim_other_t *other, int n);
+int sim_set_route(sim_t *sim, const sim_waypoint_t *wp, int n);
+/* route_once: 1 once the last waypoint is reached (the robot then stands). */
+int sim_arrived(const sim_t *sim);
 
 /* Observations only, for a given true pose and head: every landmark whose
  * ground point is inside the image (fov_margin_px), within max_range and
