@@ -223,5 +223,13 @@ int cmd_sizes(int argc, char **argv)
     }
     printf("%-18s %8lu B  one full instance (colour tables + vision + camera + obs + view + the "
            "largest localizer)\n", "total", (unsigned long)(total + largest));
+    /* the coach camera's structs: a coach robot holds fl_coach_t instead of
+     * (or beside) an instance; a player adds a tracker and a message */
+    printf("%-18s %8lu B  the coach's image path at %dx%d (stored empty-field frame, masks, tables)\n",
+           "fl_coach_t", (unsigned long)sizeof(fl_coach_t), FL_COACH_MAX_WIDTH, FL_COACH_MAX_HEIGHT);
+    printf("%-18s %8lu B  a player's memory of the coach's reports (report.h)\n",
+           "fl_report_tracker_t", (unsigned long)sizeof(fl_report_tracker_t));
+    printf("%-18s %8lu B  one decoded report message (%d bytes on the wire)\n", "fl_report_msg_t",
+           (unsigned long)sizeof(fl_report_msg_t), (int)FL_REPORT_MSG_BYTES);
     return 0;
 }
