@@ -2,7 +2,8 @@
  * host_tests/test_upf.c - the unscented particle filter (upf.h): state
  * size and parameters, a foreign configuration refused, convergence on a
  * feature walk (seed determinism), hostile input, covariances valid after
- * many random updates, the repair counters, the in-place resampling.
+ * many random updates, the repair counters, the in-place resampling, a
+ * stated pose kept through frames that inform nothing.
  */
 #include "test.h"
 #include "loc_walk.h"
@@ -281,6 +282,51 @@ static void test_resample_in_place(void)
     free(s);
 }
 
+/* A stated pose (a known start) and then frames whose only observation
+ * every particle gates (a false positive, as a robot facing out of the
+ * field sees for minutes): nothing informs the UKFs, so the particles
+ * follow the odometry with its noise and no more (drawing from the
+ * stated covariance at every frame would walk them off by sqrt(frames)
+ * times it: about 120 deg of heading after 300 frames). */
+static void test_stated_pose_gated(void)
+{
+    const fl_field_t *f = fl_field_find("spl2013");
+    fl_upf_t *s = malloc(sizeof *s);
+    fl_mcl_estimate_t e;
+    fl_obs_list_t ol;
+    uint16_t i, k;
+    int32_t worst_mm = 0, worst_mdeg = 0;
+    if (s == NULL)
+        return;
+    CHECK_EQ(fl_upf_init(s, f, NULL), FL_OK);
+    fl_upf_reset_pose(s, -3000, -2500, fl_angle_from_mdeg(-90000), 100,
+                      fl_angle_from_mdeg(10000));
+    memset(&ol, 0, sizeof ol);
+    ol.n = 1;
+    ol.obs[0] = obs_of(FL_LM_POST, 19000, 10);   /* gated: far from every post */
+    for (k = 0; k < 300; k++) {
+        fl_upf_predict(s, 0, 3, 0);               /* a side step: +x here */
+        CHECK_EQ(fl_upf_update(s, &ol), 1);
+    }
+    CHECK_EQ(s->stats.ukf_updates, 0u);
+    CHECK(fl_upf_check(s) && all_valid(s));
+    for (i = 0; i < s->n; i++) {
+        int32_t dx = s->part[i].x_mm - (-2100), dy = s->part[i].y_mm - (-2500);
+        int32_t dh = fl_angle_sub(s->part[i].heading, fl_angle_from_mdeg(-90000));
+        int32_t d = (int32_t)sqrt((double)dx * dx + (double)dy * dy);
+        int32_t mdeg = (int32_t)((int64_t)(dh < 0 ? -dh : dh) * 180000 / 32768);
+        worst_mm = d > worst_mm ? d : worst_mm;
+        worst_mdeg = mdeg > worst_mdeg ? mdeg : worst_mdeg;
+    }
+    t_info("after 300 gated frames: worst particle %d mm, %d mdeg from the odometry's pose",
+           (int)worst_mm, (int)worst_mdeg);
+    CHECK(worst_mm < 600);
+    CHECK(worst_mdeg < 40000);
+    CHECK(fl_upf_estimate(s, &e));
+    CHECK(abs(e.x_mm - (-2100)) < 300 && abs(e.y_mm - (-2500)) < 300);
+    free(s);
+}
+
 void suite_upf(void)
 {
     t_run("upf.params_config", test_params_config);
@@ -288,4 +334,5 @@ void suite_upf(void)
     t_run("upf.hostile", test_hostile);
     t_run("upf.cov_random", test_cov_random);
     t_run("upf.resample_in_place", test_resample_in_place);
+    t_run("upf.stated_pose_gated", test_stated_pose_gated);
 }

@@ -130,6 +130,14 @@ typedef struct {
     uint16_t since_obs;
     fl_mcl_particle_t part[FL_UPF_MAX_PARTICLES];  /* samples and weights */
     fl_upf_gauss_t g[FL_UPF_MAX_PARTICLES];        /* UKF means, covariances */
+    bool search[FL_UPF_MAX_PARTICLES];  /* descends from a guess (ignorance,
+                                           a sensor reset, a penalty or a
+                                           re-seed without heading), not
+                                           from a stated pose: in a frame
+                                           that informs its UKF nothing it
+                                           still draws from its Gaussian (a
+                                           local search); a tracked one from
+                                           the process noise */
     uint32_t lw[FL_UPF_MAX_PARTICLES];  /* accumulated negative log-weights,
                                            Q8 nats above the lightest */
     fl_ukf_cov_t q_acc;          /* process noise since the last update */

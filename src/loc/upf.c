@@ -174,11 +174,12 @@ void fl_upf_internal_restart(fl_upf_t *s, uint16_t i, const fl_ukf_cov_t *p)
 }
 
 /* Every particle restarts with one covariance; the weights equal. */
-static void restart_all(fl_upf_t *s, const fl_ukf_cov_t *p)
+static void restart_all(fl_upf_t *s, const fl_ukf_cov_t *p, bool search)
 {
     uint16_t i;
     for (i = 0; i < s->n; i++) {
         fl_upf_internal_restart(s, i, p);
+        s->search[i] = search;
         s->lw[i] = 0;
         s->part[i].weight = 65535u;
     }
@@ -245,19 +246,21 @@ void fl_upf_reset_ignorance(fl_upf_t *s)
     fresh(s);
     fl_mcl_internal_core_ignorance(&s->core, s->part, s->n);
     fl_upf_internal_fresh_cov(s, &p);
-    restart_all(s, &p);
+    restart_all(s, &p, true);
     s->ignorance = true;
     s->stats.resets = upf_sat_inc(s->stats.resets);
 }
 
-/* The covariance of a reset around a pose: the particles' draw's. */
-static void reset_cov(fl_upf_t *s, const fl_mcl_paint_t *c)
+/* The covariance of a reset around a pose: the particles' draw's.  A
+ * stated pose is tracked from the start (search false); a reset that only
+ * guesses among places or headings searches. */
+static void reset_cov(fl_upf_t *s, const fl_mcl_paint_t *c, bool search)
 {
     fl_ukf_cov_t p;
     int32_t sd = c->pos_unc < 2 ? 1 : c->pos_unc > 20000 ? 10000 : c->pos_unc / 2;
     int32_t sh = c->heading_unc < 0 ? -(int32_t)c->heading_unc : c->heading_unc;
     fl_upf_internal_diag(s, sd, sh / 2, &p);
-    restart_all(s, &p);
+    restart_all(s, &p, search);
 }
 
 void fl_upf_reset_pose(fl_upf_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t heading,
@@ -269,7 +272,7 @@ void fl_upf_reset_pose(fl_upf_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t headi
     fresh(s);
     mcl_paint(&c, x_mm, y_mm, heading, pos_unc_mm, heading_unc);
     fl_mcl_internal_core_pose(&s->core, s->part, s->n, &c);
-    reset_cov(s, &c);
+    reset_cov(s, &c, false);
     s->ignorance = false;
     s->stats.resets = upf_sat_inc(s->stats.resets);
 }
@@ -284,7 +287,7 @@ void fl_upf_reset_penalty(fl_upf_t *s, int32_t x_mm, int32_t pos_unc_mm,
     mcl_paint(&c, x_mm, 0, 0, pos_unc_mm, heading_unc);
     s->ignorance = false;
     fl_mcl_internal_core_penalty(&s->core, s->part, s->n, &c);
-    reset_cov(s, &c);
+    reset_cov(s, &c, true);
     s->stats.resets = upf_sat_inc(s->stats.resets);
 }
 
@@ -307,7 +310,7 @@ fl_status_t fl_upf_reseed(fl_upf_t *s, const fl_obs_report_t *r)
     fl_mcl_internal_core_reseed(&s->core, s->part, s->n, &c, known);
     if (!known)   /* headings 360/n apart: each covers half the gap (sd) */
         c.heading_unc = (fl_angle_t)(s->n < 3 ? 32767 : 65536 / s->n);
-    reset_cov(s, &c);
+    reset_cov(s, &c, !known);
     s->drawn = false;
     s->ignorance = false;
     s->stats.reseeds = upf_sat_inc(s->stats.reseeds);
@@ -348,6 +351,7 @@ static void follow_samples(fl_upf_t *s)
             continue;
         if (s->ignorance) {
             fl_upf_internal_restart(s, i, &fc);
+            s->search[i] = true;
             continue;
         }
         fl_upf_internal_restart(s, i, NULL);

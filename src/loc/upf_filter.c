@@ -94,6 +94,7 @@ typedef struct {
     int32_t ratio[FL_UPF_MAX_PARTICLES];         /* transition - proposal */
     uint32_t nll[FL_UPF_MAX_PARTICLES];          /* p(z | sample), Q8 */
     uint16_t tab[FL_MCL_MIX_N];                  /* outlier floor */
+    bool informed[FL_UPF_MAX_PARTICLES];         /* a UKF update applied */
     fl_ukf_limits_t lim;
 } upf_frame_t;
 
@@ -185,6 +186,7 @@ static void resample(fl_upf_t *s, const fl_obs_list_t *obs, upf_frame_t *f)
             break;
         s->part[j] = s->part[i];
         s->g[j] = s->g[i];
+        s->search[j] = s->search[i];
         j++;
     }
     s->n = n_out;
@@ -196,6 +198,7 @@ static void resample(fl_upf_t *s, const fl_obs_list_t *obs, upf_frame_t *f)
             s->stats.injected = upf_sat_inc(s->stats.injected);
             candidate(s, obs, f, &s->part[m]);
             fl_upf_internal_restart(s, m, &fc);
+            s->search[m] = true;
         }
     }
 }
@@ -232,13 +235,28 @@ static void ukf_obs(fl_upf_t *s, const fl_mcl_obs_c_t *c, upf_frame_t *f)
         lm = &s->core.field->landmarks[at.best];
         u.lx_mm = lm->x_mm;
         u.ly_mm = lm->y_mm;
-        if (fl_ukf_update_obs(&g->mean, &g->cov, &u, &f->lim, &s->stats.repairs, NULL) == FL_OK)
+        if (fl_ukf_update_obs(&g->mean, &g->cov, &u, &f->lim, &s->stats.repairs, NULL) == FL_OK) {
             s->stats.ukf_updates = upf_sat_inc(s->stats.ukf_updates);
+            f->informed[i] = true;
+        }
     }
 }
 
 /* Each particle's new pose from its posterior, and the transition prior /
- * proposal part of its weight. */
+ * proposal part of its weight.  A particle whose UKF took no observation
+ * this frame (every one gated) has no information to propose from: its
+ * posterior is its predicted Gaussian, whose covariance still holds the
+ * uncertainty of earlier frames.  Drawing from it and restarting there
+ * with that covariance would add it again at every frame, a random walk
+ * that no observation bounds (frames of false positives alone walk the
+ * particles off their pose); a tracked particle draws from the transition
+ * prior instead, the process noise since the last update (the bootstrap
+ * proposal: the weight is the likelihood alone).  Only particles that
+ * descend from a stated pose (a known start, a re-seed with its heading)
+ * are tracked so; a particle that descends from a guess (search: ignorance,
+ * a sensor reset, a penalty, a re-seed without heading) keeps drawing from
+ * its Gaussian, a walk that is its search along the ring it was put on
+ * (the built-in walks and re-seeds from ignorance need it). */
 static void draw(fl_upf_t *s, upf_frame_t *f)
 {
     uint16_t i;
@@ -247,21 +265,28 @@ static void draw(fl_upf_t *s, upf_frame_t *f)
         fl_mcl_particle_t *p = &s->part[i];
         fl_ukf_pose_t xs, prev;
         const fl_ukf_cov_t *pc = &s->q_acc;
-        int64_t d;
+        int64_t d = 0;
         fl_mcl_internal_clamp(&s->core, &g->mean.x_mm, &g->mean.y_mm);
-        if (!fl_ukf_sample(&g->mean, &g->cov, &s->core.rng, &xs))
-            s->stats.sample_fail = upf_sat_inc(s->stats.sample_fail);
-        fl_mcl_internal_clamp(&s->core, &xs.x_mm, &xs.y_mm);
-        prev.x_mm = p->x_mm;
-        prev.y_mm = p->y_mm;
-        prev.heading = p->heading;
-        if (s->params.prior_mode == 1) {
-            prev = f->prior[i].mean;
-            pc = &f->prior[i].cov;
+        if (!f->informed[i] && !s->search[i]) {
+            xs = g->mean;
+            if (s->q_acc.xx > 0 && s->q_acc.tt > 0)
+                (void)fl_ukf_sample(&g->mean, &s->q_acc, &s->core.rng, &xs);
+            fl_mcl_internal_clamp(&s->core, &xs.x_mm, &xs.y_mm);
+        } else {
+            if (!fl_ukf_sample(&g->mean, &g->cov, &s->core.rng, &xs))
+                s->stats.sample_fail = upf_sat_inc(s->stats.sample_fail);
+            fl_mcl_internal_clamp(&s->core, &xs.x_mm, &xs.y_mm);
+            prev.x_mm = p->x_mm;
+            prev.y_mm = p->y_mm;
+            prev.heading = p->heading;
+            if (s->params.prior_mode == 1) {
+                prev = f->prior[i].mean;
+                pc = &f->prior[i].cov;
+            }
+            d = (int64_t)fl_ukf_gauss_nll_q8(&prev, pc, &xs) -
+                (int64_t)fl_ukf_gauss_nll_q8(&g->mean, &g->cov, &xs);
+            d = (d * s->params.trans_q8) / 256;
         }
-        d = (int64_t)fl_ukf_gauss_nll_q8(&prev, pc, &xs) -
-            (int64_t)fl_ukf_gauss_nll_q8(&g->mean, &g->cov, &xs);
-        d = (d * s->params.trans_q8) / 256;
         f->ratio[i] = (int32_t)(d > (int64_t)UPF_LW_MAX ? UPF_LW_MAX
                                 : d < -(int64_t)UPF_LW_MAX ? -(int32_t)UPF_LW_MAX
                                                            : d);
@@ -321,6 +346,7 @@ static void seed_from_obs(fl_upf_t *s, const fl_obs_list_t *obs, const upf_frame
         s->stats.injected = upf_sat_inc(s->stats.injected);
         candidate(s, obs, f, &s->part[i]);
         fl_upf_internal_restart(s, i, &fc);
+        s->search[i] = true;
         s->lw[i] = 0;
     }
 }
