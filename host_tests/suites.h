@@ -26,6 +26,7 @@ T_SUITE(confidence);
 T_SUITE(reseed);
 T_SUITE(team);
 T_SUITE(report);
+T_SUITE(odocal);
 T_SUITE(lines);
 T_SUITE(features);
 T_SUITE(robots);

@@ -336,6 +336,18 @@
 #error "FL_REPORT_MAX_PLAYERS must be in 1..8"
 #endif
 
+/* ---- odometry calibration (odocal.h) ------------------------------------
+ * FL_ODOCAL_MAX_FIXES  an observer's sightings of one player the odometry
+ *                      calibration keeps (one a second over a 30 s walk:
+ *                      32).  The solve visits every pair (n^2 / 2).  Range
+ *                      4..64 (the pair sums' int64 headroom). */
+#ifndef FL_ODOCAL_MAX_FIXES
+#define FL_ODOCAL_MAX_FIXES 32
+#endif
+#if FL_ODOCAL_MAX_FIXES < 4 || FL_ODOCAL_MAX_FIXES > 64
+#error "FL_ODOCAL_MAX_FIXES must be in 4..64"
+#endif
+
 /* ---- the configuration fingerprint ---------------------------------------
  * FNV-1a over 32-bit words: the layout version, then every option above
  * (each one guarded by #ifndef in this file; the host test config.
@@ -352,12 +364,13 @@
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
-    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
     FL_ABI_VERSION), FL_IMAGE_MAX_DIM), FL_FUZZY_CELL_MM), FL_FUZZY_MAX_NX), FL_FUZZY_MAX_NY), FL_FUZZY_MAX_REGIONS), \
     FL_MCL_MAX_PARTICLES), FL_UPF_MAX_PARTICLES), FL_SCAN_MAX_COLS), FL_SCAN_MAX_ROWS), FL_SCAN_MAX_FEET), FL_LINES_MAX_POINTS), \
     FL_LINES_MAX_SEGMENTS), FL_LINES_MAX_BUCKETS), FL_LINES_WTAB), FL_CROSSINGS_MAX), FL_GOAL_MAX_POSTS), FL_CIRCLE_MAX_CHORDS), \
     FL_CIRCLE_MAX_POINTS), FL_LINES_NEAR_MAX), FL_OBS_MAX), FL_BEACON_MAX_RUNS), FL_BEACON_MAX_BLOBS), FL_BEACON_MAX_FOUND), \
     FL_HOMOG_MAX_POINTS), FL_COACH_MAX_WIDTH), FL_COACH_MAX_HEIGHT), FL_COACH_MAX_RUNS), FL_COACH_MAX_REGIONS), FL_COACH_MAX_FEET), \
-    FL_COACH_MAX_BAND_PX), FL_REPORT_MAX), FL_REPORT_MAX_PLAYERS)))
+    FL_COACH_MAX_BAND_PX), FL_REPORT_MAX), FL_REPORT_MAX_PLAYERS), \
+    FL_ODOCAL_MAX_FIXES)))
 
 #endif /* FIELDLOC_CONFIG_H */

@@ -44,6 +44,7 @@ HEADER_LAYER = {
     "ukf.h": "loc", "upf.h": "loc",
     "report.h": "loc",           # observer reports: assignment, re-seed policy
                                  # over localizer.h, the message
+    "odocal.h": "loc",           # odometry scale from an observer's track
     # future localizers: "grid.h": "loc",
     "fieldloc.h": "umbrella",    # users only: never included from src/, include/
 }
@@ -72,7 +73,8 @@ MAX_FUNCTION_LINES = 150
 # the tools may neither include it nor call its fl_<name>_ functions, except
 # the files listed here, which measure that localizer's internals.
 LOC_INTERFACE = {"localizer.h", "obs.h",
-                 "report.h"}   # no localizer's own API: a policy over localizer.h
+                 "report.h",   # no localizer's own API: a policy over localizer.h
+                 "odocal.h"}   # no localizer's API: corrects the odometry fed to any
 LOC_OWN_TOOLS = {"bench/bench_fuzzy.c": "the fuzzy grid's benchmark section "
                                         "(worst-case cells, sizeof)",
                  "cli/cmd_ukf_check.c": "the UKF step's numerics against the double "

@@ -201,7 +201,7 @@ static void usage(void)
             "       fieldloc simulate --coach [--localizer upf|mcl|fuzzy] [--seed N] [--runs N]\n"
             "                         [--features | --frames] [--every N] [--quiet]\n"
             "                         [--reseed once|spread] [--assign coach|player]\n"
-            "                         [--coach-feet coach|truth]\n"
+            "                         [--coach-feet coach|truth] [--odocal on|off]\n"
             "  --coach: seed 003's experiments 1 and 2 (two players, a coach beside the\n"
             "           field; tools/loc/coachrun.h), runs seeds N..N+runs-1 (default 1, 20)\n"
             "  --reseed once (default): one correction at the end of the first leg (seed\n"
@@ -209,12 +209,17 @@ static void usage(void)
             "  --assign coach (default): the coach numbers its reports against the players'\n"
             "           broadcast estimates; player: each takes its team's report nearest\n"
             "           its own estimate\n"
-            "  --coach-feet truth: DEBUG ONLY, the coach reports the true feet\n");
+            "  --coach-feet truth: DEBUG ONLY, the coach reports the true feet\n"
+            "  --odocal on: the coach also sees the players once a second on the first\n"
+            "           leg; each calibrates its odometry's scale from that track\n"
+            "           (odocal.h); exp2_err is then that variant's, seed 003's plain\n"
+            "           correction on a '#' line\n");
 }
 
 /* `simulate --coach`: seed 003's two experiments (tools/loc/coachrun.h). */
 static int simulate_coach(const char *localizer, long seed, long runs, int frames, long every,
-                          int quiet, int truth_feet, int reseed_always, int player_side)
+                          int quiet, int truth_feet, int reseed_always, int player_side,
+                          int odocal)
 {
     cr_opts_t o;
     cr_result_t *res;
@@ -232,6 +237,7 @@ static int simulate_coach(const char *localizer, long seed, long runs, int frame
     o.feet = truth_feet ? CR_FEET_TRUTH_DEBUG : CR_FEET_COACH;
     o.reseed_always = reseed_always;
     o.assign_player_side = player_side;
+    o.odocal = odocal;
     o.log = quiet ? NULL : stdout;
     o.trace = getenv("FIELDLOC_COACH_TRACE") != NULL ? stdout : NULL;
     if ((res = malloc(sizeof *res)) == NULL) {
@@ -270,6 +276,7 @@ int cmd_simulate(int argc, char **argv)
     colors_opt_t colors;
     long kidnaps = -1, runs = 20;
     int coach = 0, truth_feet = 0, reseed_always = 1, player_side = 0, mode_given = 0, every_given = 0;
+    int odocal = 0;
     FILE *stream = NULL;
     int n_param = 0;
     const fl_localizer_t *loc;
@@ -323,6 +330,14 @@ int cmd_simulate(int argc, char **argv)
                 fprintf(stderr, "simulate: --reseed once|spread\n");
                 return 2;
             }
+        } else if (!strcmp(argv[k], "--odocal") && k + 1 < argc) {
+            ++k;
+            if (!strcmp(argv[k], "on") || !strcmp(argv[k], "off"))
+                odocal = !strcmp(argv[k], "on");
+            else {
+                fprintf(stderr, "simulate: --odocal on|off\n");
+                return 2;
+            }
         } else if (!strcmp(argv[k], "--assign") && k + 1 < argc) {
             ++k;
             if (!strcmp(argv[k], "coach") || !strcmp(argv[k], "player"))
@@ -362,7 +377,8 @@ int cmd_simulate(int argc, char **argv)
             return arg_unknown("simulate", argv[k],
                                "--field=1 --localizer=1 --seed=1 --steps=1 --every=1 --param=1 "
                                "--obs-cache=1 --scenario=1 --post-sides=1 --export-stream=1 "
-                               "--kidnaps=1 --colors=1 --runs=1 --coach-feet=1 --reseed=1 --assign=1");
+                               "--kidnaps=1 --colors=1 --runs=1 --coach-feet=1 --reseed=1 --assign=1 "
+                               "--odocal=1");
     }
     if (coach)
         /* the players see through rendered frames and the vision path
@@ -370,7 +386,7 @@ int cmd_simulate(int argc, char **argv)
          * at a few minutes */
         return simulate_coach(localizer, seed, runs, mode_given ? frames : 1,
                               every_given ? every : 6, quiet, truth_feet, reseed_always,
-                              player_side);
+                              player_side, odocal);
     if (scen_path == NULL && field_name == NULL) {
         usage();
         return 2;

@@ -3,6 +3,7 @@
  */
 #include "loc/coachrun.h"
 #include "fieldloc/coach.h"
+#include "fieldloc/odocal.h"
 #include "fieldloc/report.h"
 #include "loc/locrun.h"
 #include "world/coach_scene.h"
@@ -69,6 +70,15 @@ typedef struct {
     colors_opt_t colors;
     cr_obs_rec_t *rec;          /* [2]: recording (pass 0) or replaying */
     int replay;
+    /* odometry calibration (odocal.h): CR_CAL_COLLECT takes a coach frame
+     * every second and feeds each player's odometry and its picked report
+     * to cal[p]; CR_CAL_APPLY corrects the odometry with cal[p]'s gains */
+    int cal_mode;
+    fl_odocal_t *cal;           /* [2] */
+    fl_report_tracker_t cal_tr[2];
+    uint64_t seed;
+    long cal_frames, cal_fixes;
+    fl_coach_t *coach;          /* the first leg's coach, set up once */
     double render_s;
     long rendered;
 } cr_world_t;
@@ -173,6 +183,9 @@ static int cr_render_views(cr_world_t *w, const int *need, cr_job_t *job)
 }
 
 /* One team step: simulators, then every player's localizer. */
+enum { CR_CAL_OFF = 0, CR_CAL_COLLECT = 1, CR_CAL_APPLY = 2 };
+static void cr_cal_sight(cr_world_t *w);
+
 static int cr_world_step(cr_world_t *w)
 {
     int p, need[2] = {0, 0};
@@ -188,12 +201,20 @@ static int cr_world_step(cr_world_t *w)
     for (p = 0; p < 2; p++) {
         cr_player_t *pl = &w->pl[p];
         const sim_step_t *st = &w->team.p[p].st;
+        int32_t odx = st->odo_dx_mm, ody = st->odo_dy_mm;
+        double gx = 1, gy = 1;
+        if (w->cal_mode == CR_CAL_COLLECT)
+            fl_odocal_odometry(&w->cal[p], odx, ody, st->odo_dtheta);
+        else if (w->cal_mode == CR_CAL_APPLY) {
+            fl_odocal_apply(&w->cal[p], &odx, &ody);
+            gx = w->cal[p].gain_q16[0] / 65536.0;
+            gy = w->cal[p].gain_q16[1] / 65536.0;
+        }
         if (!w->o->frames) {
-            fl_loc_predict(pl->lr.loc, pl->lr.state, st->odo_dx_mm, st->odo_dy_mm,
-                           st->odo_dtheta);
+            fl_loc_predict(pl->lr.loc, pl->lr.state, odx, ody, st->odo_dtheta);
             fl_loc_update(pl->lr.loc, pl->lr.state, &st->obs, NULL);
         } else {
-            lr_odo_add(&pl->odo, st->odo_dx, st->odo_dy, st->odo_dtheta_rad);
+            lr_odo_add(&pl->odo, gx * st->odo_dx, gy * st->odo_dy, st->odo_dtheta_rad);
             if (st->index % (uint32_t)w->o->every == 0) {
                 cr_obs_rec_t *rec = &w->rec[p];
                 lr_predict(&pl->lr, pl->odo.x, pl->odo.y, pl->odo.a);
@@ -228,6 +249,9 @@ static int cr_world_step(cr_world_t *w)
                     pl->est.y_mm, lr_deg(pl->est.heading), st->obs.n,
                     fl_loc_spread_mm(pl->lr.loc, pl->lr.state));
     }
+    if (w->cal_mode == CR_CAL_COLLECT &&
+        w->team.p[0].st.index % (uint32_t)lround(w->team.p[0].sim.sc.frame_hz) == 0)
+        cr_cal_sight(w);
     return 1;
 }
 
@@ -286,7 +310,8 @@ static int cr_coach_setup(fl_coach_t *c, const team_t *team, uint64_t seed, int 
 }
 
 /* The coach's feet on its frame of the current step. */
-static int cr_coach_feet(const cr_world_t *w, uint64_t seed, cr_foot_t *out, int max)
+static int cr_coach_feet(const cr_world_t *w, uint64_t seed, uint32_t salt, cr_foot_t *out,
+                         int max)
 {
     int n = 0, p;
     render_scene_t scene;
@@ -304,16 +329,20 @@ static int cr_coach_feet(const cr_world_t *w, uint64_t seed, cr_foot_t *out, int
         }
         return n;
     }
-    c = malloc(sizeof *c);
+    c = w->coach != NULL ? w->coach : malloc(sizeof *c);
     res = malloc(sizeof *res);
-    if (c == NULL || res == NULL || cr_coach_setup(c, &w->team, seed, &n_points) != 0) {
-        free(c);
+    if (c == NULL || res == NULL ||
+        (w->coach == NULL && cr_coach_setup(c, &w->team, seed, &n_points) != 0)) {
+        if (c != w->coach)
+            free(c);
         free(res);
         return -1;
     }
-    team_coach_scene(&w->team, (uint32_t)(seed * 2654435761u) ^ 0x5eed003u, &scene);
+    team_coach_scene(&w->team, ((uint32_t)(seed * 2654435761u) ^ 0x5eed003u) + salt * 7919u,
+                     &scene);
     if (render_frame(&scene, &fr) != 0) {
-        free(c);
+        if (c != w->coach)
+            free(c);
         free(res);
         return -1;
     }
@@ -329,9 +358,53 @@ static int cr_coach_feet(const cr_world_t *w, uint64_t seed, cr_foot_t *out, int
         }
     }
     render_frame_free(&fr);
-    free(c);
+    if (c != w->coach)
+        free(c);
     free(res);
     return n;
+}
+
+/* One sighting of the first leg: the coach's frame of this step; each
+ * player picks its report as it would without a number (report.h
+ * fl_report_pick: its team's report nearest its estimate, with the jump
+ * and gate tests over its own tracker) and gives it to its calibration. */
+static void cr_cal_sight(cr_world_t *w)
+{
+    cr_foot_t feet[8];
+    fl_obs_report_t rep[FL_REPORT_MAX];
+    size_t n = 0;
+    int nf, i, p, n_points;
+    if (w->coach == NULL && w->o->feet != CR_FEET_TRUTH_DEBUG) {
+        fl_coach_t *c = malloc(sizeof *c);
+        if (c == NULL || cr_coach_setup(c, &w->team, w->seed, &n_points) != 0) {
+            free(c);
+            return;
+        }
+        w->coach = c;
+    }
+    nf = cr_coach_feet(w, w->seed, (uint32_t)++w->cal_frames, feet, 8);
+    for (i = 0; i < nf && n < FL_REPORT_MAX; i++, n++) {
+        memset(&rep[n], 0, sizeof rep[n]);
+        rep[n].x_mm = feet[i].x_mm;
+        rep[n].y_mm = feet[i].y_mm;
+        rep[n].sd_mm = feet[i].sd_mm;
+        rep[n].confidence = (uint8_t)feet[i].confidence;
+        rep[n].team = (uint8_t)feet[i].team;
+    }
+    for (p = 0; p < 2 && n > 0; p++) {
+        fl_report_self_t me;
+        size_t idx = 0;
+        memset(&me, 0, sizeof me);
+        me.team = FL_COLOR_RED;
+        me.now_ms = (uint32_t)w->team.p[p].st.t_ms;
+        me.field = w->team.field;
+        me.est = &w->pl[p].est;
+        if (fl_report_pick(rep, n, &me, w->pl[p].est.x_mm, w->pl[p].est.y_mm,
+                           fl_loc_spread_mm(w->pl[p].lr.loc, w->pl[p].lr.state), &w->cal_tr[p],
+                           &idx) == FL_REPORT_NOT_NEEDED &&
+            fl_odocal_fix(&w->cal[p], rep[idx].x_mm, rep[idx].y_mm) == FL_OK)
+            w->cal_fixes++;
+    }
 }
 
 static double cr_dist(double ax, double ay, double bx, double by)
@@ -454,25 +527,51 @@ static int cr_one_run(const cr_opts_t *o, const fl_localizer_t *loc, int r, cr_r
     int nf = 0, p, pass, to = 0, assigned[2] = {-1, -1}, rc = -1;
     const char *what[2] = {"-", "-"};
     cr_obs_rec_t rec[2];
+    fl_odocal_t cal[2];
+    cr_result_t *scratch = NULL;
     memset(rec, 0, sizeof rec);
+    fl_odocal_init(&cal[0]);
+    fl_odocal_init(&cal[1]);
     if (w == NULL)
         return -1;
-    for (pass = 0; pass < 2; pass++) {
-        int with = pass == 1;
+    /* pass 0: without the coach; 1: seed 003's one correction; 2 (odocal):
+     * the correction with the odometry calibrated over the first leg */
+    for (pass = 0; pass < (o->odocal ? 3 : 2); pass++) {
+        int with = pass >= 1;
         if (cr_world_init(w, o, loc, seed, err, err_len) != 0)
             goto out;
         w->rec = rec;
-        w->replay = pass == 1;
+        w->replay = pass >= 1;
+        w->seed = seed;
         rec[0].next = rec[1].next = 0;
+        if (pass == 0 && o->odocal) {
+            w->cal = cal;
+            w->cal_mode = CR_CAL_COLLECT;
+            fl_report_tracker_init(&w->cal_tr[0]);
+            fl_report_tracker_init(&w->cal_tr[1]);
+        }
         if (cr_walk_leg(w, &to) != 0) {
             cr_world_free(w);
             snprintf(err, (size_t)err_len, "run %d: rendering failed", r);
             goto out;
         }
-        res->leg_timeouts += to;
+        if (pass < 2)
+            res->leg_timeouts += to;
+        if (pass == 0 && o->odocal) {
+            w->cal_mode = CR_CAL_OFF;
+            free(w->coach);
+            w->coach = NULL;
+            res->cal_frames += w->cal_frames;
+            res->cal_fixes += w->cal_fixes;
+            for (p = 0; p < 2; p++) {
+                fl_odocal_solve(&cal[p]);
+                res->cal_gain[r][p][0] = cal[p].gain_q16[0] / 65536.0;
+                res->cal_gain[r][p][1] = cal[p].gain_q16[1] / 65536.0;
+            }
+        }
         if (!with) {
             /* Experiment 1 at the blue circles */
-            nf = cr_coach_feet(w, seed, feet, 8);
+            nf = cr_coach_feet(w, seed, 0, feet, 8);
             if (nf < 0) {
                 cr_world_free(w);
                 snprintf(err, (size_t)err_len, "the coach's image path is not in this build");
@@ -490,19 +589,34 @@ static int cr_one_run(const cr_opts_t *o, const fl_localizer_t *loc, int r, cr_r
                     f < 0 ? NAN : cr_dist(feet[f].x_mm, feet[f].y_mm, st->x_mm, st->y_mm);
                 res->coach_missed += f < 0;
             }
-        } else {
+        } else if (pass == 1) {
             /* one correction at the blue circles */
             cr_correct(w, o, loc, feet, nf, res, assigned, what);
+        } else {
+            /* the same correction (its counts already taken), then the
+             * calibrated odometry */
+            const char *what2[2];
+            int assigned2[2];
+            if (scratch == NULL && (scratch = calloc(1, sizeof *scratch)) == NULL) {
+                cr_world_free(w);
+                goto out;
+            }
+            cr_correct(w, o, loc, feet, nf, scratch, assigned2, what2);
+            w->cal = cal;
+            w->cal_mode = CR_CAL_APPLY;
         }
         if (cr_second_leg(w, &to) != 0) {
             cr_world_free(w);
             snprintf(err, (size_t)err_len, "run %d: rendering failed", r);
             goto out;
         }
-        res->leg_timeouts += to;
+        if (pass < 2)
+            res->leg_timeouts += to;
         for (p = 0; p < 2; p++) {
-            if (with)
-                res->exp2_err[r][p] = cr_err(w, p);
+            if (pass == 2)
+                res->exp2_cal_err[r][p] = res->exp2_err[r][p] = cr_err(w, p);
+            else if (with)
+                res->exp2_plain_err[r][p] = res->exp2_err[r][p] = cr_err(w, p);
             else
                 res->exp2_nocoach_err[r][p] = cr_err(w, p);
         }
@@ -522,6 +636,7 @@ static int cr_one_run(const cr_opts_t *o, const fl_localizer_t *loc, int r, cr_r
                 res->exp2_err[r][1], res->exp2_nocoach_err[r][1], assigned[0], what[0],
                 assigned[1], what[1]);
 out:
+    free(scratch);
     free(rec[0].obs);
     free(rec[1].obs);
     free(w);
@@ -534,6 +649,7 @@ int cr_run(const cr_opts_t *o, cr_result_t *res, char *err, int err_len)
     struct timespec t0, t1;
     int r;
     memset(res, 0, sizeof *res);
+    res->odocal = o->odocal;
     if (o->runs < 1 || o->runs > CR_MAX_RUNS || (o->frames && o->every < 1)) {
         snprintf(err, (size_t)err_len, "runs 1..%d, every >= 1", CR_MAX_RUNS);
         return -1;
@@ -608,6 +724,28 @@ void cr_print_summary(FILE *f, const cr_result_t *res)
     for (i = 0; i < 4; i++)
         for (p = 0; p < 2; p++)
             fprintf(f, "# median %s %.0f\n", name[i][p], median[i][p]);
+    if (res->odocal) {
+        double pm[2], pmed[2], cm[2], cmed[2], g[2][2];
+        for (p = 0; p < 2; p++) {
+            double sx = 0, sy = 0;
+            cr_stats(res->exp2_plain_err, res->runs, p, &pm[p], &pmed[p]);
+            cr_stats(res->exp2_cal_err, res->runs, p, &cm[p], &cmed[p]);
+            for (i = 0; i < res->runs; i++) {
+                sx += res->cal_gain[i][p][0];
+                sy += res->cal_gain[i][p][1];
+            }
+            g[p][0] = res->runs > 0 ? sx / res->runs : NAN;
+            g[p][1] = res->runs > 0 ? sy / res->runs : NAN;
+        }
+        fprintf(f, "# odometry calibration (odocal.h) over the first leg: %ld coach frames, "
+                   "%ld reports taken; mean gains A x %.3f y %.3f, B x %.3f y %.3f\n",
+                res->cal_frames, res->cal_fixes, g[0][0], g[0][1], g[1][0], g[1][1]);
+        fprintf(f, "# exp2 seed 003's plain correction: A %.0f B %.0f mm (medians %.0f, %.0f)\n",
+                pm[0], pm[1], pmed[0], pmed[1]);
+        fprintf(f, "# exp2 correction + calibrated odometry: A %.0f B %.0f mm (medians %.0f, "
+                   "%.0f)%s\n",
+                cm[0], cm[1], cmed[0], cmed[1], "; the exp2_err lines below are these");
+    }
     fprintf(f, "# the summary values are means over the runs (seed 003 reports averages)\n");
     for (i = 0; i < 4; i++)
         for (p = 0; p < 2; p++)

@@ -72,6 +72,14 @@ typedef struct {
                                     fl_report_pick); 0: the coach numbers
                                     the reports (fl_report_assign) against
                                     the players' broadcast estimates */
+    int odocal;                  /* 1: a third continuation: the coach also
+                                    sees the players once a second over the
+                                    first leg, each player calibrates its
+                                    odometry's scale from that track
+                                    (odocal.h) and corrects its odometry
+                                    after the correction; exp2_err is then
+                                    that variant's, exp2_plain_err seed
+                                    003's */
     FILE *log;                   /* per-run "# run ..." lines, or NULL */
     FILE *trace;                 /* per-step "# step ..." lines, or NULL */
 } cr_opts_t;
@@ -86,6 +94,11 @@ typedef struct {
     double own_head_err[CR_MAX_RUNS][2];    /* degrees, 0..180 */
     double exp2_err[CR_MAX_RUNS][2];
     double exp2_nocoach_err[CR_MAX_RUNS][2];
+    double exp2_plain_err[CR_MAX_RUNS][2];  /* seed 003's correction only */
+    double exp2_cal_err[CR_MAX_RUNS][2];    /* odocal: + calibrated odometry */
+    double cal_gain[CR_MAX_RUNS][2][2];     /* odocal: per player x, y gain */
+    long cal_frames, cal_fixes;
+    int odocal;
     double coach_dist_mm[CR_MAX_RUNS][2];   /* true distance coach -> foot */
     int reseeds, not_needed, refused, assigned, unassigned, wrong_assignments, coach_missed;
     int leg_timeouts;
