@@ -206,10 +206,8 @@ static const fl_landmark_t spl2016_lm[] = {
     CIRCLE_CENTRE
 };
 
-static const fl_field_line_t spl2016_lines[] = {
-    BOUNDARY_LINES(4500, 3000),
-    BOX_LINES(4500, 3900, 1100)
-};
+/* spl2016's painted lines are spl2013's (only the marks and goals moved):
+ * the catalogue entry uses spl2013_lines. */
 
 /* ---- aibo2004 (numbers and their uncertainty: file top) ----------------- */
 
@@ -261,7 +259,7 @@ static const fl_field_t fields[] = {
     {
         "spl2016", 9000, 6000, 50, 700, 750, 600, 2200, 0, 0, 3200, 100,
         1600, 100, 800, { FL_COLOR_WHITE, FL_COLOR_WHITE }, true,
-        spl2016_lm, COUNT_OF(spl2016_lm), spl2016_lines, COUNT_OF(spl2016_lines),
+        spl2016_lm, COUNT_OF(spl2016_lm), spl2013_lines, COUNT_OF(spl2013_lines),
         0, 0
     }
 };
