@@ -30,6 +30,35 @@ static void test_list(void)
     CHECK_EQ(list.dropped, 0);
 }
 
+/* Line points: their own capacity and counter, cleared with the list,
+ * absurd positions refused without being counted. */
+static void test_points(void)
+{
+    static fl_obs_list_t list;
+    int i;
+    memset(&list, 0x5a, sizeof list);
+    fl_obs_list_clear(&list);
+    CHECK_EQ(list.n_points, 0);
+    CHECK_EQ(list.points_dropped, 0);
+    for (i = 0; i < FL_OBS_MAX_POINTS; i++)
+        CHECK(fl_obs_list_push_point(&list, 100 * i, -50 * i));
+    CHECK_EQ(list.n_points, FL_OBS_MAX_POINTS);
+    CHECK(!fl_obs_list_push_point(&list, 1, 2));
+    CHECK_EQ(list.points_dropped, 1);
+#if FL_OBS_MAX_POINTS > 0
+    CHECK_EQ(list.points[FL_OBS_MAX_POINTS - 1].x_mm, 100 * (FL_OBS_MAX_POINTS - 1));
+    CHECK_EQ(list.points[FL_OBS_MAX_POINTS - 1].y_mm, -50 * (FL_OBS_MAX_POINTS - 1));
+#endif
+    CHECK_EQ(list.n, 0);
+    fl_obs_list_clear(&list);
+    CHECK(!fl_obs_list_push_point(&list, FL_OBS_MAX_RANGE_MM + 1, 0));
+    CHECK(!fl_obs_list_push_point(&list, 0, -FL_OBS_MAX_RANGE_MM - 1));
+    CHECK(!fl_obs_list_push_point(NULL, 0, 0));
+    CHECK_EQ(list.points_dropped, 0);
+    CHECK(fl_obs_list_push_point(&list, FL_OBS_MAX_RANGE_MM, -FL_OBS_MAX_RANGE_MM));
+    CHECK_EQ(list.n_points, 1);
+}
+
 /* Orientation of every crossing of every field: L -> bisector lies strictly
  * between its arms (90 deg arms: 45 deg from each); T -> the stem has no
  * opposite arm; X and marks -> one of the arms. */
@@ -245,5 +274,6 @@ void suite_obs(void)
     t_run("obs.view_from_camera", test_view);
     t_run("obs.vision_defaults", test_vision_defaults);
     t_run("obs.list_capacity", test_list);
+    t_run("obs.list_points", test_points);
     t_run("obs.landmark_orientation", test_orientation);
 }

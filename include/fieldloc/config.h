@@ -224,6 +224,17 @@
 #if FL_OBS_MAX < 4 || FL_OBS_MAX > 255
 #error "FL_OBS_MAX must be in 4..255"
 #endif
+/* Painted-line points one observation list carries (obs.h,
+ * fl_obs_list_t.points: a vision path's sample of ground points on white
+ * lines, which a localizer may use to tell apart poses its landmarks
+ * cannot); more are counted in points_dropped.  Default 24, range 0..255
+ * (0: the list carries none). */
+#ifndef FL_OBS_MAX_POINTS
+#define FL_OBS_MAX_POINTS 24
+#endif
+#if FL_OBS_MAX_POINTS < 0 || FL_OBS_MAX_POINTS > 255
+#error "FL_OBS_MAX_POINTS must be in 0..255"
+#endif
 
 /* ---- colored beacons and goals (beacon.h, AIBO fields) -------------------
  * FL_BEACON_MAX_RUNS   colored vertical runs per frame.  Default 384
@@ -364,13 +375,13 @@
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
-    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
     FL_ABI_VERSION), FL_IMAGE_MAX_DIM), FL_FUZZY_CELL_MM), FL_FUZZY_MAX_NX), FL_FUZZY_MAX_NY), FL_FUZZY_MAX_REGIONS), \
     FL_MCL_MAX_PARTICLES), FL_UPF_MAX_PARTICLES), FL_SCAN_MAX_COLS), FL_SCAN_MAX_ROWS), FL_SCAN_MAX_FEET), FL_LINES_MAX_POINTS), \
     FL_LINES_MAX_SEGMENTS), FL_LINES_MAX_BUCKETS), FL_LINES_WTAB), FL_CROSSINGS_MAX), FL_GOAL_MAX_POSTS), FL_CIRCLE_MAX_CHORDS), \
     FL_CIRCLE_MAX_POINTS), FL_LINES_NEAR_MAX), FL_OBS_MAX), FL_BEACON_MAX_RUNS), FL_BEACON_MAX_BLOBS), FL_BEACON_MAX_FOUND), \
     FL_HOMOG_MAX_POINTS), FL_COACH_MAX_WIDTH), FL_COACH_MAX_HEIGHT), FL_COACH_MAX_RUNS), FL_COACH_MAX_REGIONS), FL_COACH_MAX_FEET), \
     FL_COACH_MAX_BAND_PX), FL_REPORT_MAX), FL_REPORT_MAX_PLAYERS), \
-    FL_ODOCAL_MAX_FIXES)))
+    FL_ODOCAL_MAX_FIXES), FL_OBS_MAX_POINTS)))
 
 #endif /* FIELDLOC_CONFIG_H */

@@ -51,11 +51,26 @@ typedef struct {
                                   for every other kind and when unknown */
 } fl_obs_t;
 
-/* Capacity of one frame's observation list: FL_OBS_MAX, config.h. */
+/* A point on a painted line, on the ground, robot frame (mm). */
+typedef struct {
+    int32_t x_mm, y_mm;
+} fl_obs_point_t;
+
+/* Capacity of one frame's observation list: FL_OBS_MAX, config.h.
+ * Besides the landmarks, a list may carry a sample of points on the white
+ * lines the frame showed (FL_OBS_MAX_POINTS of them, config.h): seed 002's
+ * "white points", which tell apart poses the landmarks leave tied.  A
+ * vision path that finds none leaves n_points 0, and a localizer that has
+ * no use for them ignores them. */
 typedef struct {
     fl_obs_t obs[FL_OBS_MAX];
     uint16_t n;          /* valid entries */
     uint16_t dropped;    /* observations that did not fit (counted, not stored) */
+#if FL_OBS_MAX_POINTS > 0
+    fl_obs_point_t points[FL_OBS_MAX_POINTS];
+#endif
+    uint16_t n_points;        /* valid entries of points */
+    uint16_t points_dropped;  /* points that did not fit (counted) */
 } fl_obs_list_t;
 
 /* What a frame could have seen: the part of the ground (robot frame) in
@@ -118,10 +133,16 @@ typedef struct {
 
 fl_status_t fl_obs_report_check(const fl_obs_report_t *r, const fl_field_t *field);
 
+/* Empties the list: landmarks and points. */
 void fl_obs_list_clear(fl_obs_list_t *list);
 
 /* Append; when full, count it in `dropped` and return false. */
 bool fl_obs_list_push(fl_obs_list_t *list, const fl_obs_t *obs);
+
+/* Append a line point (robot frame, mm); when full, count it in
+ * points_dropped and return false.  A point farther than
+ * FL_OBS_MAX_RANGE_MM on either axis is refused (false, not counted). */
+bool fl_obs_list_push_point(fl_obs_list_t *list, int32_t x_mm, int32_t y_mm);
 
 /* Orientation of a map landmark by the conventions above (field frame);
  * false for kinds without one. */

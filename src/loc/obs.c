@@ -12,6 +12,26 @@ void fl_obs_list_clear(fl_obs_list_t *list)
         return;
     list->n = 0;
     list->dropped = 0;
+    list->n_points = 0;
+    list->points_dropped = 0;
+}
+
+bool fl_obs_list_push_point(fl_obs_list_t *list, int32_t x_mm, int32_t y_mm)
+{
+    if (list == NULL || x_mm < -FL_OBS_MAX_RANGE_MM || x_mm > FL_OBS_MAX_RANGE_MM ||
+        y_mm < -FL_OBS_MAX_RANGE_MM || y_mm > FL_OBS_MAX_RANGE_MM)
+        return false;
+#if FL_OBS_MAX_POINTS > 0
+    if (list->n_points < FL_OBS_MAX_POINTS) {
+        list->points[list->n_points].x_mm = x_mm;
+        list->points[list->n_points].y_mm = y_mm;
+        list->n_points++;
+        return true;
+    }
+#endif
+    if (list->points_dropped < UINT16_MAX)
+        list->points_dropped++;
+    return false;
 }
 
 bool fl_obs_list_push(fl_obs_list_t *list, const fl_obs_t *obs)
