@@ -30,17 +30,6 @@
  * unit: 9^12 = 2.8e11 < 2^39 = 5.5e11 at the largest configuration. */
 typedef char fl_report_tie_fits[(FL_REPORT_MAX_PLAYERS + 1 <= 9 && FL_REPORT_MAX <= 12) ? 1 : -1];
 
-static uint32_t sat_inc(uint32_t v)
-{
-    return v < UINT32_MAX ? v + 1u : v;
-}
-
-#define COUNT(st, f)                       \
-    do {                                   \
-        if ((st) != NULL)                  \
-            (st)->f = sat_inc((st)->f);    \
-    } while (0)
-
 int64_t fl_report_internal_dist2(int32_t ax, int32_t ay, int32_t bx, int32_t by)
 {
     const int64_t cap = (int64_t)1 << 24;
@@ -163,7 +152,7 @@ static void usable_claims(const fl_report_claim_t *claims, size_t n_claims, bool
             good = false;
         ok[i] = good;
         if (!good)
-            COUNT(st, claims_refused);
+            REPORT_COUNT(st, claims_refused);
     }
 }
 
@@ -200,9 +189,9 @@ static void assign_team(fl_obs_report_t *reports, const size_t *ri, size_t nr,
     for (i = 0; i < nr; i++) {
         if (col_of[i] < nc) {
             reports[ri[i]].player = claims[ci[col_of[i]]].player;
-            COUNT(st, assigned);
+            REPORT_COUNT(st, assigned);
         } else {
-            COUNT(st, unassigned);
+            REPORT_COUNT(st, unassigned);
         }
     }
 }
@@ -234,15 +223,15 @@ fl_status_t fl_report_assign(fl_obs_report_t *reports, size_t n_reports,
     size_t i, k;
     if ((n_reports > 0 && (reports == NULL || field == NULL)) ||
         (n_claims > 0 && claims == NULL)) {
-        COUNT(st, bad_calls);
+        REPORT_COUNT(st, bad_calls);
         return FL_ERR_NULL;
     }
     if (n_reports > FL_REPORT_MAX || n_claims > 2 * FL_REPORT_MAX_PLAYERS) {
-        COUNT(st, bad_calls);
+        REPORT_COUNT(st, bad_calls);
         return FL_ERR_SIZE;
     }
     if (gate_q8 > FL_REPORT_GATE_MAX_Q8) {
-        COUNT(st, bad_calls);
+        REPORT_COUNT(st, bad_calls);
         return FL_ERR_RANGE;
     }
     if (gate_q8 == 0)
@@ -254,9 +243,9 @@ fl_status_t fl_report_assign(fl_obs_report_t *reports, size_t n_reports,
         valid[i] = s == FL_OK;
         done[i] = false;
         if (s == FL_ERR_STALE)
-            COUNT(st, stale);
+            REPORT_COUNT(st, stale);
         else if (s != FL_OK)
-            COUNT(st, off_carpet);
+            REPORT_COUNT(st, off_carpet);
     }
     /* one matching per team that has valid reports; teams in report order */
     for (i = 0; i < n_reports; i++) {

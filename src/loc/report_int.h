@@ -8,6 +8,19 @@
 
 #include "fieldloc/report.h"
 
+/* Saturating counter increment, and REPORT_COUNT(stats, member): increment a
+ * counter of a stats block the caller may have left NULL. */
+static inline uint32_t fl_report_sat_inc(uint32_t v)
+{
+    return v < UINT32_MAX ? v + 1u : v;
+}
+
+#define REPORT_COUNT(st, f)                            \
+    do {                                               \
+        if ((st) != NULL)                              \
+            (st)->f = fl_report_sat_inc((st)->f);      \
+    } while (0)
+
 /* An estimate's spread is clamped to this in the cost (a lost player's
  * spread on an SPL carpet is about 3,000 mm; UINT32_MAX, uninitialized,
  * must not make every distance free). */

@@ -14,12 +14,8 @@
 /* Beyond this, any report is within reach of the last one (a minute). */
 #define JUMP_DT_CAP_MS 60000
 
-static uint32_t sat_inc(uint32_t v)
-{
-    return v < UINT32_MAX ? v + 1u : v;
-}
 
-#define COUNT(t, f) ((t)->stats.f = sat_inc((t)->stats.f))
+#define COUNT(t, f) ((t)->stats.f = fl_report_sat_inc((t)->stats.f))
 
 const char *fl_report_result_str(fl_report_result_t r)
 {

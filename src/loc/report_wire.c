@@ -7,20 +7,11 @@
  */
 #include "fieldloc/report.h"
 
+#include "report_int.h"
+
 #include <string.h>
 
 #define CRC_OFFSET (FL_REPORT_MSG_HEADER_BYTES + FL_REPORT_MSG_SLOT_BYTES * FL_REPORT_MAX)
-
-static uint32_t sat_inc(uint32_t v)
-{
-    return v < UINT32_MAX ? v + 1u : v;
-}
-
-#define COUNT(st, f)                       \
-    do {                                   \
-        if ((st) != NULL)                  \
-            (st)->f = sat_inc((st)->f);    \
-    } while (0)
 
 uint32_t fl_report_crc32(const uint8_t *p, size_t n)
 {
@@ -135,29 +126,29 @@ fl_status_t fl_report_decode(const uint8_t *buf, size_t len, fl_report_msg_t *ms
 {
     size_t k, n;
     if (msg == NULL || buf == NULL) {
-        COUNT(st, bad_calls);
+        REPORT_COUNT(st, bad_calls);
         if (msg != NULL)
             memset(msg, 0, sizeof *msg);
         return FL_ERR_NULL;
     }
     memset(msg, 0, sizeof *msg);
-    COUNT(st, msgs);
+    REPORT_COUNT(st, msgs);
     if (len != FL_REPORT_MSG_BYTES) {
-        COUNT(st, msg_truncated);
+        REPORT_COUNT(st, msg_truncated);
         return FL_ERR_SIZE;
     }
     if (get32(buf + CRC_OFFSET) != fl_report_crc32(buf, CRC_OFFSET) || buf[0] != 'F' ||
         buf[1] != 'R') {
-        COUNT(st, msg_corrupt);
+        REPORT_COUNT(st, msg_corrupt);
         return FL_ERR_FORMAT;
     }
     if (buf[2] != FL_REPORT_WIRE_VERSION) {
-        COUNT(st, msg_version);
+        REPORT_COUNT(st, msg_version);
         return FL_ERR_FORMAT;
     }
     n = buf[3];
     if (n > FL_REPORT_MAX) {
-        COUNT(st, msg_range);
+        REPORT_COUNT(st, msg_range);
         return FL_ERR_RANGE;
     }
     for (k = 0; k < FL_REPORT_MAX; k++) {
@@ -165,7 +156,7 @@ fl_status_t fl_report_decode(const uint8_t *buf, size_t len, fl_report_msg_t *ms
         bool good = k < n ? read_slot(p, &msg->report[k]) : all_zero(p, FL_REPORT_MSG_SLOT_BYTES);
         if (!good) {
             memset(msg, 0, sizeof *msg);
-            COUNT(st, msg_range);
+            REPORT_COUNT(st, msg_range);
             return FL_ERR_RANGE;
         }
     }

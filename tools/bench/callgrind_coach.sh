@@ -16,17 +16,14 @@ command -v valgrind >/dev/null 2>&1 || { echo "callgrind: valgrind not installed
 [ -f "$FX/coach_two.ppm" ] || { echo "callgrind: $FX not found, coach skipped"; exit 0; }
 TMP=${TMPDIR:-/tmp}/fl_callgrind_coach.$$
 mkdir -p "$TMP"
-refs() {  # refs N ARGS...: instructions collected inside fl_coach_frame
-    n=$1; shift
-    valgrind --tool=callgrind --toggle-collect=fl_coach_frame --callgrind-out-file="$TMP/out" \
-        "$CLI" coach "$@" --repeat "$n" 2>&1 >/dev/null | sed -n 's/.*refs: *//p' | tr -d ,
-}
+CG_FUNC=fl_coach_frame
+CG_CMD=coach
+. "$(dirname "$0")/callgrind_lib.sh"
 run() {  # run NAME ARGS...
     name=$1; shift
-    a=$(refs 1 "$@"); b=$(refs 3 "$@")
-    if [ -z "$a" ] || [ -z "$b" ]; then echo "callgrind $name failed"; return; fi
-    awk -v n="$name" -v a="$a" -v b="$b" -v px=307200 \
-        'BEGIN { f = (b - a) / 2; printf "callgrind %-28s %10.0f instr/frame %6.2f instr/pixel\n", n, f, f / px }'
+    f=$(cg_per_call "$@") || { echo "callgrind $name failed"; return; }
+    awk -v n="$name" -v f="$f" -v px=307200 \
+        'BEGIN { printf "callgrind %-28s %10.0f instr/frame %6.2f instr/pixel\n", n, f, f / px }'
 }
 run coach_frame_640x480 "$FX/coach_two.ppm" --points "$FX/coach.points" \
     --background "$FX/coach_empty.ppm"

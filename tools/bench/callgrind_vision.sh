@@ -21,17 +21,13 @@ command -v valgrind >/dev/null 2>&1 || { echo "callgrind: valgrind not installed
 TMP=${TMPDIR:-/tmp}/fl_callgrind_vision.$$
 mkdir -p "$TMP"
 "$CLI" bench --noise-frames "$TMP" || { echo "callgrind: noise frames not written"; rm -rf "$TMP"; exit 1; }
-refs() {  # refs N ARGS...: instructions collected inside fl_vision_frame
-    n=$1; shift
-    valgrind --tool=callgrind --toggle-collect=fl_vision_frame --callgrind-out-file="$TMP/out" \
-        "$CLI" detect "$@" --repeat "$n" 2>&1 >/dev/null | sed -n 's/.*refs: *//p' | tr -d ,
-}
+CG_FUNC=fl_vision_frame
+CG_CMD=detect
+. "$(dirname "$0")/callgrind_lib.sh"
 run() {  # run NAME ARGS...
     name=$1; shift
-    a=$(refs 1 "$@"); b=$(refs 3 "$@")
-    if [ -z "$a" ] || [ -z "$b" ]; then echo "callgrind $name failed"; return; fi
-    awk -v n="$name" -v a="$a" -v b="$b" \
-        'BEGIN { printf "callgrind %-24s %10.0f instr/frame\n", n, (b - a) / 2 }'
+    f=$(cg_per_call "$@") || { echo "callgrind $name failed"; return; }
+    awk -v n="$name" -v f="$f" 'BEGIN { printf "callgrind %-24s %10.0f instr/frame\n", n, f }'
 }
 for w in 320 640; do
     for k in noise classnoise; do

@@ -310,6 +310,23 @@ static int cr_coach_setup(fl_coach_t *c, const team_t *team, uint64_t seed, int 
 }
 
 /* The coach's feet on its frame of the current step. */
+/* The coach's feet as reports (obs.h), fresh (age 0), at most
+ * FL_REPORT_MAX of them; returns how many. */
+static size_t cr_reports(const cr_foot_t *feet, int nf, fl_obs_report_t *rep)
+{
+    size_t n = 0;
+    int i;
+    for (i = 0; i < nf && n < FL_REPORT_MAX; i++, n++) {
+        memset(&rep[n], 0, sizeof rep[n]);
+        rep[n].x_mm = feet[i].x_mm;
+        rep[n].y_mm = feet[i].y_mm;
+        rep[n].sd_mm = feet[i].sd_mm;
+        rep[n].confidence = (uint8_t)feet[i].confidence;
+        rep[n].team = (uint8_t)feet[i].team;
+    }
+    return n;
+}
+
 static int cr_coach_feet(const cr_world_t *w, uint64_t seed, uint32_t salt, cr_foot_t *out,
                          int max)
 {
@@ -373,7 +390,7 @@ static void cr_cal_sight(cr_world_t *w)
     cr_foot_t feet[8];
     fl_obs_report_t rep[FL_REPORT_MAX];
     size_t n = 0;
-    int nf, i, p, n_points;
+    int nf, p, n_points;
     if (w->coach == NULL && w->o->feet != CR_FEET_TRUTH_DEBUG) {
         fl_coach_t *c = malloc(sizeof *c);
         if (c == NULL || cr_coach_setup(c, &w->team, w->seed, &n_points) != 0) {
@@ -383,14 +400,7 @@ static void cr_cal_sight(cr_world_t *w)
         w->coach = c;
     }
     nf = cr_coach_feet(w, w->seed, (uint32_t)++w->cal_frames, feet, 8);
-    for (i = 0; i < nf && n < FL_REPORT_MAX; i++, n++) {
-        memset(&rep[n], 0, sizeof rep[n]);
-        rep[n].x_mm = feet[i].x_mm;
-        rep[n].y_mm = feet[i].y_mm;
-        rep[n].sd_mm = feet[i].sd_mm;
-        rep[n].confidence = (uint8_t)feet[i].confidence;
-        rep[n].team = (uint8_t)feet[i].team;
-    }
+    n = cr_reports(feet, nf, rep);
     for (p = 0; p < 2 && n > 0; p++) {
         fl_report_self_t me;
         size_t idx = 0;
@@ -451,17 +461,9 @@ static void cr_correct(cr_world_t *w, const cr_opts_t *o, const fl_localizer_t *
     fl_report_claim_t claim[2];
     fl_report_stats_t cst;
     size_t n = 0;
-    int i, p;
+    int p;
     memset(&cst, 0, sizeof cst);
-    for (i = 0; i < nf && n < FL_REPORT_MAX; i++, n++) {
-        memset(&rep[n], 0, sizeof rep[n]);
-        rep[n].x_mm = feet[i].x_mm;
-        rep[n].y_mm = feet[i].y_mm;
-        rep[n].sd_mm = feet[i].sd_mm;
-        rep[n].confidence = (uint8_t)feet[i].confidence;
-        rep[n].team = (uint8_t)feet[i].team;
-        rep[n].age_ms = 0;
-    }
+    n = cr_reports(feet, nf, rep);
     for (p = 0; p < 2; p++) {
         claim[p].x_mm = w->pl[p].est.x_mm;
         claim[p].y_mm = w->pl[p].est.y_mm;
