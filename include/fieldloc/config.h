@@ -359,6 +359,39 @@
 #error "FL_ODOCAL_MAX_FIXES must be in 4..64"
 #endif
 
+/* ---- seed 002's vision path (hlvision.h) ---------------------------------
+ * FL_HLV_MASK_MAX_W, FL_HLV_MASK_MAX_H  the white-surrounded-by-green mask
+ *                      (image sampled every mask_step_u x mask_step_v px).
+ *                      Default 320 x 240: a 640x480 frame at steps 2 x 2,
+ *                      1280x960 at 4 x 4.  Range 16..1024 each.  Two bytes
+ *                      per mask pixel in fl_hlv_t.
+ * FL_HLV_MAX_RUNS      colour runs kept per scanned column (a column
+ *                      through a pole over the field has about 6).  Default
+ *                      32, range 4..255.
+ * FL_HLV_MAX_OBJECTS   posts and poles per frame (4 posts and 2 poles on
+ *                      hl3x2, plus clutter).  Default 16, range 2..64. */
+#ifndef FL_HLV_MASK_MAX_W
+#define FL_HLV_MASK_MAX_W 320
+#endif
+#ifndef FL_HLV_MASK_MAX_H
+#define FL_HLV_MASK_MAX_H 240
+#endif
+#if FL_HLV_MASK_MAX_W < 16 || FL_HLV_MASK_MAX_W > 1024 || FL_HLV_MASK_MAX_H < 16 || FL_HLV_MASK_MAX_H > 1024
+#error "FL_HLV_MASK_MAX_W and FL_HLV_MASK_MAX_H must be in 16..1024"
+#endif
+#ifndef FL_HLV_MAX_RUNS
+#define FL_HLV_MAX_RUNS 32
+#endif
+#if FL_HLV_MAX_RUNS < 4 || FL_HLV_MAX_RUNS > 255
+#error "FL_HLV_MAX_RUNS must be in 4..255"
+#endif
+#ifndef FL_HLV_MAX_OBJECTS
+#define FL_HLV_MAX_OBJECTS 16
+#endif
+#if FL_HLV_MAX_OBJECTS < 2 || FL_HLV_MAX_OBJECTS > 64
+#error "FL_HLV_MAX_OBJECTS must be in 2..64"
+#endif
+
 /* ---- the configuration fingerprint ---------------------------------------
  * FNV-1a over 32-bit words: the layout version, then every option above
  * (each one guarded by #ifndef in this file; the host test config.
@@ -370,6 +403,7 @@
 #define FL_CFG_MIX_(h, v) \
     (((((h) ^ ((unsigned long)(v) & 0xFFFFFFFFUL)) * 16777619UL)) & 0xFFFFFFFFUL)
 #define FL_CONFIG_FINGERPRINT ((uint32_t)( \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
@@ -382,6 +416,7 @@
     FL_CIRCLE_MAX_POINTS), FL_LINES_NEAR_MAX), FL_OBS_MAX), FL_BEACON_MAX_RUNS), FL_BEACON_MAX_BLOBS), FL_BEACON_MAX_FOUND), \
     FL_HOMOG_MAX_POINTS), FL_COACH_MAX_WIDTH), FL_COACH_MAX_HEIGHT), FL_COACH_MAX_RUNS), FL_COACH_MAX_REGIONS), FL_COACH_MAX_FEET), \
     FL_COACH_MAX_BAND_PX), FL_REPORT_MAX), FL_REPORT_MAX_PLAYERS), \
-    FL_ODOCAL_MAX_FIXES), FL_OBS_MAX_POINTS)))
+    FL_ODOCAL_MAX_FIXES), FL_OBS_MAX_POINTS), \
+    FL_HLV_MASK_MAX_W), FL_HLV_MASK_MAX_H), FL_HLV_MAX_RUNS), FL_HLV_MAX_OBJECTS)))
 
 #endif /* FIELDLOC_CONFIG_H */

@@ -25,6 +25,7 @@
 #include "fieldloc/goal.h"
 #include "fieldloc/beacon.h"
 #include "fieldloc/vision.h"
+#include "fieldloc/hlvision.h"
 #include "fieldloc/coach.h"
 #include "fieldloc/fuzzy.h"
 #include "fieldloc/mcl.h"

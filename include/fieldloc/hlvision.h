@@ -1,0 +1,180 @@
+/*
+ * fieldloc/hlvision.h - seed 002's vision path (its section IV) for the
+ * humanoid-league field "hl3x2": colour classes from YCbCr boxes, goal
+ * posts and striped landmark poles found column by column, and the mask of
+ * white pixels surrounded by green, thinned by the skeleton stage
+ * (skeleton.h) into line crossings (X, T) and a sample of white points.
+ * Everything is projected to the ground with the frame's camera (camera.h,
+ * inverse perspective) into the same fl_obs_list_t as every other path.
+ *
+ *     static fl_hlv_t hv;      fl_hlv_params_default(&p, field);
+ *                              fl_hlv_init(&hv, &p);
+ *     per frame:  fl_camera_init(&cam, model, &pose);
+ *                 n = fl_hlv_frame(&hv, &img, &cam, &obs);
+ *
+ * Colour classes.  Seed 002 segments with "pre-calibrated ranges for every
+ * color" in YCbCr: one box per class.  A box is exact as three per-channel
+ * bit tables, class bits = ytab[Y] & cbtab[Cb] & crtab[Cr] (768 bytes, the
+ * classic CMVision layout).  Pixels are read as Y, Cb, Cr by image.c's
+ * integer BT.601 conversion for every format of image.h.
+ *
+ * Posts and poles (seed 002 IV.B.1, IV.B.2).  Every col_step-th column is
+ * read bottom-up at row_step, as runs of one class (gaps of up to gap_px
+ * unclassified pixels bridged).  The lowest yellow or sky-blue run with a
+ * green run right below it (within green_gap_px) starts an object: if the
+ * run above it is the other colour and the one above that the first colour
+ * again (each at least min_band_px), the column is a pole, YBY or BYB;
+ * else a run of at least min_post_px is a post.  Adjoining scanned columns
+ * of the same kind with feet within foot_tol_px form one object (at least
+ * min_cols columns); its foot is the lowest foot of its columns.  Two posts
+ * of one colour are a goal (the left one in the image is FL_SIDE_LEFT: the
+ * left post facing the goal); one post takes its side from a crossbar of
+ * its colour beside its top (bar to the right: the left post), else
+ * FL_SIDE_UNKNOWN.
+ *
+ * Observations, in this order: posts (FL_LM_POST, color, side, range and
+ * bearing of the post's centre from its foot and post_diameter_mm), poles
+ * (FL_LM_BEACON, color = top band, color2 = bottom band: YBY is YELLOW /
+ * YELLOW, BYB is SKYBLUE / SKYBLUE; range from the foot and
+ * pole_diameter_mm), then crossings (FL_LM_X, FL_LM_T, orientation from
+ * the arms by obs.h's conventions when the skeleton gives them), and the
+ * white points (fl_obs_list_push_point).  Image positions in u_q4 / v_q4.
+ *
+ * Mask (seed 002 IV.B.3).  The image is sampled every mask_step_u columns
+ * and mask_step_v rows (pixel (i, j) of the mask is image pixel
+ * (i * su + su / 2, j * sv + sv / 2)) below the horizon.  A white sample is
+ * in the mask when green lies within surround_px samples on both sides
+ * along its row, or on both sides along its column.
+ *
+ * Work per frame (bounded): (W / col_step) * (H / row_step) pixel reads for
+ * the columns, (W / su) * (H / sv) reads and three passes for the mask,
+ * the skeleton stage's own bound on that mask, and at most FL_HLV_MAX_RUNS
+ * runs per column and FL_HLV_MAX_OBJECTS objects.  No heap, no floats.
+ */
+#ifndef FIELDLOC_HLVISION_H
+#define FIELDLOC_HLVISION_H
+
+#include "fieldloc/camera.h"
+#include "fieldloc/common.h"
+#include "fieldloc/config.h"
+#include "fieldloc/field.h"
+#include "fieldloc/image.h"
+#include "fieldloc/obs.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Class bits (a pixel may have several when boxes overlap). */
+#define FL_HLV_YELLOW 1u
+#define FL_HLV_BLUE 2u
+#define FL_HLV_GREEN 4u
+#define FL_HLV_WHITE 8u
+
+/* Box index in fl_hlv_params_t.box. */
+enum { FL_HLV_BOX_YELLOW = 0, FL_HLV_BOX_BLUE = 1, FL_HLV_BOX_GREEN = 2,
+       FL_HLV_BOX_WHITE = 3, FL_HLV_N_BOXES = 4 };
+
+/* An inclusive YCbCr box; min > max on a channel: the class is empty. */
+typedef struct {
+    uint8_t y_min, y_max, cb_min, cb_max, cr_min, cr_max;
+} fl_hlv_box_t;
+
+typedef struct {
+    fl_hlv_box_t box[FL_HLV_N_BOXES];
+    int32_t col_step;       /* columns read for posts and poles, 1..16 */
+    int32_t row_step;       /* rows within a column, 1..8 */
+    int32_t gap_px;         /* unclassified pixels bridged in a run, 0..32 */
+    int32_t green_gap_px;   /* foot: green within this below, 0..32 */
+    int32_t min_green_px;   /* the green run below a foot, 1..64 */
+    int32_t min_post_px;    /* a post's run upwards, 2..480 */
+    int32_t min_band_px;    /* each band of a pole, 1..160 */
+    int32_t min_cols;       /* scanned columns per object, 1..64 */
+    int32_t foot_tol_px;    /* feet of adjoining columns, 0..480 */
+    int32_t mask_step_u;    /* image columns per mask column, 1..16 */
+    int32_t mask_step_v;    /* image rows per mask row, 1..16 */
+    int32_t surround_px;    /* green within this many mask px, 1..32 */
+    int32_t post_diameter_mm;  /* 10..1000 */
+    int32_t pole_diameter_mm;  /* 10..1000 */
+    int32_t max_range_mm;   /* farther observations are dropped, 100..FL_OBS_MAX_RANGE_MM */
+    int32_t crossings;      /* 1: run the skeleton stage; 0: posts and poles only */
+} fl_hlv_params_t;
+
+/* A post or pole in the image. */
+typedef enum {
+    FL_HLV_POST_YELLOW = 1, FL_HLV_POST_BLUE = 2, FL_HLV_POLE_YBY = 3, FL_HLV_POLE_BYB = 4
+} fl_hlv_kind_t;
+
+typedef struct {
+    fl_hlv_kind_t kind;
+    int32_t u0, u1;          /* first and last scanned column, image px */
+    int32_t foot_v;          /* lowest foot (bottom of the coloured run) */
+    int32_t top_v;           /* highest top of the object's runs */
+    int32_t band_v[2];       /* poles: the two band boundaries (median
+                                column's, lower then upper); posts: -1 */
+    fl_side_t side;          /* posts */
+    uint16_t cols;           /* scanned columns */
+} fl_hlv_object_t;
+
+typedef struct {
+    fl_hlv_params_t params;
+    uint8_t ytab[256], cbtab[256], crtab[256];
+    /* mask grid: class bits, then the mask (0/1) of the skeleton stage */
+    int32_t mask_w, mask_h;
+    uint8_t cls[FL_HLV_MASK_MAX_W * FL_HLV_MASK_MAX_H];
+    uint8_t mask[FL_HLV_MASK_MAX_W * FL_HLV_MASK_MAX_H];
+    uint8_t below[FL_HLV_MASK_MAX_W];   /* per column: samples to green below */
+    fl_hlv_object_t objects[FL_HLV_MAX_OBJECTS];
+    uint16_t n_objects;
+    /* counters (summed over frames) */
+    uint32_t frames;
+    uint32_t runs_dropped;      /* runs beyond FL_HLV_MAX_RUNS in a column */
+    uint32_t objects_dropped;   /* objects beyond FL_HLV_MAX_OBJECTS */
+    uint32_t obs_dropped;       /* observations beyond FL_OBS_MAX */
+    uint32_t points_dropped;    /* white points beyond FL_OBS_MAX_POINTS */
+    fl_status_t status;         /* of the last frame (FL_OK or why empty) */
+} fl_hlv_t;
+
+/* Defaults (boxes measured on rendered hl3x2 frames, see src/vision/
+ * hlv.c); post and pole diameters from field when it is not NULL
+ * (post_diameter_mm, beacon_diameter_mm) else 100 mm. */
+void fl_hlv_params_default(fl_hlv_params_t *p, const fl_field_t *field);
+
+/* FL_OK or FL_ERR_NULL / FL_ERR_RANGE (a parameter outside its range, a
+ * box with a channel min above max is allowed: empty class). */
+fl_status_t fl_hlv_params_check(const fl_hlv_params_t *p);
+
+/* Validate, build the tables, clear.  FL_ERR_CONFIG: nothing written. */
+fl_status_t fl_hlv_init_cfg(fl_hlv_t *s, const fl_hlv_params_t *p, uint32_t caller_cfg);
+static inline fl_status_t fl_hlv_init(fl_hlv_t *s, const fl_hlv_params_t *p)
+{
+    return fl_hlv_init_cfg(s, p, FL_CONFIG_FINGERPRINT);
+}
+
+/* Class bits of one YCbCr triple (the tables of an initialized state). */
+static inline uint8_t fl_hlv_class(const fl_hlv_t *s, uint8_t y, uint8_t cb, uint8_t cr)
+{
+    return (uint8_t)(s->ytab[y] & s->cbtab[cb] & s->crtab[cr]);
+}
+
+/* One frame: fills out (cleared first) and returns out->n.  0 with
+ * s->status set, nothing processed and out empty, on bad input:
+ *   FL_ERR_NULL       s, img, cam or out NULL (out NULL: nothing written)
+ *   FL_ERR_STATE      s not initialized by fl_hlv_init
+ *   FL_ERR_SIZE, FL_ERR_STRIDE, FL_ERR_FORMAT   fl_image_validate, or a
+ *                     mask larger than FL_HLV_MASK_MAX_W x _H
+ *   FL_ERR_CAMERA     a camera whose init failed
+ *   FL_ERR_MISMATCH   image size other than the camera model's.
+ * The stage results (objects, mask, skel) stay readable after the call. */
+int32_t fl_hlv_frame(fl_hlv_t *s, const fl_image_t *img, const fl_camera_t *cam,
+                     fl_obs_list_t *out);
+
+/* Mask pixel (Q4) -> image pixel (Q4) of the state's current steps. */
+void fl_hlv_mask_to_image(const fl_hlv_t *s, int32_t mx_q4, int32_t my_q4, int32_t *u_q4,
+                          int32_t *v_q4);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FIELDLOC_HLVISION_H */

@@ -1,0 +1,230 @@
+/*
+ * src/vision/hlv.c - seed 002's vision path (hlvision.h): params, colour
+ * tables, the per-frame driver and the projection of its findings to the
+ * ground (seed 002's inverse perspective, its ref. [6]: fl_camera's
+ * pixel-to-ground ray, camera.h).
+ *
+ * Default boxes.  Seed 002 calibrates its YCbCr ranges by hand ("pre-
+ * calibrated ranges for every color").  Ours were measured on rendered
+ * hl3x2 frames (tools/world renderer, nominal light, sensor noise on):
+ * per class, the 1 % and 99 % quantiles of Y, Cb and Cr over the pixels
+ * the renderer's truth mask gives to that class, widened by 8 levels
+ * (host_tests/test_hlvision.c hlvision.boxes_cover_rendered checks that
+ * they hold at least 97 % of each class and that the classes do not
+ * overlap on those frames).  The sky-blue and yellow boxes are bounded by
+ * Cb and Cr (their chroma is far from the carpet's and the lines'); white
+ * is a high-Y box near neutral chroma; green the carpet's chroma box.
+ *
+ * Default mask resolution (mask_step_u 4, mask_step_v 2 on 640x480: a
+ * 160 x 240 mask).  On a camera looking down from a small humanoid's head,
+ * a painted line w wide at ground range d is about f * w / d pixels wide
+ * when it runs away from the camera and f * h * w / d^2 pixels tall when
+ * it runs across the view (h the camera's height), so lines are much
+ * thinner vertically than horizontally.  With f = 554 px (640 px, 60 deg)
+ * and h = 450 mm, a 50 mm line at 2.5 m is 11 px wide and 2 px tall: a
+ * 4 x 2 grid keeps at least one sample across every line out to the far
+ * side of a 3 x 2 m field (2.5 m), and on the near lines (at 0.6 m:
+ * 46 px wide, 35 px tall, 12 x 17 samples) it still leaves the skeleton
+ * stage few thinning passes.  A square 4 x 4 grid loses the cross lines
+ * beyond about 1.8 m; 2 x 2 doubles the mask (and the thinning) for
+ * detail only the horizontal direction does not need.  surround_px 12
+ * covers half the widest near line in either direction (17 / 2 rows).
+ */
+#include "hlv_int.h"
+#include "fieldloc/fixed.h"
+
+#include <string.h>
+
+static const fl_hlv_box_t hlv_default_box[FL_HLV_N_BOXES] = {
+    {90, 255, 0, 100, 128, 200},     /* yellow */
+    {60, 235, 150, 240, 20, 110},    /* sky-blue */
+    {40, 185, 80, 124, 60, 120},     /* green */
+    {170, 255, 108, 148, 108, 148},  /* white */
+};
+
+void fl_hlv_params_default(fl_hlv_params_t *p, const fl_field_t *field)
+{
+    if (p == NULL)
+        return;
+    memset(p, 0, sizeof *p);
+    memcpy(p->box, hlv_default_box, sizeof p->box);
+    p->col_step = 4;
+    p->row_step = 2;
+    p->gap_px = 4;
+    p->green_gap_px = 6;
+    p->min_green_px = 4;
+    p->min_post_px = 16;
+    p->min_band_px = 4;
+    p->min_cols = 2;
+    p->foot_tol_px = 12;
+    p->mask_step_u = 4;
+    p->mask_step_v = 2;
+    p->surround_px = 12;
+    p->post_diameter_mm = 100;
+    p->pole_diameter_mm = 100;
+    p->max_range_mm = 6000;
+    p->crossings = 1;
+    if (field != NULL) {
+        if (field->post_diameter_mm >= 10 && field->post_diameter_mm <= 1000)
+            p->post_diameter_mm = field->post_diameter_mm;
+        if (field->beacon_diameter_mm >= 10 && field->beacon_diameter_mm <= 1000)
+            p->pole_diameter_mm = field->beacon_diameter_mm;
+    }
+}
+
+static bool in(int32_t v, int32_t lo, int32_t hi)
+{
+    return v >= lo && v <= hi;
+}
+
+fl_status_t fl_hlv_params_check(const fl_hlv_params_t *p)
+{
+    if (p == NULL)
+        return FL_ERR_NULL;
+    if (!in(p->col_step, 1, 16) || !in(p->row_step, 1, 8) || !in(p->gap_px, 0, 32) ||
+        !in(p->green_gap_px, 0, 32) || !in(p->min_green_px, 1, 64) ||
+        !in(p->min_post_px, 2, 480) || !in(p->min_band_px, 1, 160) || !in(p->min_cols, 1, 64) ||
+        !in(p->foot_tol_px, 0, 480) || !in(p->mask_step_u, 1, 16) || !in(p->mask_step_v, 1, 16) ||
+        !in(p->surround_px, 1, 32) || !in(p->post_diameter_mm, 10, 1000) ||
+        !in(p->pole_diameter_mm, 10, 1000) || !in(p->max_range_mm, 100, FL_OBS_MAX_RANGE_MM) ||
+        !in(p->crossings, 0, 1))
+        return FL_ERR_RANGE;
+    return FL_OK;
+}
+
+fl_status_t fl_hlv_init_cfg(fl_hlv_t *s, const fl_hlv_params_t *p, uint32_t caller_cfg)
+{
+    fl_status_t st;
+    int32_t b, x;
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *s has another layout: no write is safe */
+    if (s == NULL)
+        return FL_ERR_NULL;
+    memset(s, 0, sizeof *s);
+    st = fl_hlv_params_check(p);
+    if (st != FL_OK) {
+        s->status = st;
+        return st;
+    }
+    s->params = *p;
+    for (b = 0; b < FL_HLV_N_BOXES; b++) {
+        const fl_hlv_box_t *k = &p->box[b];
+        const uint8_t bit = (uint8_t)(1u << b);
+        for (x = 0; x < 256; x++) {
+            if (in(x, k->y_min, k->y_max))
+                s->ytab[x] |= bit;
+            if (in(x, k->cb_min, k->cb_max))
+                s->cbtab[x] |= bit;
+            if (in(x, k->cr_min, k->cr_max))
+                s->crtab[x] |= bit;
+        }
+    }
+    return FL_OK;
+}
+
+void fl_hlv_mask_to_image(const fl_hlv_t *s, int32_t mx_q4, int32_t my_q4, int32_t *u_q4,
+                          int32_t *v_q4)
+{
+    const int32_t su = s ? s->params.mask_step_u : 1, sv = s ? s->params.mask_step_v : 1;
+    if (u_q4)
+        *u_q4 = mx_q4 * su + (su / 2) * 16;
+    if (v_q4)
+        *v_q4 = my_q4 * sv + (sv / 2) * 16;
+}
+
+/* A post or pole as an observation: the foot pixel (the lower edge of the
+ * lowest coloured sample, between the object's outer columns) to the
+ * centre of its base on the ground. */
+static void push_object(fl_hlv_t *s, const fl_hlv_object_t *o, const fl_camera_t *cam,
+                        fl_obs_list_t *out)
+{
+    const bool pole = o->kind == FL_HLV_POLE_YBY || o->kind == FL_HLV_POLE_BYB;
+    fl_obs_t ob;
+    fl_point_t c;
+    int32_t u_q4 = (o->u0 + o->u1) * 8, v_q4 = o->foot_v * 16 + 8;
+    memset(&ob, 0, sizeof ob);
+    if (!fl_camera_foot_to_centre(cam, &u_q4, &v_q4,
+                                  pole ? s->params.pole_diameter_mm : s->params.post_diameter_mm, &c))
+        return;
+    fl_polar_from_point(c, &ob.range_mm, &ob.bearing);
+    if (ob.range_mm > s->params.max_range_mm)
+        return;
+    ob.u_q4 = u_q4;
+    ob.v_q4 = v_q4;
+    if (pole) {
+        ob.kind = FL_LM_BEACON;
+        ob.color = o->kind == FL_HLV_POLE_YBY ? FL_COLOR_YELLOW : FL_COLOR_SKYBLUE;
+        ob.color2 = ob.color;
+        ob.confidence = 230;
+    } else {
+        ob.kind = FL_LM_POST;
+        ob.color = o->kind == FL_HLV_POST_YELLOW ? FL_COLOR_YELLOW : FL_COLOR_SKYBLUE;
+        ob.side = o->side;
+        ob.confidence = 200;
+    }
+    if (!fl_obs_list_push(out, &ob))
+        s->obs_dropped++;
+}
+
+/* First image row that can see the ground (0..height). */
+static int32_t ground_row(const fl_camera_t *cam, int32_t width, int32_t height)
+{
+    const int32_t hz = fl_camera_horizon_top_v_q4(cam, 0, (width - 1) * 16);
+    if (hz == INT32_MIN || hz < 0)
+        return 0;
+    if (hz == INT32_MAX || hz >= height * 16)
+        return height;
+    return hz / 16 + 1;
+}
+
+static fl_status_t frame_check(const fl_hlv_t *s, const fl_image_t *img, const fl_camera_t *cam)
+{
+    fl_status_t st;
+    if (img == NULL || cam == NULL)
+        return FL_ERR_NULL;
+    if (fl_hlv_params_check(&s->params) != FL_OK)
+        return FL_ERR_STATE;
+    st = fl_image_validate(img);
+    if (st != FL_OK)
+        return st;
+    if (cam->model.width_px <= 0 || cam->model.focal_q4 <= 0)
+        return FL_ERR_CAMERA;
+    if (cam->model.width_px != img->width || cam->model.height_px != img->height)
+        return FL_ERR_MISMATCH;
+    if ((img->width + s->params.mask_step_u - 1) / s->params.mask_step_u > FL_HLV_MASK_MAX_W ||
+        (img->height + s->params.mask_step_v - 1) / s->params.mask_step_v > FL_HLV_MASK_MAX_H)
+        return FL_ERR_SIZE;
+    return FL_OK;
+}
+
+int32_t fl_hlv_frame(fl_hlv_t *s, const fl_image_t *img, const fl_camera_t *cam,
+                     fl_obs_list_t *out)
+{
+    int32_t v0, i;
+    if (out != NULL)
+        fl_obs_list_clear(out);
+    if (s == NULL)
+        return 0;
+    s->n_objects = 0;
+    s->status = out == NULL ? FL_ERR_NULL : frame_check(s, img, cam);
+    if (s->status != FL_OK) {
+        s->mask_w = s->mask_h = 0;
+        return 0;
+    }
+    s->frames++;
+    v0 = ground_row(cam, img->width, img->height);
+    s->mask_w = (img->width + s->params.mask_step_u - 1) / s->params.mask_step_u;
+    s->mask_h = (img->height + s->params.mask_step_v - 1) / s->params.mask_step_v;
+    fl_hlv_int_objects(s, img, v0);
+    for (i = 0; i < s->n_objects; i++)
+        if (s->objects[i].kind <= FL_HLV_POST_BLUE)
+            push_object(s, &s->objects[i], cam, out);
+    for (i = 0; i < s->n_objects; i++)
+        if (s->objects[i].kind >= FL_HLV_POLE_YBY)
+            push_object(s, &s->objects[i], cam, out);
+    if (s->params.crossings)
+        fl_hlv_int_mask(s, img, (v0 + s->params.mask_step_v - 1) / s->params.mask_step_v);
+    else
+        s->mask_w = s->mask_h = 0;
+    return out->n;
+}

@@ -1,0 +1,227 @@
+/*
+ * src/vision/hlv_cols.c - goal posts and striped landmark poles (seed 002
+ * IV.B.1 and IV.B.2), column by column.
+ *
+ * A column is read bottom-up as runs of one colour (yellow, sky-blue,
+ * green; anything else ends a run unless the gap is at most gap_px).  The
+ * lowest yellow or sky-blue run with a green run of at least min_green_px
+ * right below (within green_gap_px) is a foot.  Going upwards from it, the
+ * seed's pole test: the column "continues to a yellow-blue and further a
+ * blue-yellow boundary" (for YBY; BYB alike), each band at least
+ * min_band_px; a column whose run above the first band is the other colour
+ * but has no third band is neither (a post in front of a pole, a partly
+ * seen pole: not identified, so not reported).  Else the first band alone,
+ * at least min_post_px high, is a post.
+ *
+ * Adjoining scanned columns of one kind whose feet differ by at most
+ * foot_tol_px form an object; objects of fewer than min_cols columns are
+ * dropped (single-column noise).
+ */
+#include "hlv_int.h"
+
+#include <string.h>
+
+typedef struct {
+    uint8_t cls;            /* FL_HLV_YELLOW, BLUE or GREEN */
+    int32_t lo, hi;         /* lowest and highest row of the run (lo >= hi) */
+} hlv_run_t;
+
+typedef struct {
+    int32_t kind;           /* 0 none, else fl_hlv_kind_t */
+    int32_t foot, top;
+    int32_t band_lo, band_hi;
+} hlv_col_t;
+
+/* The single colour of class bits c that a run may have (0: none). */
+static uint8_t run_class(uint8_t c)
+{
+    if (c & FL_HLV_YELLOW)
+        return FL_HLV_YELLOW;
+    if (c & FL_HLV_BLUE)
+        return FL_HLV_BLUE;
+    if (c & FL_HLV_GREEN)
+        return FL_HLV_GREEN;
+    return 0;
+}
+
+/* Runs of column u from the bottom up to row v_top; returns their count. */
+static int32_t column_runs(fl_hlv_t *s, const fl_image_t *img, int32_t u, int32_t v_top,
+                           hlv_run_t *runs)
+{
+    const int32_t step = s->params.row_step, gap = s->params.gap_px;
+    int32_t n = 0, v, last_v = -1;
+    uint8_t cur = 0;
+    for (v = img->height - 1; v >= v_top; v -= step) {
+        const uint8_t c = run_class(hlv_pixel_class(s, img, u, v));
+        if (c == 0)
+            continue;
+        if (c == cur && last_v - v <= gap + step) {
+            runs[n - 1].hi = v;
+        } else {
+            if (n == FL_HLV_MAX_RUNS) {
+                s->runs_dropped++;
+                break;
+            }
+            runs[n].cls = c;
+            runs[n].lo = v;
+            runs[n].hi = v;
+            n++;
+            cur = c;
+        }
+        last_v = v;
+    }
+    return n;
+}
+
+static int32_t run_len(const hlv_run_t *r, int32_t step)
+{
+    return r->lo - r->hi + step;
+}
+
+/* Adjacent: run b starts within gap_px + step above run a's end. */
+static bool adjacent(const hlv_run_t *a, const hlv_run_t *b, int32_t gap, int32_t step)
+{
+    return a->hi - b->lo <= gap + step;
+}
+
+static void classify_column(const fl_hlv_t *s, const hlv_run_t *runs, int32_t n, hlv_col_t *out)
+{
+    const fl_hlv_params_t *p = &s->params;
+    int32_t k;
+    memset(out, 0, sizeof *out);
+    for (k = 1; k < n; k++) {
+        const hlv_run_t *g = &runs[k - 1], *a = &runs[k];
+        uint8_t other;
+        if (a->cls == FL_HLV_GREEN || g->cls != FL_HLV_GREEN ||
+            run_len(g, p->row_step) < p->min_green_px || !adjacent(g, a, p->green_gap_px, p->row_step))
+            continue;
+        other = a->cls == FL_HLV_YELLOW ? FL_HLV_BLUE : FL_HLV_YELLOW;
+        out->foot = a->lo;
+        if (k + 1 < n && runs[k + 1].cls == other && adjacent(a, &runs[k + 1], p->gap_px, p->row_step)) {
+            const hlv_run_t *b = &runs[k + 1], *c = k + 2 < n ? &runs[k + 2] : NULL;
+            if (c && c->cls == a->cls && adjacent(b, c, p->gap_px, p->row_step) &&
+                run_len(a, p->row_step) >= p->min_band_px && run_len(b, p->row_step) >= p->min_band_px &&
+                run_len(c, p->row_step) >= p->min_band_px) {
+                out->kind = a->cls == FL_HLV_YELLOW ? FL_HLV_POLE_YBY : FL_HLV_POLE_BYB;
+                out->top = c->hi;
+                out->band_lo = a->hi;
+                out->band_hi = b->hi;
+            }
+            return;   /* two colours without a third band: not identified */
+        }
+        if (run_len(a, p->row_step) >= p->min_post_px) {
+            out->kind = a->cls == FL_HLV_YELLOW ? FL_HLV_POST_YELLOW : FL_HLV_POST_BLUE;
+            out->top = a->hi;
+            out->band_lo = out->band_hi = -1;
+        }
+        return;
+    }
+}
+
+static void close_object(fl_hlv_t *s, fl_hlv_object_t *o)
+{
+    if (o->cols < s->params.min_cols)
+        return;
+    if (s->n_objects == FL_HLV_MAX_OBJECTS) {
+        s->objects_dropped++;
+        return;
+    }
+    s->objects[s->n_objects++] = *o;
+}
+
+/* A crossbar of colour cls beside the top of post o: -1 left, +1 right, 0
+ * none or both.  Probes at 1..3 post widths beside the top, at the top row
+ * and 2 rows below it. */
+static int32_t crossbar_side(const fl_hlv_t *s, const fl_image_t *img, const fl_hlv_object_t *o,
+                             uint8_t cls)
+{
+    const int32_t w = o->u1 - o->u0 + s->params.col_step;
+    int32_t side, k, dv, hits[2] = {0, 0};
+    if (o->top_v <= 0)
+        return 0;   /* the top is not in the image */
+    for (side = 0; side < 2; side++)
+        for (k = 1; k <= 3; k++)
+            for (dv = 0; dv <= 2; dv += 2) {
+                const int32_t u = side ? o->u1 + k * w : o->u0 - k * w, v = o->top_v + dv;
+                if (u >= 0 && u < img->width && v < img->height &&
+                    (hlv_pixel_class(s, img, u, v) & cls))
+                    hits[side]++;
+            }
+    if (hits[1] >= 3 && hits[0] == 0)
+        return 1;
+    if (hits[0] >= 3 && hits[1] == 0)
+        return -1;
+    return 0;
+}
+
+/* Sides: two posts of one colour by their order; one post by its bar. */
+static void post_sides(fl_hlv_t *s, const fl_image_t *img)
+{
+    int32_t kind, i;
+    for (kind = FL_HLV_POST_YELLOW; kind <= FL_HLV_POST_BLUE; kind++) {
+        int32_t idx[2] = {-1, -1}, count = 0;
+        for (i = 0; i < s->n_objects; i++)
+            if ((int32_t)s->objects[i].kind == kind) {
+                if (count < 2)
+                    idx[count] = i;
+                count++;
+            }
+        if (count == 2) {
+            s->objects[idx[0]].side = FL_SIDE_LEFT;   /* objects are in column order */
+            s->objects[idx[1]].side = FL_SIDE_RIGHT;
+        } else if (count == 1) {
+            const int32_t bar = crossbar_side(s, img, &s->objects[idx[0]],
+                                              kind == FL_HLV_POST_YELLOW ? FL_HLV_YELLOW : FL_HLV_BLUE);
+            s->objects[idx[0]].side = bar > 0 ? FL_SIDE_LEFT : bar < 0 ? FL_SIDE_RIGHT : FL_SIDE_UNKNOWN;
+        }
+    }
+}
+
+void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start)
+{
+    const int32_t step = s->params.col_step;
+    hlv_run_t runs[FL_HLV_MAX_RUNS];
+    fl_hlv_object_t cur;
+    int32_t u, last_u = -1;
+    s->n_objects = 0;
+    memset(&cur, 0, sizeof cur);
+    if (v_start < 0)
+        v_start = 0;
+    for (u = step / 2; u < img->width; u += step) {
+        hlv_col_t col;
+        const int32_t n = column_runs(s, img, u, 0, runs);   /* tops may be above the horizon */
+        classify_column(s, runs, n, &col);
+        if (col.kind != 0 && col.foot < v_start)
+            col.kind = 0;   /* a foot above the horizon is no foot */
+        if (cur.cols > 0 && (col.kind != (int32_t)cur.kind || last_u != u - step ||
+                             col.foot - cur.foot_v > s->params.foot_tol_px ||
+                             cur.foot_v - col.foot > s->params.foot_tol_px)) {
+            close_object(s, &cur);
+            cur.cols = 0;
+        }
+        if (col.kind == 0)
+            continue;
+        if (cur.cols == 0) {
+            memset(&cur, 0, sizeof cur);
+            cur.kind = (fl_hlv_kind_t)col.kind;
+            cur.u0 = u;
+            cur.foot_v = col.foot;
+            cur.top_v = col.top;
+            cur.band_v[0] = col.band_lo;
+            cur.band_v[1] = col.band_hi;
+        }
+        cur.u1 = u;
+        if (col.foot > cur.foot_v) {   /* a cylinder's lowest foot is its centre column */
+            cur.foot_v = col.foot;
+            cur.band_v[0] = col.band_lo;
+            cur.band_v[1] = col.band_hi;
+        }
+        if (col.top < cur.top_v)
+            cur.top_v = col.top;
+        cur.cols++;
+        last_u = u;
+    }
+    if (cur.cols > 0)
+        close_object(s, &cur);
+    post_sides(s, img);
+}
