@@ -5,7 +5,10 @@
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
+#include "world/render.h"
 
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -307,6 +310,179 @@ static void test_bad_input(void)
     free(f);
 }
 
+/* ---- rendered hl3x2 frames ---------------------------------------------- */
+
+typedef struct {
+    int truth[2], found[2], wrong_kind, extra, sided, wrong_side;  /* [0] posts, [1] poles */
+    double rng_sum[2], rng_max[2], brg_max[2];  /* relative range, deg */
+} t_score_t;
+
+/* Score one frame: every post and pole of the field whose foot projects
+ * at least 8 px inside the image, with its whole height below the top and
+ * not occluded, must be found (same kind and colour, bearing within 3 deg);
+ * every observation must match a landmark of its kind and colour. */
+static void score_frame(const render_scene_t *sc, const fl_camera_t *cam, const fl_obs_list_t *obs,
+                        t_score_t *s)
+{
+    const fl_field_t *f = sc->field;
+    int k, i, used[FL_OBS_MAX];
+    memset(used, 0, sizeof used);
+    for (k = 0; k < f->n_landmarks; k++) {
+        const fl_landmark_t *lm = &f->landmarks[k];
+        const int pole = lm->kind == FL_LM_BEACON, h = pole ? f->beacon_height_mm : f->post_height_mm;
+        double u, v, ut, vt, rx, ry, range, brg;
+        int best = -1;
+        if (lm->kind != FL_LM_POST && !pole)
+            continue;
+        if (!render_project_field(sc, lm->x_mm, lm->y_mm, 0, &u, &v, NULL) ||
+            !render_project_field(sc, lm->x_mm, lm->y_mm, pole ? h : 60, &ut, &vt, NULL))
+            continue;
+        if (u < 24 || u > HW - 25 || v < 8 || v > HH - 9 || vt < 2)
+            continue;
+        if (render_occluded(sc, lm->x_mm, lm->y_mm, 30, 60, k) ||
+            render_occluded(sc, lm->x_mm, lm->y_mm, h / 2, 60, k))
+            continue;
+        render_field_to_robot(sc, lm->x_mm, lm->y_mm, &rx, &ry);
+        range = sqrt(rx * rx + ry * ry);
+        brg = atan2(ry, rx) * 180 / M_PI;
+        s->truth[pole]++;
+        if (getenv("HLV_VERBOSE"))
+            t_info("  truth lm %d kind %d at %.1f %.1f range %.0f bearing %.2f", k, (int)lm->kind, u, v,
+                   range, brg);
+        for (i = 0; i < obs->n; i++) {
+            const fl_obs_t *o = &obs->obs[i];
+            const double ob = fl_angle_to_mdeg(o->bearing) / 1000.0;
+            if (o->kind == lm->kind && o->color == lm->color && fabs(ob - brg) < 3.0 &&
+                (best < 0 || fabs(ob - brg) < fabs(fl_angle_to_mdeg(obs->obs[best].bearing) / 1000.0 - brg)))
+                best = i;
+        }
+        if (best < 0 && getenv("HLV_VERBOSE"))
+            t_info("  MISSED lm %d", k);
+        if (best >= 0) {
+            const fl_obs_t *o = &obs->obs[best];
+            const double er = fabs(o->range_mm - range) / range;
+            const double eb = fabs(fl_angle_to_mdeg(o->bearing) / 1000.0 - brg);
+            used[best] = 1;
+            if (getenv("HLV_VERBOSE"))
+                t_info("  truth lm %d: range %.0f bearing %.2f, found %d range err %.1f%% brg err %.2f side %d/%d",
+                       k, range, brg, best, 100 * er, eb, (int)o->side, (int)lm->side);
+            s->found[pole]++;
+            s->rng_sum[pole] += er;
+            if (er > s->rng_max[pole])
+                s->rng_max[pole] = er;
+            if (eb > s->brg_max[pole])
+                s->brg_max[pole] = eb;
+            if (pole && o->color2 != lm->color2)
+                s->wrong_kind++;
+            if (!pole && o->side != FL_SIDE_UNKNOWN) {
+                s->sided++;
+                s->wrong_side += o->side != lm->side;
+            }
+        }
+    }
+    (void)cam;
+    for (i = 0; i < obs->n; i++) {
+        const fl_obs_t *o = &obs->obs[i];
+        int match = 0;
+        if (used[i] || (o->kind != FL_LM_POST && o->kind != FL_LM_BEACON))
+            continue;
+        for (k = 0; k < f->n_landmarks; k++)
+            if (f->landmarks[k].kind == o->kind && f->landmarks[k].color == o->color) {
+                double rx, ry;
+                render_field_to_robot(sc, f->landmarks[k].x_mm, f->landmarks[k].y_mm, &rx, &ry);
+                if (fabs(fl_angle_to_mdeg(o->bearing) / 1000.0 - atan2(ry, rx) * 180 / M_PI) < 5.0)
+                    match = 1;
+            }
+        if (match)
+            s->extra += 0;   /* a landmark seen but not required (partly visible) */
+        else if (o->kind == FL_LM_BEACON)
+            s->wrong_kind++;   /* a pole where no pole of that colour is */
+        else
+            s->extra++;
+    }
+}
+
+/* Random poses on the hl3x2 field, the head looking 15..35 deg down and
+ * up to 40 deg to the side; detections against the field's landmarks. */
+static void test_rendered(void)
+{
+    const fl_field_t *field = fl_field_find("hl3x2");
+    const fl_camera_model_t *m = fl_camera_model_find("acyut-640");
+    const int frames = t_quick ? 12 : 48;
+    t_score_t s;
+    t_rng_t rng;
+    fl_hlv_t *st = malloc(sizeof *st);
+    fl_hlv_params_t p;
+    const int verbose = getenv("HLV_VERBOSE") != NULL;
+    int n;
+    CHECK(field != NULL && m != NULL && st != NULL);
+    if (!field || !m || !st) {
+        free(st);
+        return;
+    }
+    fl_hlv_params_default(&p, field);
+    CHECK_EQ(fl_hlv_init(st, &p), FL_OK);
+    memset(&s, 0, sizeof s);
+    t_rng_seed(&rng, 2002);
+    for (n = 0; n < frames; n++) {
+        render_scene_t sc;
+        render_frame_t fr;
+        fl_camera_t cam;
+        fl_obs_list_t obs;
+        render_scene_default(&sc, field, m);
+        sc.robot_x_mm = (int32_t)(t_rng_u32(&rng) % 2800) - 1400;
+        sc.robot_y_mm = (int32_t)(t_rng_u32(&rng) % 1800) - 900;
+        sc.robot_heading = (fl_angle_t)(t_rng_u32(&rng) & 0xFFFF);
+        sc.head.head_pitch = fl_angle_from_mdeg(15000 + (int32_t)(t_rng_u32(&rng) % 20000));
+        sc.head.head_yaw = fl_angle_from_mdeg((int32_t)(t_rng_u32(&rng) % 80000) - 40000);
+        sc.seed = (uint32_t)n + 1;
+        sc.format = (n % 3) == 0 ? FL_FMT_YUYV422 : (n % 3) == 1 ? FL_FMT_RGB888 : FL_FMT_YCBCR_PLANAR;
+        if (render_frame(&sc, &fr) != 0 || render_scene_camera(&sc, &cam) != FL_OK) {
+            CHECK(0);
+            continue;
+        }
+        fl_hlv_frame(st, &fr.view, &cam, &obs);
+        CHECK_EQ(st->status, FL_OK);
+        score_frame(&sc, &cam, &obs, &s);
+        if (verbose) {
+            int i;
+            char path[64];
+            t_info("frame %d: pose %d %d %d head %d %d: %d obs", n, (int)sc.robot_x_mm,
+                   (int)sc.robot_y_mm, (int)fl_angle_to_mdeg(sc.robot_heading) / 1000,
+                   (int)fl_angle_to_mdeg(sc.head.head_pitch), (int)fl_angle_to_mdeg(sc.head.head_yaw),
+                   (int)obs.n);
+            for (i = 0; i < obs.n; i++)
+                t_info("  kind %d color %d/%d side %d range %d bearing %.2f at %.1f %.1f", (int)obs.obs[i].kind,
+                       (int)obs.obs[i].color, (int)obs.obs[i].color2, (int)obs.obs[i].side,
+                       (int)obs.obs[i].range_mm, fl_angle_to_mdeg(obs.obs[i].bearing) / 1000.0,
+                       obs.obs[i].u_q4 / 16.0, obs.obs[i].v_q4 / 16.0);
+            snprintf(path, sizeof path, "/tmp/hp/r%02d.ppm", n);
+            render_write_frame(path, &fr);
+        }
+        render_frame_free(&fr);
+    }
+    t_info("hlvision rendered %d frames: posts %d/%d (range err mean %.1f%% max %.1f%%, bearing "
+           "max %.2f deg), poles %d/%d (range err mean %.1f%% max %.1f%%, bearing max %.2f deg), "
+           "wrong kind %d, extra %d, sides %d (wrong %d)",
+           frames, s.found[0], s.truth[0], s.found[0] ? 100 * s.rng_sum[0] / s.found[0] : 0,
+           100 * s.rng_max[0], s.brg_max[0], s.found[1], s.truth[1],
+           s.found[1] ? 100 * s.rng_sum[1] / s.found[1] : 0, 100 * s.rng_max[1], s.brg_max[1],
+           s.wrong_kind, s.extra, s.sided, s.wrong_side);
+    CHECK(s.truth[0] >= frames / 4);
+    CHECK(s.truth[1] >= frames / 8);
+    CHECK_LE(s.truth[0] - s.found[0], s.truth[0] / 10);   /* >= 90 % of the posts */
+    CHECK_LE(s.truth[1] - s.found[1], s.truth[1] / 10);   /* and of the poles */
+    CHECK_EQ(s.wrong_kind, 0);                            /* YBY never for BYB */
+    CHECK_EQ(s.wrong_side, 0);
+    CHECK(s.sided >= s.found[0] / 3);
+    CHECK_LE(s.extra, frames / 10);
+    CHECK_LE(s.rng_max[0], 0.10);
+    CHECK_LE(s.rng_max[1], 0.10);
+    CHECK_LE(s.brg_max[0], 1.5);
+    CHECK_LE(s.brg_max[1], 1.5);
+    free(st);
+}
+
 void suite_hlvision(void)
 {
     t_run("hlvision.boxes", test_boxes);
@@ -314,4 +490,5 @@ void suite_hlvision(void)
     t_run("hlvision.goal_sides", test_goal_sides);
     t_run("hlvision.mask", test_mask);
     t_run("hlvision.bad_input", test_bad_input);
+    t_run("hlvision.rendered", test_rendered);
 }

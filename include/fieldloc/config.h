@@ -362,8 +362,9 @@
 /* ---- seed 002's vision path (hlvision.h) ---------------------------------
  * FL_HLV_MASK_MAX_W, FL_HLV_MASK_MAX_H  the white-surrounded-by-green mask
  *                      (image sampled every mask_step_u x mask_step_v px).
- *                      Default 320 x 240: a 640x480 frame at steps 2 x 2,
- *                      1280x960 at 4 x 4.  Range 16..1024 each.  Two bytes
+ *                      Default 320 x 480: a 640x480 frame at steps 2 x 1
+ *                      (the default steps, 4 x 1, use half of it),
+ *                      1280x960 at 4 x 2.  Range 16..1024 each.  Two bytes
  *                      per mask pixel in fl_hlv_t.
  * FL_HLV_MAX_RUNS      colour runs kept per scanned column (a column
  *                      through a pole over the field has about 6).  Default
@@ -374,7 +375,7 @@
 #define FL_HLV_MASK_MAX_W 320
 #endif
 #ifndef FL_HLV_MASK_MAX_H
-#define FL_HLV_MASK_MAX_H 240
+#define FL_HLV_MASK_MAX_H 480
 #endif
 #if FL_HLV_MASK_MAX_W < 16 || FL_HLV_MASK_MAX_W > 1024 || FL_HLV_MASK_MAX_H < 16 || FL_HLV_MASK_MAX_H > 1024
 #error "FL_HLV_MASK_MAX_W and FL_HLV_MASK_MAX_H must be in 16..1024"

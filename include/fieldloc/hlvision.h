@@ -26,7 +26,9 @@
  * again (each at least min_band_px), the column is a pole, YBY or BYB;
  * else a run of at least min_post_px is a post.  Adjoining scanned columns
  * of the same kind with feet within foot_tol_px form one object (at least
- * min_cols columns); its foot is the lowest foot of its columns.  Two posts
+ * min_cols columns); its foot is the lowest foot of its columns.  An
+ * object whose width does not fit its diameter at the range of its foot
+ * (within a factor 2 and a column step: src/vision/hlv.c) is dropped.  Two posts
  * of one colour are a goal (the left one in the image is FL_SIDE_LEFT: the
  * left post facing the goal); one post takes its side from a crossbar of
  * its colour beside its top (bar to the right: the left post), else
@@ -130,6 +132,7 @@ typedef struct {
     uint32_t frames;
     uint32_t runs_dropped;      /* runs beyond FL_HLV_MAX_RUNS in a column */
     uint32_t objects_dropped;   /* objects beyond FL_HLV_MAX_OBJECTS */
+    uint32_t objects_rejected;  /* objects too wide or narrow for their range */
     uint32_t obs_dropped;       /* observations beyond FL_OBS_MAX */
     uint32_t points_dropped;    /* white points beyond FL_OBS_MAX_POINTS */
     fl_status_t status;         /* of the last frame (FL_OK or why empty) */

@@ -3,9 +3,11 @@
  * IV.B.1 and IV.B.2), column by column.
  *
  * A column is read bottom-up as runs of one colour (yellow, sky-blue,
- * green; anything else ends a run unless the gap is at most gap_px).  The
- * lowest yellow or sky-blue run with a green run of at least min_green_px
- * right below (within green_gap_px) is a foot.  Going upwards from it, the
+ * green, white; anything else ends a run unless the gap is at most
+ * gap_px).  The lowest yellow or sky-blue run with a green run of at least
+ * min_green_px right below (within green_gap_px), or a white run right
+ * below and such a green run below that (a post on the goal line), is a
+ * foot.  Going upwards from it, the
  * seed's pole test: the column "continues to a yellow-blue and further a
  * blue-yellow boundary" (for YBY; BYB alike), each band at least
  * min_band_px; a column whose run above the first band is the other colour
@@ -41,6 +43,8 @@ static uint8_t run_class(uint8_t c)
         return FL_HLV_BLUE;
     if (c & FL_HLV_GREEN)
         return FL_HLV_GREEN;
+    if (c & FL_HLV_WHITE)
+        return FL_HLV_WHITE;
     return 0;
 }
 
@@ -90,10 +94,20 @@ static void classify_column(const fl_hlv_t *s, const hlv_run_t *runs, int32_t n,
     int32_t k;
     memset(out, 0, sizeof *out);
     for (k = 1; k < n; k++) {
-        const hlv_run_t *g = &runs[k - 1], *a = &runs[k];
+        const hlv_run_t *a = &runs[k], *g = &runs[k - 1];
         uint8_t other;
-        if (a->cls == FL_HLV_GREEN || g->cls != FL_HLV_GREEN ||
-            run_len(g, p->row_step) < p->min_green_px || !adjacent(g, a, p->green_gap_px, p->row_step))
+        if (a->cls != FL_HLV_YELLOW && a->cls != FL_HLV_BLUE)
+            continue;
+        if (!adjacent(g, a, p->green_gap_px, p->row_step))
+            continue;
+        /* a painted line right below and green below that: a post on
+         * the goal line */
+        if (g->cls == FL_HLV_WHITE) {
+            if (k < 2 || !adjacent(&runs[k - 2], g, p->green_gap_px, p->row_step))
+                continue;
+            g = &runs[k - 2];
+        }
+        if (g->cls != FL_HLV_GREEN || run_len(g, p->row_step) < p->min_green_px)
             continue;
         other = a->cls == FL_HLV_YELLOW ? FL_HLV_BLUE : FL_HLV_YELLOW;
         out->foot = a->lo;
@@ -118,9 +132,13 @@ static void classify_column(const fl_hlv_t *s, const hlv_run_t *runs, int32_t n,
     }
 }
 
-static void close_object(fl_hlv_t *s, fl_hlv_object_t *o)
+/* Keep an object of at least min_cols columns that does not touch the
+ * image's left or right edge (its centre column, hence its bearing, would
+ * be off by up to half its width). */
+static void close_object(fl_hlv_t *s, fl_hlv_object_t *o, int32_t width)
 {
-    if (o->cols < s->params.min_cols)
+    const int32_t step = s->params.col_step;
+    if (o->cols < s->params.min_cols || o->u0 - step < 0 || o->u1 + step >= width)
         return;
     if (s->n_objects == FL_HLV_MAX_OBJECTS) {
         s->objects_dropped++;
@@ -182,9 +200,11 @@ void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start)
     const int32_t step = s->params.col_step;
     hlv_run_t runs[FL_HLV_MAX_RUNS];
     fl_hlv_object_t cur;
+    hlv_col_t last;
     int32_t u, last_u = -1;
     s->n_objects = 0;
     memset(&cur, 0, sizeof cur);
+    memset(&last, 0, sizeof last);
     if (v_start < 0)
         v_start = 0;
     for (u = step / 2; u < img->width; u += step) {
@@ -193,10 +213,14 @@ void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start)
         classify_column(s, runs, n, &col);
         if (col.kind != 0 && col.foot < v_start)
             col.kind = 0;   /* a foot above the horizon is no foot */
+        /* the same object: same kind, the next column, and its run
+         * overlapping the previous column's (within foot_tol_px): a near
+         * post leans in the image, so its feet differ from column to
+         * column by more than any fixed tolerance */
         if (cur.cols > 0 && (col.kind != (int32_t)cur.kind || last_u != u - step ||
-                             col.foot - cur.foot_v > s->params.foot_tol_px ||
-                             cur.foot_v - col.foot > s->params.foot_tol_px)) {
-            close_object(s, &cur);
+                             col.top > last.foot + s->params.foot_tol_px ||
+                             last.top > col.foot + s->params.foot_tol_px)) {
+            close_object(s, &cur, img->width);
             cur.cols = 0;
         }
         if (col.kind == 0)
@@ -220,8 +244,9 @@ void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start)
             cur.top_v = col.top;
         cur.cols++;
         last_u = u;
+        last = col;
     }
     if (cur.cols > 0)
-        close_object(s, &cur);
+        close_object(s, &cur, img->width);
     post_sides(s, img);
 }
