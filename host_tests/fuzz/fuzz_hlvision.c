@@ -92,8 +92,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         abort();
     if (hv.status != FL_OK && (n != 0 || obs.n_points != 0))
         abort();
-    if (hv.n_objects > FL_HLV_MAX_OBJECTS || hv.mask_w > FL_HLV_MASK_MAX_W ||
-        hv.mask_h > FL_HLV_MASK_MAX_H)
+    if (hv.n_objects > FL_HLV_MAX_OBJECTS || hv.mask_w > FL_SKEL_MAX_WIDTH ||
+        hv.mask_h > FL_SKEL_MAX_HEIGHT)
         abort();
     for (i = 0; i < n; i++) {
         const fl_obs_t *o = &obs.obs[i];

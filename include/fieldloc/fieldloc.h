@@ -24,6 +24,7 @@
 #include "fieldloc/crossings.h"
 #include "fieldloc/goal.h"
 #include "fieldloc/beacon.h"
+#include "fieldloc/skeleton.h"
 #include "fieldloc/vision.h"
 #include "fieldloc/hlvision.h"
 #include "fieldloc/coach.h"

@@ -25,12 +25,17 @@
  * run above it is the other colour and the one above that the first colour
  * again (each at least min_band_px), the column is a pole, YBY or BYB;
  * else a run of at least min_post_px is a post.  Adjoining scanned columns
- * of the same kind with feet within foot_tol_px form one object (at least
- * min_cols columns); its foot is the lowest foot of its columns.  An
+ * (at most one empty column between) of the same kind, or post columns of
+ * a pole's bottom colour beside a pole, whose runs overlap (within
+ * foot_tol_px) form one object (at least min_cols columns); its foot is
+ * the lowest foot of its columns, at the middle of the columns within a
+ * row step of it (foot_u0..foot_u1).  An object touching the image's left
+ * or right edge is dropped (its centre is unknown).  An
  * object whose width does not fit its diameter at the range of its foot
- * (within a factor 2 and a column step: src/vision/hlv.c) is dropped.  Two posts
+ * (from half to three times, and a column step: src/vision/hlv.c) is dropped.  Two posts
  * of one colour are a goal (the left one in the image is FL_SIDE_LEFT: the
- * left post facing the goal); one post takes its side from a crossbar of
+ * left post facing the goal) when their feet on the ground are half to
+ * one and a half goal_width_mm apart (else both FL_SIDE_UNKNOWN); one post takes its side from a crossbar of
  * its colour beside its top (bar to the right: the left post), else
  * FL_SIDE_UNKNOWN.
  *
@@ -46,7 +51,13 @@
  * and mask_step_v rows (pixel (i, j) of the mask is image pixel
  * (i * su + su / 2, j * sv + sv / 2)) below the horizon.  A white sample is
  * in the mask when green lies within surround_px samples on both sides
- * along its row, or on both sides along its column.
+ * along its row, or on both sides along its column.  The skeleton stage
+ * (skeleton.h: K3M thinning, node degrees, crossings merged) gives X and
+ * T crossings and a sample of skeleton pixels in mask coordinates; each
+ * is mapped to the image and through the camera to the ground.  A
+ * crossing's orientation: its arms are mapped to the ground (a point
+ * 8 mask px along each), X: the first arm, T: the arm without an opposite
+ * (the one farthest from 180 deg to both others), as obs.h states.
  *
  * Work per frame (bounded): (W / col_step) * (H / row_step) pixel reads for
  * the columns, (W / su) * (H / sv) reads and three passes for the mask,
@@ -62,6 +73,7 @@
 #include "fieldloc/field.h"
 #include "fieldloc/image.h"
 #include "fieldloc/obs.h"
+#include "fieldloc/skeleton.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -98,8 +110,12 @@ typedef struct {
     int32_t surround_px;    /* green within this many mask px, 1..32 */
     int32_t post_diameter_mm;  /* 10..1000 */
     int32_t pole_diameter_mm;  /* 10..1000 */
+    int32_t goal_width_mm;     /* 100..5000: two posts of one colour are a
+                                  goal (sides from their order) only when
+                                  their feet are 1/2..3/2 of this apart */
     int32_t max_range_mm;   /* farther observations are dropped, 100..FL_OBS_MAX_RANGE_MM */
-    int32_t crossings;      /* 1: run the skeleton stage; 0: posts and poles only */
+    int32_t crossings;      /* 1: mask and skeleton stage; 0: posts and poles only */
+    fl_skel_params_t skel;  /* the skeleton stage's (skeleton.h) */
 } fl_hlv_params_t;
 
 /* A post or pole in the image. */
@@ -114,6 +130,8 @@ typedef struct {
     int32_t top_v;           /* highest top of the object's runs */
     int32_t band_v[2];       /* poles: the two band boundaries (median
                                 column's, lower then upper); posts: -1 */
+    int32_t foot_u0, foot_u1; /* the columns whose feet are within a row
+                                step of the lowest: the foot lies between */
     fl_side_t side;          /* posts */
     uint16_t cols;           /* scanned columns */
 } fl_hlv_object_t;
@@ -123,9 +141,10 @@ typedef struct {
     uint8_t ytab[256], cbtab[256], crtab[256];
     /* mask grid: class bits, then the mask (0/1) of the skeleton stage */
     int32_t mask_w, mask_h;
-    uint8_t cls[FL_HLV_MASK_MAX_W * FL_HLV_MASK_MAX_H];
-    uint8_t mask[FL_HLV_MASK_MAX_W * FL_HLV_MASK_MAX_H];
-    uint8_t below[FL_HLV_MASK_MAX_W];   /* per column: samples to green below */
+    uint8_t cls[FL_SKEL_MAX_WIDTH * FL_SKEL_MAX_HEIGHT];
+    uint8_t mask[FL_SKEL_MAX_WIDTH * FL_SKEL_MAX_HEIGHT];
+    uint8_t below[FL_SKEL_MAX_WIDTH];   /* per column: samples to green below */
+    fl_skel_t skel;                     /* the skeleton of the mask */
     fl_hlv_object_t objects[FL_HLV_MAX_OBJECTS];
     uint16_t n_objects;
     /* counters (summed over frames) */
@@ -165,7 +184,7 @@ static inline uint8_t fl_hlv_class(const fl_hlv_t *s, uint8_t y, uint8_t cb, uin
  *   FL_ERR_NULL       s, img, cam or out NULL (out NULL: nothing written)
  *   FL_ERR_STATE      s not initialized by fl_hlv_init
  *   FL_ERR_SIZE, FL_ERR_STRIDE, FL_ERR_FORMAT   fl_image_validate, or a
- *                     mask larger than FL_HLV_MASK_MAX_W x _H
+ *                     mask larger than FL_SKEL_MAX_WIDTH x FL_SKEL_MAX_HEIGHT
  *   FL_ERR_CAMERA     a camera whose init failed
  *   FL_ERR_MISMATCH   image size other than the camera model's.
  * The stage results (objects, mask, skel) stay readable after the call. */

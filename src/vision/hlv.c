@@ -66,11 +66,15 @@ void fl_hlv_params_default(fl_hlv_params_t *p, const fl_field_t *field)
     p->surround_px = 12;
     p->post_diameter_mm = 100;
     p->pole_diameter_mm = 100;
+    p->goal_width_mm = 1500;
     p->max_range_mm = 6000;
     p->crossings = 1;
+    fl_skel_params_default(&p->skel);
     if (field != NULL) {
         if (field->post_diameter_mm >= 10 && field->post_diameter_mm <= 1000)
             p->post_diameter_mm = field->post_diameter_mm;
+        if (field->goal_width_mm >= 100 && field->goal_width_mm <= 5000)
+            p->goal_width_mm = field->goal_width_mm;
         if (field->beacon_diameter_mm >= 10 && field->beacon_diameter_mm <= 1000)
             p->pole_diameter_mm = field->beacon_diameter_mm;
     }
@@ -90,7 +94,7 @@ fl_status_t fl_hlv_params_check(const fl_hlv_params_t *p)
         !in(p->min_post_px, 2, 480) || !in(p->min_band_px, 1, 160) || !in(p->min_cols, 1, 64) ||
         !in(p->foot_tol_px, 0, 480) || !in(p->mask_step_u, 1, 16) || !in(p->mask_step_v, 1, 16) ||
         !in(p->surround_px, 1, 32) || !in(p->post_diameter_mm, 10, 1000) ||
-        !in(p->pole_diameter_mm, 10, 1000) || !in(p->max_range_mm, 100, FL_OBS_MAX_RANGE_MM) ||
+        !in(p->pole_diameter_mm, 10, 1000) || !in(p->goal_width_mm, 100, 5000) || !in(p->max_range_mm, 100, FL_OBS_MAX_RANGE_MM) ||
         !in(p->crossings, 0, 1))
         return FL_ERR_RANGE;
     return FL_OK;
@@ -106,6 +110,11 @@ fl_status_t fl_hlv_init_cfg(fl_hlv_t *s, const fl_hlv_params_t *p, uint32_t call
         return FL_ERR_NULL;
     memset(s, 0, sizeof *s);
     st = fl_hlv_params_check(p);
+    if (st != FL_OK) {
+        s->status = st;
+        return st;
+    }
+    st = fl_skel_init(&s->skel, &p->skel);
     if (st != FL_OK) {
         s->status = st;
         return st;
@@ -140,10 +149,11 @@ void fl_hlv_mask_to_image(const fl_hlv_t *s, int32_t mx_q4, int32_t my_q4, int32
  * Expected f * D / range px (the ground range: a little more than the
  * true one for near objects, where the camera's height adds to the
  * distance); measured (u1 - u0 + col_step) px, each end known to
- * col_step.  Kept within [expected / 2 - col_step, 2 * expected +
- * 2 * col_step]: shading may eat the dark side of a cylinder, but a
- * yellow box beside the field, whose foot seems to stand on the carpet
- * far away, is several times too wide. */
+ * col_step.  Kept within [expected / 2 - col_step, 3 * expected +
+ * 2 * col_step]: shading may eat the dark side of a cylinder and a near
+ * post at the image's side leans (its columns span more than its
+ * diameter), but a yellow box beside the field, whose foot seems to stand
+ * on the carpet far away, is many times too wide. */
 static bool width_fits(const fl_hlv_t *s, const fl_hlv_object_t *o, const fl_camera_t *cam,
                        int32_t range_mm, bool pole)
 {
@@ -153,8 +163,30 @@ static bool width_fits(const fl_hlv_t *s, const fl_hlv_object_t *o, const fl_cam
     if (range_mm < 1)
         range_mm = 1;
     expect_q4 = (int64_t)cam->model.focal_q4 * d / range_mm;   /* < 2^20 * 1000 */
-    return (int64_t)width * 16 <= 2 * expect_q4 + 32 * step &&
+    return (int64_t)width * 16 <= 3 * expect_q4 + 32 * step &&
            (int64_t)width * 16 >= expect_q4 / 2 - 16 * step;
+}
+
+/* Two posts of one colour whose feet are not about a goal width apart
+ * are not a goal: their sides (from the image order) are withdrawn. */
+static void check_pairs(const fl_hlv_t *s, fl_obs_list_t *out)
+{
+    int32_t i, j;
+    for (i = 0; i < out->n; i++)
+        for (j = i + 1; j < out->n; j++) {
+            fl_obs_t *a = &out->obs[i], *b = &out->obs[j];
+            fl_point_t pa, pb;
+            int64_t dx, dy, d2, w = s->params.goal_width_mm;
+            if (a->kind != FL_LM_POST || b->kind != FL_LM_POST || a->color != b->color)
+                continue;
+            pa = fl_point_from_polar(a->range_mm, a->bearing);
+            pb = fl_point_from_polar(b->range_mm, b->bearing);
+            dx = pa.x_mm - pb.x_mm;
+            dy = pa.y_mm - pb.y_mm;
+            d2 = dx * dx + dy * dy;
+            if (4 * d2 < w * w || 4 * d2 > 9 * w * w)
+                a->side = b->side = FL_SIDE_UNKNOWN;
+        }
 }
 
 /* A post or pole as an observation: the foot pixel (the lower edge of the
@@ -166,7 +198,7 @@ static void push_object(fl_hlv_t *s, const fl_hlv_object_t *o, const fl_camera_t
     const bool pole = o->kind == FL_HLV_POLE_YBY || o->kind == FL_HLV_POLE_BYB;
     fl_obs_t ob;
     fl_point_t c;
-    int32_t u_q4 = (o->u0 + o->u1) * 8, v_q4 = o->foot_v * 16 + 8;
+    int32_t u_q4 = (o->foot_u0 + o->foot_u1) * 8, v_q4 = o->foot_v * 16 + 8;
     memset(&ob, 0, sizeof ob);
     if (!fl_camera_foot_to_centre(cam, &u_q4, &v_q4,
                                   pole ? s->params.pole_diameter_mm : s->params.post_diameter_mm, &c))
@@ -195,6 +227,94 @@ static void push_object(fl_hlv_t *s, const fl_hlv_object_t *o, const fl_camera_t
         s->obs_dropped++;
 }
 
+/* Mask point (Q4) to the ground; false when it is not on the ground. */
+static bool mask_to_ground(const fl_hlv_t *s, const fl_camera_t *cam, int32_t x_q4, int32_t y_q4,
+                           fl_point_t *g)
+{
+    int32_t u_q4, v_q4;
+    fl_hlv_mask_to_image(s, x_q4, y_q4, &u_q4, &v_q4);
+    return fl_camera_pixel_to_ground(cam, u_q4, v_q4, g);
+}
+
+/* Ground direction of each arm: the crossing and a point 8 mask px along
+ * the arm, both on the ground.  False when one is not. */
+static bool arms_on_ground(const fl_hlv_t *s, const fl_camera_t *cam, const fl_skel_crossing_t *c,
+                           fl_point_t at, fl_angle_t *dir)
+{
+    int32_t k;
+    for (k = 0; k < c->kind; k++) {
+        fl_point_t e;
+        const int32_t ex = c->x_q4 + fl_rshift_round((int64_t)fl_cos_q15(c->arm[k]) * 128, 15);
+        const int32_t ey = c->y_q4 + fl_rshift_round((int64_t)fl_sin_q15(c->arm[k]) * 128, 15);
+        if (!mask_to_ground(s, cam, ex, ey, &e))
+            return false;
+        dir[k] = fl_atan2(e.y_mm - at.y_mm, e.x_mm - at.x_mm);
+    }
+    return true;
+}
+
+static int32_t abs_angle(fl_angle_t a)
+{
+    return a < 0 ? -(int32_t)a : (int32_t)a;
+}
+
+/* T: the stem is the arm whose best partner is farthest from opposite. */
+static fl_angle_t t_stem(const fl_angle_t *dir)
+{
+    int32_t k, best = 0, best_dev = -1;
+    for (k = 0; k < 3; k++) {
+        int32_t j, dev = INT32_MAX;
+        for (j = 0; j < 3; j++)
+            if (j != k) {
+                const int32_t d = abs_angle(fl_angle_sub(fl_angle_sub(dir[j], dir[k]), FL_ANGLE_180));
+                if (d < dev)
+                    dev = d;
+            }
+        if (dev > best_dev) {
+            best_dev = dev;
+            best = k;
+        }
+    }
+    return dir[best];
+}
+
+/* The skeleton's crossings (X, T) and white points into the list. */
+static void push_skeleton(fl_hlv_t *s, const fl_camera_t *cam, fl_obs_list_t *out)
+{
+    int32_t i;
+    for (i = 0; i < s->skel.n_crossings; i++) {
+        const fl_skel_crossing_t *c = &s->skel.crossing[i];
+        fl_angle_t dir[4];
+        fl_point_t g;
+        fl_obs_t ob;
+        if ((c->kind != FL_SKEL_X && c->kind != FL_SKEL_T) ||
+            !mask_to_ground(s, cam, c->x_q4, c->y_q4, &g))
+            continue;
+        memset(&ob, 0, sizeof ob);
+        fl_polar_from_point(g, &ob.range_mm, &ob.bearing);
+        if (ob.range_mm > s->params.max_range_mm)
+            continue;
+        ob.kind = c->kind == FL_SKEL_X ? FL_LM_X : FL_LM_T;
+        ob.confidence = c->confidence;
+        fl_hlv_mask_to_image(s, c->x_q4, c->y_q4, &ob.u_q4, &ob.v_q4);
+        if (arms_on_ground(s, cam, c, g, dir)) {
+            ob.has_orientation = true;
+            ob.orientation = c->kind == FL_SKEL_X ? dir[0] : t_stem(dir);
+        }
+        if (!fl_obs_list_push(out, &ob))
+            s->obs_dropped++;
+    }
+    for (i = 0; i < s->skel.n_points; i++) {
+        fl_point_t g;
+        if (mask_to_ground(s, cam, (int32_t)s->skel.point[i].x * 16, (int32_t)s->skel.point[i].y * 16,
+                           &g) &&
+            g.x_mm * (int64_t)g.x_mm + g.y_mm * (int64_t)g.y_mm <=
+                (int64_t)s->params.max_range_mm * s->params.max_range_mm &&
+            !fl_obs_list_push_point(out, g.x_mm, g.y_mm))
+            s->points_dropped++;
+    }
+}
+
 /* First image row that can see the ground (0..height). */
 static int32_t ground_row(const fl_camera_t *cam, int32_t width, int32_t height)
 {
@@ -211,7 +331,7 @@ static fl_status_t frame_check(const fl_hlv_t *s, const fl_image_t *img, const f
     fl_status_t st;
     if (img == NULL || cam == NULL)
         return FL_ERR_NULL;
-    if (fl_hlv_params_check(&s->params) != FL_OK)
+    if (fl_hlv_params_check(&s->params) != FL_OK || s->skel.magic == 0)
         return FL_ERR_STATE;
     st = fl_image_validate(img);
     if (st != FL_OK)
@@ -220,8 +340,8 @@ static fl_status_t frame_check(const fl_hlv_t *s, const fl_image_t *img, const f
         return FL_ERR_CAMERA;
     if (cam->model.width_px != img->width || cam->model.height_px != img->height)
         return FL_ERR_MISMATCH;
-    if ((img->width + s->params.mask_step_u - 1) / s->params.mask_step_u > FL_HLV_MASK_MAX_W ||
-        (img->height + s->params.mask_step_v - 1) / s->params.mask_step_v > FL_HLV_MASK_MAX_H)
+    if ((img->width + s->params.mask_step_u - 1) / s->params.mask_step_u > FL_SKEL_MAX_WIDTH ||
+        (img->height + s->params.mask_step_v - 1) / s->params.mask_step_v > FL_SKEL_MAX_HEIGHT)
         return FL_ERR_SIZE;
     return FL_OK;
 }
@@ -248,12 +368,21 @@ int32_t fl_hlv_frame(fl_hlv_t *s, const fl_image_t *img, const fl_camera_t *cam,
     for (i = 0; i < s->n_objects; i++)
         if (s->objects[i].kind <= FL_HLV_POST_BLUE)
             push_object(s, &s->objects[i], cam, out);
+    check_pairs(s, out);
     for (i = 0; i < s->n_objects; i++)
         if (s->objects[i].kind >= FL_HLV_POLE_YBY)
             push_object(s, &s->objects[i], cam, out);
-    if (s->params.crossings)
+    if (s->params.crossings) {
+        fl_skel_mask_t m;
         fl_hlv_int_mask(s, img, (v0 + s->params.mask_step_v - 1) / s->params.mask_step_v);
-    else
+        m.data = s->mask;
+        m.width = s->mask_w;
+        m.height = s->mask_h;
+        m.stride = s->mask_w;
+        if (fl_skel_run(&s->skel, &m, s->frames) == FL_OK)
+            push_skeleton(s, cam, out);
+    } else {
         s->mask_w = s->mask_h = 0;
+    }
     return out->n;
 }

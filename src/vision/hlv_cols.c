@@ -148,8 +148,11 @@ static void close_object(fl_hlv_t *s, fl_hlv_object_t *o, int32_t width)
 }
 
 /* A crossbar of colour cls beside the top of post o: -1 left, +1 right, 0
- * none or both.  Probes at 1..3 post widths beside the top, at the top row
- * and 2 rows below it. */
+ * none or both.  Probes at 6, 8 and 10 post widths beside the top (on
+ * hl3x2: 300..500 mm, inside the 800 mm goal but beyond its 250 mm deep
+ * top frame, which a post seen from the side shows on the other side),
+ * at the top row and 2 rows below it; at least 4 of the 6 on one side
+ * and none on the other. */
 static int32_t crossbar_side(const fl_hlv_t *s, const fl_image_t *img, const fl_hlv_object_t *o,
                              uint8_t cls)
 {
@@ -158,16 +161,16 @@ static int32_t crossbar_side(const fl_hlv_t *s, const fl_image_t *img, const fl_
     if (o->top_v <= 0)
         return 0;   /* the top is not in the image */
     for (side = 0; side < 2; side++)
-        for (k = 1; k <= 3; k++)
+        for (k = 6; k <= 10; k += 2)
             for (dv = 0; dv <= 2; dv += 2) {
                 const int32_t u = side ? o->u1 + k * w : o->u0 - k * w, v = o->top_v + dv;
                 if (u >= 0 && u < img->width && v < img->height &&
                     (hlv_pixel_class(s, img, u, v) & cls))
                     hits[side]++;
             }
-    if (hits[1] >= 3 && hits[0] == 0)
+    if (hits[1] >= 4 && hits[0] == 0)
         return 1;
-    if (hits[0] >= 3 && hits[1] == 0)
+    if (hits[0] >= 4 && hits[1] == 0)
         return -1;
     return 0;
 }
@@ -195,6 +198,56 @@ static void post_sides(fl_hlv_t *s, const fl_image_t *img)
     }
 }
 
+/* Kinds that may be one object: equal, or a post column of a pole's
+ * bottom colour (the pole's edge columns, or columns whose upper bands
+ * were lost to shading or the image's top).  0: no; else the kind of the
+ * union (a pole wins). */
+static int32_t join_kind(int32_t a, int32_t b)
+{
+    if (a == b)
+        return a;
+    if ((a == FL_HLV_POST_YELLOW && b == FL_HLV_POLE_YBY) || (a == FL_HLV_POST_BLUE && b == FL_HLV_POLE_BYB))
+        return b;
+    if ((b == FL_HLV_POST_YELLOW && a == FL_HLV_POLE_YBY) || (b == FL_HLV_POST_BLUE && a == FL_HLV_POLE_BYB))
+        return a;
+    return 0;
+}
+
+/* Add scanned column u (of kind col->kind, joinable) to the object. */
+static void add_column(fl_hlv_object_t *o, const hlv_col_t *col, int32_t u, int32_t row_step)
+{
+    const bool pole = col->kind >= FL_HLV_POLE_YBY;
+    if (o->cols == 0) {
+        memset(o, 0, sizeof *o);
+        o->kind = (fl_hlv_kind_t)col->kind;
+        o->u0 = u;
+        o->foot_v = col->foot;
+        o->top_v = col->top;
+        o->band_v[0] = col->band_lo;
+        o->band_v[1] = col->band_hi;
+        o->foot_u0 = o->foot_u1 = u;
+    }
+    o->kind = (fl_hlv_kind_t)join_kind((int32_t)o->kind, col->kind);
+    o->u1 = u;
+    /* a cylinder's lowest foot is below its axis: the columns within a
+     * row step of the lowest foot give the foot's column */
+    if (col->foot > o->foot_v + row_step) {
+        o->foot_v = col->foot;
+        o->foot_u0 = o->foot_u1 = u;
+    } else if (col->foot >= o->foot_v - row_step) {
+        if (col->foot > o->foot_v)
+            o->foot_v = col->foot;
+        o->foot_u1 = u;
+    }
+    if (pole && (o->band_v[0] < 0 || col->foot >= o->foot_v - row_step)) {
+        o->band_v[0] = col->band_lo;
+        o->band_v[1] = col->band_hi;
+    }
+    if (col->top < o->top_v)
+        o->top_v = col->top;
+    o->cols++;
+}
+
 void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start)
 {
     const int32_t step = s->params.col_step;
@@ -213,36 +266,25 @@ void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start)
         classify_column(s, runs, n, &col);
         if (col.kind != 0 && col.foot < v_start)
             col.kind = 0;   /* a foot above the horizon is no foot */
-        /* the same object: same kind, the next column, and its run
-         * overlapping the previous column's (within foot_tol_px): a near
-         * post leans in the image, so its feet differ from column to
-         * column by more than any fixed tolerance */
-        if (cur.cols > 0 && (col.kind != (int32_t)cur.kind || last_u != u - step ||
-                             col.top > last.foot + s->params.foot_tol_px ||
-                             last.top > col.foot + s->params.foot_tol_px)) {
+        /* the same object: a joinable kind, at most one empty scanned
+         * column between, and its run overlapping the previous column's
+         * (within foot_tol_px): a near post leans in the image, so its
+         * feet differ from column to column by more than any fixed
+         * tolerance */
+        if (cur.cols > 0 && col.kind != 0 &&
+            (join_kind(col.kind, (int32_t)cur.kind) == 0 || last_u < u - 2 * step ||
+             col.top > last.foot + s->params.foot_tol_px ||
+             last.top > col.foot + s->params.foot_tol_px)) {
+            close_object(s, &cur, img->width);
+            cur.cols = 0;
+        }
+        if (cur.cols > 0 && col.kind == 0 && last_u < u - step) {
             close_object(s, &cur, img->width);
             cur.cols = 0;
         }
         if (col.kind == 0)
             continue;
-        if (cur.cols == 0) {
-            memset(&cur, 0, sizeof cur);
-            cur.kind = (fl_hlv_kind_t)col.kind;
-            cur.u0 = u;
-            cur.foot_v = col.foot;
-            cur.top_v = col.top;
-            cur.band_v[0] = col.band_lo;
-            cur.band_v[1] = col.band_hi;
-        }
-        cur.u1 = u;
-        if (col.foot > cur.foot_v) {   /* a cylinder's lowest foot is its centre column */
-            cur.foot_v = col.foot;
-            cur.band_v[0] = col.band_lo;
-            cur.band_v[1] = col.band_hi;
-        }
-        if (col.top < cur.top_v)
-            cur.top_v = col.top;
-        cur.cols++;
+        add_column(&cur, &col, u, s->params.row_step);
         last_u = u;
         last = col;
     }

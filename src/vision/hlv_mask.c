@@ -54,7 +54,7 @@ void fl_hlv_int_mask(fl_hlv_t *s, const fl_image_t *img, int32_t j0)
     for (j = mh - 1; j >= j0; j--) {
         uint8_t *c = s->cls + j * mw, *m = s->mask + j * mw;
         int32_t last = -HLV_FAR;   /* column of the last green to the left */
-        uint8_t left_ok[FL_HLV_MASK_MAX_W];
+        uint8_t left_ok[FL_SKEL_MAX_WIDTH];
         for (i = 0; i < mw; i++) {
             if (c[i] & FL_HLV_GREEN)
                 last = i;

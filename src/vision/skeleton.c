@@ -1,0 +1,272 @@
+/*
+ * src/vision/skeleton.c - K3M thinning of a binary mask (skeleton.h).
+ *
+ * K3M (Saeed, Tabedzki, Rybnik, Adamski, AMCS 20(2):317-335, 2010).  The
+ * weight of a pixel is the sum of its white neighbours' weights
+ *      128   1   2
+ *       64   .   4
+ *       32  16   8
+ * and every test is membership of the weight in a lookup array.  The
+ * paper lists the arrays; they are, by construction (and so written here,
+ * checked against that construction by host_tests/test_skeleton.c):
+ *   A0     the white neighbours form one circular run of 2..7 pixels
+ *          (phase 0: border pixels; 48 weights);
+ *   A1..A4 one circular run of 3..(i + 2) pixels (8, 16, 24, 32 weights);
+ *   A5     A4 and the runs of 7 whose missing neighbour is an edge one
+ *          (weights 191, 239, 251, 254; 36 weights);
+ *   A1pix  the final one-pixel phase: the same 48 weights as A0.
+ * One iteration: phase 0 marks the border pixels (weight in A0); phases
+ * 1..5 each visit the marked pixels in order and delete, at once, those
+ * whose current weight is in Ai; then the marks are cleared.  Iterate
+ * until an iteration deletes nothing; then delete, in order, every pixel
+ * whose weight is in A1pix.  Phases are sequential (a deletion changes
+ * the weights the same phase sees next), so the result depends on the
+ * visiting order: here the contour list's, which is the raster order of
+ * the first contour followed by pixels in the order deletions expose them
+ * (deterministic).
+ *
+ * The contour list replaces the paper's raster passes: it holds the white
+ * pixels that touch the background (only they can be border pixels) and
+ * gains the white neighbours of every deleted pixel; deleted pixels leave
+ * it when an iteration ends.  So a pass costs the contour, not the frame,
+ * and at the end the list is the skeleton.
+ *
+ * Table byte k3m[w]: bit 0 A0, bits 1..5 A1..A5, bit 6 A1pix.
+ * Memory: the caller's fl_skel_t; stack < 200 B.
+ */
+#include "skeleton_int.h"
+
+#include <string.h>
+
+static const uint8_t sk_k3m[256] = {
+    0x00, 0x00, 0x00, 0x41, 0x00, 0x00, 0x41, 0x7f, 0x00, 0x00, 0x00, 0x00, 0x41, 0x00, 0x7f, 0x7d,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x41, 0x00, 0x00, 0x00, 0x7f, 0x00, 0x7d, 0x79,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x41, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x7f, 0x00, 0x00, 0x00, 0x7d, 0x00, 0x79, 0x71,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x41, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x7f, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x7d, 0x00, 0x00, 0x00, 0x79, 0x00, 0x71, 0x41,
+    0x00, 0x41, 0x00, 0x7f, 0x00, 0x00, 0x00, 0x7d, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x79,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x71,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x61,
+    0x41, 0x7f, 0x00, 0x7d, 0x00, 0x00, 0x00, 0x79, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x71,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x41,
+    0x7f, 0x7d, 0x00, 0x79, 0x00, 0x00, 0x00, 0x71, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x61,
+    0x7d, 0x79, 0x00, 0x71, 0x00, 0x00, 0x00, 0x41, 0x79, 0x71, 0x00, 0x61, 0x71, 0x41, 0x61, 0x00,
+};
+
+/* Circular runs of white neighbours (Rutovitz crossing number) by weight. */
+static const uint8_t sk_runs[256] = {
+    0, 1, 1, 1, 1, 2, 1, 1, 1, 2, 2, 2, 1, 2, 1, 1, 1, 2, 2, 2, 2, 3, 2, 2, 1, 2, 2, 2, 1, 2, 1, 1,
+    1, 2, 2, 2, 2, 3, 2, 2, 2, 3, 3, 3, 2, 3, 2, 2, 1, 2, 2, 2, 2, 3, 2, 2, 1, 2, 2, 2, 1, 2, 1, 1,
+    1, 2, 2, 2, 2, 3, 2, 2, 2, 3, 3, 3, 2, 3, 2, 2, 2, 3, 3, 3, 3, 4, 3, 3, 2, 3, 3, 3, 2, 3, 2, 2,
+    1, 2, 2, 2, 2, 3, 2, 2, 2, 3, 3, 3, 2, 3, 2, 2, 1, 2, 2, 2, 2, 3, 2, 2, 1, 2, 2, 2, 1, 2, 1, 1,
+    1, 1, 2, 1, 2, 2, 2, 1, 2, 2, 3, 2, 2, 2, 2, 1, 2, 2, 3, 2, 3, 3, 3, 2, 2, 2, 3, 2, 2, 2, 2, 1,
+    2, 2, 3, 2, 3, 3, 3, 2, 3, 3, 4, 3, 3, 3, 3, 2, 2, 2, 3, 2, 3, 3, 3, 2, 2, 2, 3, 2, 2, 2, 2, 1,
+    1, 1, 2, 1, 2, 2, 2, 1, 2, 2, 3, 2, 2, 2, 2, 1, 2, 2, 3, 2, 3, 3, 3, 2, 2, 2, 3, 2, 2, 2, 2, 1,
+    1, 1, 2, 1, 2, 2, 2, 1, 2, 2, 3, 2, 2, 2, 2, 1, 1, 1, 2, 1, 2, 2, 2, 1, 1, 1, 2, 1, 1, 1, 1, 0,
+};
+
+int fl_skel_degree(uint8_t w)
+{
+    return sk_runs[w];
+}
+
+/* The K3M table byte of weight w (for the tests: bit 0 A0, bits 1..5
+ * A1..A5, bit 6 A1pix). */
+int fl_skel_k3m_table(uint8_t w)
+{
+    return sk_k3m[w];
+}
+
+void fl_skel_params_default(fl_skel_params_t *p)
+{
+    if (!p)
+        return;
+    p->max_iterations = 32;
+    p->spur_px = 3;
+    p->merge_px = 4;
+    p->arm_px = 6;
+    p->n_points = FL_SKEL_MAX_POINTS;
+    p->report_l = 0;
+}
+
+fl_status_t fl_skel_init_cfg(fl_skel_t *s, const fl_skel_params_t *p, uint32_t caller_cfg)
+{
+    if (caller_cfg != FL_CONFIG_FINGERPRINT)
+        return FL_ERR_CONFIG;   /* *s has another layout: no write is safe */
+    if (!s || !p)
+        return FL_ERR_NULL;
+    memset(s, 0, sizeof *s);
+    fl_skel_params_default(&s->params);
+    if (p->max_iterations < 1 || p->max_iterations > 255 ||
+        p->spur_px < 0 || p->spur_px > 32 || p->merge_px < 1 || p->merge_px > 32 ||
+        p->arm_px < 2 || p->arm_px > 32 || p->n_points < 0 ||
+        p->n_points > FL_SKEL_MAX_POINTS || p->report_l < 0 || p->report_l > 1)
+        return FL_ERR_RANGE;
+    s->params = *p;
+    s->magic = SK_MAGIC;
+    return FL_OK;
+}
+
+static void sk_clear_results(fl_skel_t *s)
+{
+    s->n_crossings = 0;
+    s->n_points = 0;
+    s->n_white = 0;
+    s->n_skeleton = 0;
+    s->n_nodes = 0;
+    s->iterations = 0;
+    s->spurs = 0;
+    s->contour_dropped = 0;
+    s->iter_capped = 0;
+    s->nodes_dropped = 0;
+    s->crossings_dropped = 0;
+    s->rejected = 0;
+    s->n_contour = 0;
+}
+
+/* Append working pixel i to the contour list (flagged), or count it. */
+static void sk_push(fl_skel_t *s, uint32_t i)
+{
+    if (s->n_contour < FL_SKEL_MAX_CONTOUR) {
+        s->contour[s->n_contour++] = i;
+        s->px[i] |= SK_LIST;
+    } else {
+        s->contour_dropped++;
+    }
+}
+
+/* Copy the mask into the bordered working image; the white pixels that
+ * touch the background start the contour list, in raster order. */
+static void sk_load(fl_skel_t *s, const fl_skel_mask_t *m)
+{
+    const uint32_t ps = (uint32_t)m->width + 2u;
+    int32_t x, y;
+    s->pstride = (int32_t)ps;
+    memset(s->px, 0, ps * ((uint32_t)m->height + 2u));
+    for (y = 0; y < m->height; y++) {
+        const uint8_t *row = m->data + (size_t)y * (size_t)m->stride;
+        uint8_t *out = s->px + (uint32_t)(y + 1) * ps + 1u;
+        for (x = 0; x < m->width; x++)
+            out[x] = row[x] ? (uint8_t)SK_WHITE : (uint8_t)0;
+    }
+    for (y = 1; y <= m->height; y++) {
+        uint32_t i = (uint32_t)y * ps + 1u, end = i + (uint32_t)m->width;
+        for (; i < end; i++) {
+            if (!(s->px[i] & SK_WHITE))
+                continue;
+            s->n_white++;
+            if (sk_weight(s->px, i, ps) != 255u)
+                sk_push(s, i);
+        }
+    }
+}
+
+/* Delete working pixel i; its white neighbours not yet listed join the
+ * list (they may now touch the background). */
+static void sk_delete(fl_skel_t *s, uint32_t i, const int32_t off[8])
+{
+    int k;
+    s->px[i] = (uint8_t)(s->px[i] & ~(SK_WHITE | SK_BORDER));
+    for (k = 0; k < 8; k++) {
+        uint32_t j = (uint32_t)((int32_t)i + off[k]);
+        if ((s->px[j] & (SK_WHITE | SK_LIST)) == SK_WHITE)
+            sk_push(s, j);
+    }
+}
+
+void fl_skel_compact(fl_skel_t *s)
+{
+    int32_t r, w = 0;
+    for (r = 0; r < s->n_contour; r++) {
+        uint32_t i = s->contour[r];
+        if (s->px[i] & SK_WHITE) {
+            s->px[i] = (uint8_t)(s->px[i] & ~SK_BORDER);
+            s->contour[w++] = i;
+        } else {
+            s->px[i] = 0;
+        }
+    }
+    s->n_contour = w;
+}
+
+/* One K3M iteration (phases 0..5); returns the pixels deleted. */
+static int32_t sk_iteration(fl_skel_t *s, const int32_t off[8])
+{
+    const uint32_t ps = (uint32_t)s->pstride;
+    int32_t r, n = s->n_contour, deleted = 0;
+    int phase;
+    for (r = 0; r < n; r++) {
+        uint32_t i = s->contour[r];
+        if ((s->px[i] & SK_WHITE) && (sk_k3m[sk_weight(s->px, i, ps)] & 1u))
+            s->px[i] |= SK_BORDER;
+    }
+    for (phase = 1; phase <= 5; phase++) {
+        for (r = 0; r < n; r++) {
+            uint32_t i = s->contour[r];
+            if ((s->px[i] & SK_BORDER) &&
+                (sk_k3m[sk_weight(s->px, i, ps)] & (1u << phase))) {
+                sk_delete(s, i, off);
+                deleted++;
+            }
+        }
+    }
+    fl_skel_compact(s);
+    return deleted;
+}
+
+/* Phase 6 (A1pix): the last two-pixel-thick places thinned, in list order. */
+static void sk_one_pixel(fl_skel_t *s, const int32_t off[8])
+{
+    const uint32_t ps = (uint32_t)s->pstride;
+    int32_t r, n = s->n_contour;
+    for (r = 0; r < n; r++) {
+        uint32_t i = s->contour[r];
+        if ((s->px[i] & SK_WHITE) && (sk_k3m[sk_weight(s->px, i, ps)] & 0x40u))
+            sk_delete(s, i, off);
+    }
+    fl_skel_compact(s);
+}
+
+fl_status_t fl_skel_run(fl_skel_t *s, const fl_skel_mask_t *mask, uint32_t seed)
+{
+    int32_t off[8];
+    if (!s)
+        return FL_ERR_NULL;
+    if (s->magic != SK_MAGIC)
+        return FL_ERR_STATE;
+    sk_clear_results(s);
+    s->width = 0;
+    s->height = 0;
+    if (!mask || !mask->data)
+        return FL_ERR_NULL;
+    if (mask->width < 1 || mask->width > FL_SKEL_MAX_WIDTH ||
+        mask->height < 1 || mask->height > FL_SKEL_MAX_HEIGHT)
+        return FL_ERR_SIZE;
+    if (mask->stride < mask->width)
+        return FL_ERR_STRIDE;
+    s->width = mask->width;
+    s->height = mask->height;
+    sk_load(s, mask);
+    sk_offsets(s->pstride, off);
+    while (s->iterations < s->params.max_iterations) {
+        s->iterations++;
+        if (sk_iteration(s, off) == 0)
+            break;
+        if (s->iterations == s->params.max_iterations)
+            s->iter_capped = 1;
+    }
+    sk_one_pixel(s, off);
+    fl_skel_find_crossings(s, seed);
+    return FL_OK;
+}
+
+int fl_skel_pixel(const fl_skel_t *s, int32_t x, int32_t y)
+{
+    if (!s || x < 0 || y < 0 || x >= s->width || y >= s->height)
+        return 0;
+    return (s->px[(uint32_t)(y + 1) * (uint32_t)s->pstride + (uint32_t)x + 1u] & SK_WHITE) ? 1 : 0;
+}

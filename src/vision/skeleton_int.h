@@ -1,0 +1,44 @@
+/*
+ * src/vision/skeleton_int.h - private: the working image's flags and the
+ * helpers shared by skeleton.c (thinning) and skeleton_cross.c (nodes,
+ * crossings, the sample).
+ */
+#ifndef FL_SKELETON_INT_H
+#define FL_SKELETON_INT_H
+
+#include "fieldloc/skeleton.h"
+
+/* Flags of one working pixel (fl_skel_t.px). */
+#define SK_WHITE  1u   /* white (mask, then skeleton) */
+#define SK_LIST   2u   /* in the contour list */
+#define SK_BORDER 4u   /* K3M phase 0 mark of this iteration */
+#define SK_SEEN   8u   /* visited by a walk or a flood (cleared after) */
+
+#define SK_MAGIC 0x736b656cu
+
+/* Neighbourhood weight of working pixel i: bit 0 N, 1 NE, 2 E, 3 SE, 4 S,
+ * 5 SW, 6 W, 7 NW (K3M's weights 1, 2, 4, ... 128 clockwise from N). */
+static inline uint32_t sk_weight(const uint8_t *px, uint32_t i, uint32_t ps)
+{
+    return (px[i - ps] & 1u) | (uint32_t)(px[i - ps + 1] & 1u) << 1 |
+           (uint32_t)(px[i + 1] & 1u) << 2 | (uint32_t)(px[i + ps + 1] & 1u) << 3 |
+           (uint32_t)(px[i + ps] & 1u) << 4 | (uint32_t)(px[i + ps - 1] & 1u) << 5 |
+           (uint32_t)(px[i - 1] & 1u) << 6 | (uint32_t)(px[i - ps - 1] & 1u) << 7;
+}
+
+/* Offsets of the 8 neighbours in weight-bit order, for a row stride ps. */
+static inline void sk_offsets(int32_t ps, int32_t off[8])
+{
+    off[0] = -ps;     off[1] = -ps + 1; off[2] = 1;      off[3] = ps + 1;
+    off[4] = ps;      off[5] = ps - 1;  off[6] = -1;     off[7] = -ps - 1;
+}
+
+/* Drop the pixels that are no longer white from the contour list and
+ * clear their flags; clear the border marks of the others (skeleton.c). */
+void fl_skel_compact(fl_skel_t *s);
+
+/* Nodes, spur removal, crossings and the sample over the thinned image
+ * (skeleton_cross.c). */
+void fl_skel_find_crossings(fl_skel_t *s, uint32_t seed);
+
+#endif /* FL_SKELETON_INT_H */
