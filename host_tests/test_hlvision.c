@@ -6,6 +6,7 @@
 #include "test.h"
 #include "fieldloc/fieldloc.h"
 #include "world/render.h"
+#include "world/truth.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -100,7 +101,7 @@ static void test_boxes(void)
     }
     /* params: ranges refused */
     fl_hlv_params_default(&p, NULL);
-    p.col_step = 0;
+    p.mask_step_u = 0;
     CHECK_EQ(fl_hlv_init(&hv, &p), FL_ERR_RANGE);
     fl_hlv_params_default(&p, NULL);
     p.max_range_mm = FL_OBS_MAX_RANGE_MM + 1;
@@ -377,7 +378,91 @@ static void test_bad_input(void)
 typedef struct {
     int truth[2], found[2], wrong_kind, extra, sided, wrong_side;  /* [0] posts, [1] poles */
     double rng_sum[2], rng_max[2], brg_max[2];  /* relative range, deg */
+    /* crossings: [0] up to 1.5 m, [1] 1.5..2.5 m */
+    int cr_truth[2], cr_found[2], cr_kind_ok, cr_false, cr_orient_n;
+    double cr_err_sum, cr_err_max, cr_orient_max;   /* ground mm, deg */
 } t_score_t;
+
+/* Degrees of a binary angle difference wrapped to (-180, 180], mod m deg. */
+static double t_angle_err(fl_angle_t a, fl_angle_t b, double mod)
+{
+    double d = fl_angle_to_mdeg(fl_angle_sub(a, b)) / 1000.0;
+    d = fmod(fabs(d), mod);
+    return d > mod / 2 ? mod - d : d;
+}
+
+/* Crossings (X, T) against the truth: a truth X or T, not occluded, at
+ * least 16 px inside the image and within 2.5 m, must be matched by a
+ * detection of its kind within 150 mm + 10 % of its range on the ground;
+ * every X / T detection must lie that close to some crossing or mark of
+ * the truth (else false). */
+static void score_crossings(const render_scene_t *sc, const fl_obs_list_t *obs, t_score_t *s)
+{
+    static truth_t t;
+    int k, i;
+    if (truth_compute(sc, NULL, &t) != 0) {
+        CHECK(0);
+        return;
+    }
+    for (k = 0; k < t.n; k++) {
+        const truth_feature_t *f = &t.f[k];
+        int best = -1, bin;
+        double bd = 1e9;
+        if ((f->kind != TRUTH_X && f->kind != TRUTH_T) || f->occluded || f->u < 16 || f->v < 16 ||
+            f->u > HW - 17 || f->v > HH - 17 || f->range_mm > 2500)
+            continue;
+        bin = f->range_mm > 1500;
+        s->cr_truth[bin]++;
+        for (i = 0; i < obs->n; i++) {
+            const fl_obs_t *o = &obs->obs[i];
+            fl_point_t p;
+            double d;
+            if (o->kind != FL_LM_X && o->kind != FL_LM_T)
+                continue;
+            p = fl_point_from_polar(o->range_mm, o->bearing);
+            d = hypot(p.x_mm - f->robot_x_mm, p.y_mm - f->robot_y_mm);
+            if (d < bd) {
+                bd = d;
+                best = i;
+            }
+        }
+        if (best < 0 || bd > 150 + 0.1 * f->range_mm)
+            continue;
+        s->cr_found[bin]++;
+        s->cr_err_sum += bd;
+        if (bd > s->cr_err_max)
+            s->cr_err_max = bd;
+        if ((obs->obs[best].kind == FL_LM_X) == (f->kind == TRUTH_X))
+            s->cr_kind_ok++;
+        if (obs->obs[best].has_orientation && f->landmark >= 0) {
+            fl_angle_t o;
+            if (fl_landmark_orientation(&sc->field->landmarks[f->landmark], &o)) {
+                const fl_angle_t want = fl_angle_sub(o, sc->robot_heading);
+                const double e = t_angle_err(obs->obs[best].orientation, want,
+                                             f->kind == TRUTH_X ? 90.0 : 360.0);
+                s->cr_orient_n++;
+                if (e > s->cr_orient_max)
+                    s->cr_orient_max = e;
+            }
+        }
+    }
+    for (i = 0; i < obs->n; i++) {
+        const fl_obs_t *o = &obs->obs[i];
+        fl_point_t p;
+        int near = 0;
+        if (o->kind != FL_LM_X && o->kind != FL_LM_T)
+            continue;
+        p = fl_point_from_polar(o->range_mm, o->bearing);
+        for (k = 0; k < t.n; k++) {
+            const truth_feature_t *f = &t.f[k];
+            if (f->kind > TRUTH_CENTRE_MARK && f->kind != TRUTH_CIRCLE_ARC)
+                continue;
+            if (hypot(p.x_mm - f->robot_x_mm, p.y_mm - f->robot_y_mm) <= 150 + 0.1 * f->range_mm)
+                near = 1;
+        }
+        s->cr_false += !near;
+    }
+}
 
 /* Score one frame: every post and pole of the field whose foot projects
  * at least 8 px inside the image, with its whole height below the top and
@@ -506,6 +591,7 @@ static void test_rendered(void)
         fl_hlv_frame(st, &fr.view, &cam, &obs);
         CHECK_EQ(st->status, FL_OK);
         score_frame(&sc, &cam, &obs, &s);
+        score_crossings(&sc, &obs, &s);
         if (verbose) {
             int i;
             char path[64];
@@ -530,6 +616,18 @@ static void test_rendered(void)
            100 * s.rng_max[0], s.brg_max[0], s.found[1], s.truth[1],
            s.found[1] ? 100 * s.rng_sum[1] / s.found[1] : 0, 100 * s.rng_max[1], s.brg_max[1],
            s.wrong_kind, s.extra, s.sided, s.wrong_side);
+    t_info("crossings: found %d/%d up to 1.5 m, %d/%d at 1.5..2.5 m, kind right %d, "
+           "ground error mean %.0f mm max %.0f mm, orientation (%d) max %.1f deg, false %d",
+           s.cr_found[0], s.cr_truth[0], s.cr_found[1], s.cr_truth[1], s.cr_kind_ok,
+           s.cr_found[0] + s.cr_found[1] ? s.cr_err_sum / (s.cr_found[0] + s.cr_found[1]) : 0,
+           s.cr_err_max, s.cr_orient_n, s.cr_orient_max, s.cr_false);
+    CHECK(s.cr_truth[0] >= frames / 4);
+    CHECK_LE(s.cr_truth[0] - s.cr_found[0], s.cr_truth[0] / 5);   /* >= 80 % up to 1.5 m */
+    CHECK_LE(s.cr_truth[1] - s.cr_found[1], s.cr_truth[1] / 2);   /* >= 50 % to 2.5 m */
+    CHECK_EQ(s.cr_kind_ok, s.cr_found[0] + s.cr_found[1]);       /* X never for T */
+    CHECK_LE(s.cr_err_max, 60);
+    CHECK_LE(s.cr_orient_max, 30);
+    CHECK_LE(s.cr_false, frames / 16);
     CHECK(s.truth[0] >= frames / 4);
     CHECK(s.truth[1] >= frames / 8);
     CHECK_LE(s.truth[0] - s.found[0], s.truth[0] / 10);   /* >= 90 % of the posts */

@@ -7,7 +7,7 @@
  *   [5] stride padding, [6] camera index (bit 7 set: the catalogue model
  *   as it is, usually of another size than the frame: the refusal path;
  *   clear: that model rescaled to the frame), [7..8] head pitch, [9]
- *   col_step / row_step, [10] mask steps, [11] surround, gap, crossings
+ *   min_cols, [10] grid steps, [11] surround, gap, crossings
  * then pixel bytes (repeated to fill the frame).  The stage must return
  * without touching memory outside the view, keep its output bounded and
  * every observation well formed.
@@ -36,8 +36,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (size < 12)
         return 0;
     fl_hlv_params_default(&p, fl_field_find("hl3x2"));
-    p.col_step = 1 + (data[9] & 15);
-    p.row_step = 1 + ((data[9] >> 4) & 7);
+    p.min_cols = 1 + (data[9] & 7);
     p.mask_step_u = 1 + (data[10] & 15);
     p.mask_step_v = 1 + ((data[10] >> 4) & 15);
     p.surround_px = 1 + (data[11] & 31);

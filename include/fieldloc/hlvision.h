@@ -18,8 +18,12 @@
  * classic CMVision layout).  Pixels are read as Y, Cb, Cr by image.c's
  * integer BT.601 conversion for every format of image.h.
  *
- * Posts and poles (seed 002 IV.B.1, IV.B.2).  Every col_step-th column is
- * read bottom-up at row_step, as runs of one class (gaps of up to gap_px
+ * One class grid.  The image is classified once, every mask_step_u
+ * columns and mask_step_v rows (grid cell (i, j) is image pixel
+ * (i * su + su / 2, j * sv + sv / 2), clamped to the image), row by row.
+ *
+ * Posts and poles (seed 002 IV.B.1, IV.B.2).  Every grid column is read
+ * bottom-up as runs of one class (gaps of up to gap_px
  * unclassified pixels bridged).  The lowest yellow or sky-blue run with a
  * green run right below it (within green_gap_px) starts an object: if the
  * run above it is the other colour and the one above that the first colour
@@ -47,9 +51,7 @@
  * the arms by obs.h's conventions when the skeleton gives them), and the
  * white points (fl_obs_list_push_point).  Image positions in u_q4 / v_q4.
  *
- * Mask (seed 002 IV.B.3).  The image is sampled every mask_step_u columns
- * and mask_step_v rows (pixel (i, j) of the mask is image pixel
- * (i * su + su / 2, j * sv + sv / 2)) below the horizon.  A white sample is
+ * Mask (seed 002 IV.B.3).  The grid below the horizon.  A white sample is
  * in the mask when green lies within surround_px samples on both sides
  * along its row, or on both sides along its column.  The skeleton stage
  * (skeleton.h: K3M thinning, node degrees, crossings merged) gives X and
@@ -59,8 +61,9 @@
  * 8 mask px along each), X: the first arm, T: the arm without an opposite
  * (the one farthest from 180 deg to both others), as obs.h states.
  *
- * Work per frame (bounded): (W / col_step) * (H / row_step) pixel reads for
- * the columns, (W / su) * (H / sv) reads and three passes for the mask,
+ * Work per frame (bounded): (W / su) * (H / sv) pixel reads for the grid,
+ * one pass over the columns that hold yellow or sky-blue, at most
+ * 2 * surround_px reads per white cell for the mask,
  * the skeleton stage's own bound on that mask, and at most FL_HLV_MAX_RUNS
  * runs per column and FL_HLV_MAX_OBJECTS objects.  No heap, no floats.
  */
@@ -96,8 +99,6 @@ typedef struct {
 
 typedef struct {
     fl_hlv_box_t box[FL_HLV_N_BOXES];
-    int32_t col_step;       /* columns read for posts and poles, 1..16 */
-    int32_t row_step;       /* rows within a column, 1..8 */
     int32_t gap_px;         /* unclassified pixels bridged in a run, 0..32 */
     int32_t green_gap_px;   /* foot: green within this below, 0..32 */
     int32_t min_green_px;   /* the green run below a foot, 1..64 */
@@ -105,8 +106,8 @@ typedef struct {
     int32_t min_band_px;    /* each band of a pole, 1..160 */
     int32_t min_cols;       /* scanned columns per object, 1..64 */
     int32_t foot_tol_px;    /* feet of adjoining columns, 0..480 */
-    int32_t mask_step_u;    /* image columns per mask column, 1..16 */
-    int32_t mask_step_v;    /* image rows per mask row, 1..16 */
+    int32_t mask_step_u;    /* image columns per grid (mask) column, 1..16 */
+    int32_t mask_step_v;    /* image rows per grid (mask) row, 1..16 */
     int32_t surround_px;    /* green within this many mask px, 1..32 */
     int32_t post_diameter_mm;  /* 10..1000 */
     int32_t pole_diameter_mm;  /* 10..1000 */
@@ -125,7 +126,7 @@ typedef enum {
 
 typedef struct {
     fl_hlv_kind_t kind;
-    int32_t u0, u1;          /* first and last scanned column, image px */
+    int32_t u0, u1;          /* first and last grid column, image px */
     int32_t foot_v;          /* lowest foot (bottom of the coloured run) */
     int32_t top_v;           /* highest top of the object's runs */
     int32_t band_v[2];       /* poles: the two band boundaries (median
@@ -133,17 +134,19 @@ typedef struct {
     int32_t foot_u0, foot_u1; /* the columns whose feet are within a row
                                 step of the lowest: the foot lies between */
     fl_side_t side;          /* posts */
-    uint16_t cols;           /* scanned columns */
+    uint16_t cols;           /* grid columns */
 } fl_hlv_object_t;
 
 typedef struct {
     fl_hlv_params_t params;
     uint8_t ytab[256], cbtab[256], crtab[256];
-    /* mask grid: class bits, then the mask (0/1) of the skeleton stage */
+    /* the grid: class bits (every row), and the mask (0/1) of the
+     * skeleton stage (rows above the horizon 0) */
     int32_t mask_w, mask_h;
     uint8_t cls[FL_SKEL_MAX_WIDTH * FL_SKEL_MAX_HEIGHT];
     uint8_t mask[FL_SKEL_MAX_WIDTH * FL_SKEL_MAX_HEIGHT];
-    uint8_t below[FL_SKEL_MAX_WIDTH];   /* per column: samples to green below */
+    uint8_t colbits[FL_SKEL_MAX_WIDTH]; /* per grid column: OR of its classes */
+    uint8_t up[FL_SKEL_MAX_WIDTH];      /* per grid column: cells since green */
     fl_skel_t skel;                     /* the skeleton of the mask */
     fl_hlv_object_t objects[FL_HLV_MAX_OBJECTS];
     uint16_t n_objects;

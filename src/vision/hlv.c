@@ -19,20 +19,26 @@
  * changes luma most), white from 160 (below it the green box's top, 153,
  * stays apart).  The boxes do not overlap.
  *
- * Default mask resolution (mask_step_u 4, mask_step_v 2 on 640x480: a
- * 160 x 240 mask).  On a camera looking down from a small humanoid's head,
- * a painted line w wide at ground range d is about f * w / d pixels wide
- * when it runs away from the camera and f * h * w / d^2 pixels tall when
- * it runs across the view (h the camera's height), so lines are much
- * thinner vertically than horizontally.  With f = 554 px (640 px, 60 deg)
- * and h = 450 mm, a 50 mm line at 2.5 m is 11 px wide and 2 px tall: a
- * 4 x 2 grid keeps at least one sample across every line out to the far
- * side of a 3 x 2 m field (2.5 m), and on the near lines (at 0.6 m:
- * 46 px wide, 35 px tall, 12 x 17 samples) it still leaves the skeleton
- * stage few thinning passes.  A square 4 x 4 grid loses the cross lines
- * beyond about 1.8 m; 2 x 2 doubles the mask (and the thinning) for
- * detail only the horizontal direction does not need.  surround_px 12
- * covers half the widest near line in either direction (17 / 2 rows).
+ * Default grid (mask_step_u 4, mask_step_v 2 on 640x480: 160 x 240).  On a
+ * camera looking down from a small humanoid's head, a painted line w wide
+ * at ground range d is about f * w / d pixels wide when it runs away from
+ * the camera and f * h * w / d^2 pixels tall when it runs across the view
+ * (h the camera's height), so lines are much thinner vertically than
+ * horizontally.  On hl3x2 (w = 25 mm) with acyut-640 (f = 554 px,
+ * h = 460 mm): at 1.5 m a line is 9 px wide and 2.8 px tall, at 2.5 m
+ * 5.5 px and 1.0 px; at 0.6 m 23 px and 18 px.  A grid 4 px wide keeps a
+ * line running away at least one sample wide to 2.5 m, 2 px tall keeps
+ * the cross lines to about 2 m (thinner ones break up), and the near
+ * lines are at most 6 x 9 cells, so the thinning runs few passes and
+ * surround_px 12 covers half of the widest.  Measured on the 48 rendered
+ * frames of host_tests/test_hlvision.c (hlvision.rendered): 4 x 2 finds
+ * 23/26 crossings up to 1.5 m and 12/17 at 1.5..2.5 m, every kind right,
+ * orientation within 21 deg; 4 x 4 (half the cells) 20/26 and 1/17;
+ * 2 x 2 (twice the cells) 20/26 and 15/17 but 7 of 35 kinds wrong (the
+ * near lines are twice as many cells thick: spurs become arms) and 17
+ * split or spurious posts; 2 x 4 19/26, 4/17, 3 false crossings.  The
+ * whole frame costs 4.0 M instructions at 4 x 2 (callgrind, one rendered
+ * YUYV frame: grid 1.1 M, mask 0.7 M, objects 0.2 M, skeleton 1.6 M).
  */
 #include "hlv_int.h"
 #include "fieldloc/fixed.h"
@@ -52,8 +58,6 @@ void fl_hlv_params_default(fl_hlv_params_t *p, const fl_field_t *field)
         return;
     memset(p, 0, sizeof *p);
     memcpy(p->box, hlv_default_box, sizeof p->box);
-    p->col_step = 4;
-    p->row_step = 2;
     p->gap_px = 4;
     p->green_gap_px = 6;
     p->min_green_px = 4;
@@ -89,7 +93,7 @@ fl_status_t fl_hlv_params_check(const fl_hlv_params_t *p)
 {
     if (p == NULL)
         return FL_ERR_NULL;
-    if (!in(p->col_step, 1, 16) || !in(p->row_step, 1, 8) || !in(p->gap_px, 0, 32) ||
+    if (!in(p->gap_px, 0, 32) ||
         !in(p->green_gap_px, 0, 32) || !in(p->min_green_px, 1, 64) ||
         !in(p->min_post_px, 2, 480) || !in(p->min_band_px, 1, 160) || !in(p->min_cols, 1, 64) ||
         !in(p->foot_tol_px, 0, 480) || !in(p->mask_step_u, 1, 16) || !in(p->mask_step_v, 1, 16) ||
@@ -148,9 +152,8 @@ void fl_hlv_mask_to_image(const fl_hlv_t *s, int32_t mx_q4, int32_t my_q4, int32
 /* Does the object's width in the image fit its diameter at that range?
  * Expected f * D / range px (the ground range: a little more than the
  * true one for near objects, where the camera's height adds to the
- * distance); measured (u1 - u0 + col_step) px, each end known to
- * col_step.  Kept within [expected / 2 - col_step, 3 * expected +
- * 2 * col_step]: shading may eat the dark side of a cylinder and a near
+ * distance); measured (u1 - u0 + su) px, each end known to a grid
+ * step su.  Kept within [expected / 2 - su, 3 * expected + 2 * su]: shading may eat the dark side of a cylinder and a near
  * post at the image's side leans (its columns span more than its
  * diameter), but a yellow box beside the field, whose foot seems to stand
  * on the carpet far away, is many times too wide. */
@@ -158,7 +161,7 @@ static bool width_fits(const fl_hlv_t *s, const fl_hlv_object_t *o, const fl_cam
                        int32_t range_mm, bool pole)
 {
     const int32_t d = pole ? s->params.pole_diameter_mm : s->params.post_diameter_mm;
-    const int32_t step = s->params.col_step, width = o->u1 - o->u0 + step;
+    const int32_t step = s->params.mask_step_u, width = o->u1 - o->u0 + step;
     int64_t expect_q4;
     if (range_mm < 1)
         range_mm = 1;
@@ -364,6 +367,7 @@ int32_t fl_hlv_frame(fl_hlv_t *s, const fl_image_t *img, const fl_camera_t *cam,
     v0 = ground_row(cam, img->width, img->height);
     s->mask_w = (img->width + s->params.mask_step_u - 1) / s->params.mask_step_u;
     s->mask_h = (img->height + s->params.mask_step_v - 1) / s->params.mask_step_v;
+    fl_hlv_int_classify(s, img);
     fl_hlv_int_objects(s, img, v0);
     for (i = 0; i < s->n_objects; i++)
         if (s->objects[i].kind <= FL_HLV_POST_BLUE)
@@ -374,7 +378,7 @@ int32_t fl_hlv_frame(fl_hlv_t *s, const fl_image_t *img, const fl_camera_t *cam,
             push_object(s, &s->objects[i], cam, out);
     if (s->params.crossings) {
         fl_skel_mask_t m;
-        fl_hlv_int_mask(s, img, (v0 + s->params.mask_step_v - 1) / s->params.mask_step_v);
+        fl_hlv_int_mask(s, (v0 + s->params.mask_step_v - 1) / s->params.mask_step_v);
         m.data = s->mask;
         m.width = s->mask_w;
         m.height = s->mask_h;

@@ -2,7 +2,7 @@
  * src/vision/hlv_cols.c - goal posts and striped landmark poles (seed 002
  * IV.B.1 and IV.B.2), column by column.
  *
- * A column is read bottom-up as runs of one colour (yellow, sky-blue,
+ * A grid column (hlvision.h) is read bottom-up as runs of one colour (yellow, sky-blue,
  * green, white; anything else ends a run unless the gap is at most
  * gap_px).  The lowest yellow or sky-blue run with a green run of at least
  * min_green_px right below (within green_gap_px), or a white run right
@@ -15,7 +15,7 @@
  * seen pole: not identified, so not reported).  Else the first band alone,
  * at least min_post_px high, is a post.
  *
- * Adjoining scanned columns of one kind whose feet differ by at most
+ * Adjoining grid columns of one kind whose feet differ by at most
  * foot_tol_px form an object; objects of fewer than min_cols columns are
  * dropped (single-column noise).
  */
@@ -48,15 +48,16 @@ static uint8_t run_class(uint8_t c)
     return 0;
 }
 
-/* Runs of column u from the bottom up to row v_top; returns their count. */
-static int32_t column_runs(fl_hlv_t *s, const fl_image_t *img, int32_t u, int32_t v_top,
-                           hlv_run_t *runs)
+/* Runs of grid column i from the bottom up (rows as image rows); returns
+ * their count. */
+static int32_t column_runs(fl_hlv_t *s, int32_t i, int32_t height, hlv_run_t *runs)
 {
-    const int32_t step = s->params.row_step, gap = s->params.gap_px;
-    int32_t n = 0, v, last_v = -1;
+    const int32_t step = s->params.mask_step_v, gap = s->params.gap_px;
+    int32_t n = 0, j, last_v = -1;
     uint8_t cur = 0;
-    for (v = img->height - 1; v >= v_top; v -= step) {
-        const uint8_t c = run_class(hlv_pixel_class(s, img, u, v));
+    for (j = s->mask_h - 1; j >= 0; j--) {
+        const uint8_t c = run_class(s->cls[j * s->mask_w + i]);
+        const int32_t v = j * step + step / 2 < height ? j * step + step / 2 : height - 1;
         if (c == 0)
             continue;
         if (c == cur && last_v - v <= gap + step) {
@@ -98,24 +99,24 @@ static void classify_column(const fl_hlv_t *s, const hlv_run_t *runs, int32_t n,
         uint8_t other;
         if (a->cls != FL_HLV_YELLOW && a->cls != FL_HLV_BLUE)
             continue;
-        if (!adjacent(g, a, p->green_gap_px, p->row_step))
+        if (!adjacent(g, a, p->green_gap_px, p->mask_step_v))
             continue;
         /* a painted line right below and green below that: a post on
          * the goal line */
         if (g->cls == FL_HLV_WHITE) {
-            if (k < 2 || !adjacent(&runs[k - 2], g, p->green_gap_px, p->row_step))
+            if (k < 2 || !adjacent(&runs[k - 2], g, p->green_gap_px, p->mask_step_v))
                 continue;
             g = &runs[k - 2];
         }
-        if (g->cls != FL_HLV_GREEN || run_len(g, p->row_step) < p->min_green_px)
+        if (g->cls != FL_HLV_GREEN || run_len(g, p->mask_step_v) < p->min_green_px)
             continue;
         other = a->cls == FL_HLV_YELLOW ? FL_HLV_BLUE : FL_HLV_YELLOW;
         out->foot = a->lo;
-        if (k + 1 < n && runs[k + 1].cls == other && adjacent(a, &runs[k + 1], p->gap_px, p->row_step)) {
+        if (k + 1 < n && runs[k + 1].cls == other && adjacent(a, &runs[k + 1], p->gap_px, p->mask_step_v)) {
             const hlv_run_t *b = &runs[k + 1], *c = k + 2 < n ? &runs[k + 2] : NULL;
-            if (c && c->cls == a->cls && adjacent(b, c, p->gap_px, p->row_step) &&
-                run_len(a, p->row_step) >= p->min_band_px && run_len(b, p->row_step) >= p->min_band_px &&
-                run_len(c, p->row_step) >= p->min_band_px) {
+            if (c && c->cls == a->cls && adjacent(b, c, p->gap_px, p->mask_step_v) &&
+                run_len(a, p->mask_step_v) >= p->min_band_px && run_len(b, p->mask_step_v) >= p->min_band_px &&
+                run_len(c, p->mask_step_v) >= p->min_band_px) {
                 out->kind = a->cls == FL_HLV_YELLOW ? FL_HLV_POLE_YBY : FL_HLV_POLE_BYB;
                 out->top = c->hi;
                 out->band_lo = a->hi;
@@ -123,7 +124,7 @@ static void classify_column(const fl_hlv_t *s, const hlv_run_t *runs, int32_t n,
             }
             return;   /* two colours without a third band: not identified */
         }
-        if (run_len(a, p->row_step) >= p->min_post_px) {
+        if (run_len(a, p->mask_step_v) >= p->min_post_px) {
             out->kind = a->cls == FL_HLV_YELLOW ? FL_HLV_POST_YELLOW : FL_HLV_POST_BLUE;
             out->top = a->hi;
             out->band_lo = out->band_hi = -1;
@@ -137,7 +138,7 @@ static void classify_column(const fl_hlv_t *s, const hlv_run_t *runs, int32_t n,
  * be off by up to half its width). */
 static void close_object(fl_hlv_t *s, fl_hlv_object_t *o, int32_t width)
 {
-    const int32_t step = s->params.col_step;
+    const int32_t step = s->params.mask_step_u;
     if (o->cols < s->params.min_cols || o->u0 - step < 0 || o->u1 + step >= width)
         return;
     if (s->n_objects == FL_HLV_MAX_OBJECTS) {
@@ -156,7 +157,7 @@ static void close_object(fl_hlv_t *s, fl_hlv_object_t *o, int32_t width)
 static int32_t crossbar_side(const fl_hlv_t *s, const fl_image_t *img, const fl_hlv_object_t *o,
                              uint8_t cls)
 {
-    const int32_t w = o->u1 - o->u0 + s->params.col_step;
+    const int32_t w = o->u1 - o->u0 + s->params.mask_step_u;
     int32_t side, k, dv, hits[2] = {0, 0};
     if (o->top_v <= 0)
         return 0;   /* the top is not in the image */
@@ -250,19 +251,22 @@ static void add_column(fl_hlv_object_t *o, const hlv_col_t *col, int32_t u, int3
 
 void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start)
 {
-    const int32_t step = s->params.col_step;
+    const int32_t step = s->params.mask_step_u;
     hlv_run_t runs[FL_HLV_MAX_RUNS];
     fl_hlv_object_t cur;
     hlv_col_t last;
-    int32_t u, last_u = -1;
+    int32_t i, last_u = -1;
     s->n_objects = 0;
     memset(&cur, 0, sizeof cur);
     memset(&last, 0, sizeof last);
     if (v_start < 0)
         v_start = 0;
-    for (u = step / 2; u < img->width; u += step) {
+    for (i = 0; i < s->mask_w; i++) {
         hlv_col_t col;
-        const int32_t n = column_runs(s, img, u, 0, runs);   /* tops may be above the horizon */
+        /* tops may be above the horizon: the whole column; a column
+         * without yellow or sky-blue has nothing to find */
+        const int32_t n = (s->colbits[i] & (FL_HLV_YELLOW | FL_HLV_BLUE)) ? column_runs(s, i, img->height, runs) : 0;
+        const int32_t u = i * step + step / 2 < img->width ? i * step + step / 2 : img->width - 1;
         classify_column(s, runs, n, &col);
         if (col.kind != 0 && col.foot < v_start)
             col.kind = 0;   /* a foot above the horizon is no foot */
@@ -284,7 +288,7 @@ void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start)
         }
         if (col.kind == 0)
             continue;
-        add_column(&cur, &col, u, s->params.row_step);
+        add_column(&cur, &col, u, s->params.mask_step_v);
         last_u = u;
         last = col;
     }

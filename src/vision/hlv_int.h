@@ -17,17 +17,18 @@ static inline uint8_t hlv_pixel_class(const fl_hlv_t *s, const fl_image_t *img, 
     return fl_hlv_class(s, p[0], p[1], p[2]);
 }
 
-/* Posts and poles of the frame into s->objects (cleared first); sides of
- * posts from their pairing or a crossbar.  v_start: the first row (from
- * the top) that can see the ground, so feet above it are not looked for.
- * Work: (W / col_step) * (H / row_step) pixel reads plus a few probes per
- * object. */
+/* The class grid of the frame into s->cls (s->mask_w, mask_h set). */
+void fl_hlv_int_classify(fl_hlv_t *s, const fl_image_t *img);
+
+/* Posts and poles of the frame from the class grid into s->objects
+ * (cleared first); sides of posts from their pairing or a crossbar (a few
+ * pixel probes).  v_start: the first image row that can see the ground,
+ * so feet above it are not looked for.  Work: one pass over the grid. */
 void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start);
 
-/* The mask of white samples surrounded by green into s->mask (and the
- * classes into s->cls), rows of the mask from mask row j0 down (above it:
- * 0).  s->mask_w, mask_h must be set.  Work: mask_w * mask_h pixel reads
- * and three passes over the mask. */
-void fl_hlv_int_mask(fl_hlv_t *s, const fl_image_t *img, int32_t j0);
+/* The mask of white cells surrounded by green into s->mask from the
+ * class grid, from grid row j0 down (above it: 0).  Work: two passes
+ * over the grid. */
+void fl_hlv_int_mask(fl_hlv_t *s, int32_t j0);
 
 #endif /* FIELDLOC_HLV_INT_H */
