@@ -76,13 +76,19 @@ static void rect(uint8_t *rgb, int w, int h, int u0, int v0, int u1, int v1, con
 
 static void draw_mask(const fl_hlv_t *hv, uint8_t *rgb, int w, int h)
 {
-    static const uint8_t c_mask[3] = {120, 200, 255};
+    static const uint8_t c_mask[3] = {120, 200, 255}, c_skel[3] = {255, 0, 0};
     const int su = hv->params.mask_step_u, sv = hv->params.mask_step_v;
-    int i, j;
+    int i, j, a, b;
     for (j = 0; j < hv->mask_h; j++)
-        for (i = 0; i < hv->mask_w; i++)
-            if (hv->mask[j * hv->mask_w + i])
-                put(rgb, w, h, i * su + su / 2, j * sv + sv / 2, c_mask);
+        for (i = 0; i < hv->mask_w; i++) {
+            const int sk = hv->params.crossings && fl_skel_pixel(&hv->skel, i, j);
+            if (!hv->mask[j * hv->mask_w + i] && !sk)
+                continue;
+            /* the whole cell, so that the skeleton reads as a line */
+            for (b = 0; b < sv; b++)
+                for (a = 0; a < su; a++)
+                    put(rgb, w, h, i * su + a, j * sv + b, sk ? c_skel : c_mask);
+        }
 }
 
 static void draw_objects(const fl_hlv_t *hv, uint8_t *rgb, int w, int h)
