@@ -58,7 +58,7 @@
  * T crossings and a sample of skeleton pixels in mask coordinates; each
  * is mapped to the image and through the camera to the ground.  A
  * crossing's orientation: its arms are mapped to the ground (a point
- * 8 mask px along each), X: the first arm, T: the arm without an opposite
+ * 16 mask px along each), X: the first arm, T: the arm without an opposite
  * (the one farthest from 180 deg to both others), as obs.h states.
  *
  * Work per frame (bounded): (W / su) * (H / sv) pixel reads for the grid,

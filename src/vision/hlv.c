@@ -239,7 +239,7 @@ static bool mask_to_ground(const fl_hlv_t *s, const fl_camera_t *cam, int32_t x_
     return fl_camera_pixel_to_ground(cam, u_q4, v_q4, g);
 }
 
-/* Ground direction of each arm: the crossing and a point 8 mask px along
+/* Ground direction of each arm: the crossing and a point 16 mask px along
  * the arm, both on the ground.  False when one is not. */
 static bool arms_on_ground(const fl_hlv_t *s, const fl_camera_t *cam, const fl_skel_crossing_t *c,
                            fl_point_t at, fl_angle_t *dir)
@@ -247,8 +247,8 @@ static bool arms_on_ground(const fl_hlv_t *s, const fl_camera_t *cam, const fl_s
     int32_t k;
     for (k = 0; k < c->kind; k++) {
         fl_point_t e;
-        const int32_t ex = c->x_q4 + fl_rshift_round((int64_t)fl_cos_q15(c->arm[k]) * 128, 15);
-        const int32_t ey = c->y_q4 + fl_rshift_round((int64_t)fl_sin_q15(c->arm[k]) * 128, 15);
+        const int32_t ex = c->x_q4 + fl_rshift_round((int64_t)fl_cos_q15(c->arm[k]) * 256, 15);
+        const int32_t ey = c->y_q4 + fl_rshift_round((int64_t)fl_sin_q15(c->arm[k]) * 256, 15);
         if (!mask_to_ground(s, cam, ex, ey, &e))
             return false;
         dir[k] = fl_atan2(e.y_mm - at.y_mm, e.x_mm - at.x_mm);
