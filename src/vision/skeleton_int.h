@@ -13,6 +13,7 @@
 #define SK_LIST   2u   /* in the contour list */
 #define SK_BORDER 4u   /* K3M phase 0 mark of this iteration */
 #define SK_SEEN   8u   /* visited by a walk or a flood (cleared after) */
+#define SK_NODE   16u  /* a listed node pixel (skeleton_cross.c) */
 
 #define SK_MAGIC 0x736b656cu
 
@@ -36,6 +37,11 @@ static inline void sk_offsets(int32_t ps, int32_t off[8])
 /* Drop the pixels that are no longer white from the contour list and
  * clear their flags; clear the border marks of the others (skeleton.c). */
 void fl_skel_compact(fl_skel_t *s);
+
+/* K3M's final phase (A1pix), repeated while it deletes, at most
+ * SK_ONE_PIXEL_PASSES passes (skeleton.c). */
+#define SK_ONE_PIXEL_PASSES 4
+void fl_skel_one_pixel(fl_skel_t *s);
 
 /* Nodes, spur removal, crossings and the sample over the thinned image
  * (skeleton_cross.c). */
