@@ -156,12 +156,15 @@ typedef struct {
     int32_t rejected;          /* clusters with more than 4 arms, or 2
                                   straight, or 2 with report_l off */
     /* private: working image, (width + 2) x (height + 2) with a border of
-     * background, one flag byte per pixel; the contour list (indices into
-     * px); node pixel indices and their union-find parents */
+     * background, one flag byte per pixel, and each pixel's neighbourhood
+     * weight kept up to date as pixels turn white or are deleted; the
+     * contour list (indices into px); node pixels and their union-find
+     * parents */
     uint32_t magic;         /* set by a successful init */
     int32_t pstride;
     int32_t n_contour;
     uint8_t px[(FL_SKEL_MAX_WIDTH + 2) * (FL_SKEL_MAX_HEIGHT + 2)];
+    uint8_t wt[(FL_SKEL_MAX_WIDTH + 2) * (FL_SKEL_MAX_HEIGHT + 2)];
     uint32_t contour[FL_SKEL_MAX_CONTOUR];
     uint32_t node[FL_SKEL_MAX_NODES];
     uint16_t parent[FL_SKEL_MAX_NODES];

@@ -172,43 +172,108 @@ static int sk_in(const fl_skel_mask_t *m, int32_t x, int32_t y)
     return m->data[(size_t)y * (size_t)m->stride + (size_t)x] != 0;
 }
 
+/* Add / remove pixel i's bit in its neighbours' weights: it is the S
+ * neighbour (16) of the pixel above it, and so on. */
+static inline void sk_weights_set(uint8_t *w, uint32_t i, uint32_t ps)
+{
+    w[i - ps] |= 16u;        w[i - ps + 1] |= 32u;
+    w[i + 1] |= 64u;         w[i + ps + 1] |= 128u;
+    w[i + ps] |= 1u;         w[i + ps - 1] |= 2u;
+    w[i - 1] |= 4u;          w[i - ps - 1] |= 8u;
+}
+
+static inline void sk_weights_clear(uint8_t *w, uint32_t i, uint32_t ps)
+{
+    w[i - ps] &= (uint8_t)~16u;     w[i - ps + 1] &= (uint8_t)~32u;
+    w[i + 1] &= (uint8_t)~64u;      w[i + ps + 1] &= (uint8_t)~128u;
+    w[i + ps] &= (uint8_t)~1u;      w[i + ps - 1] &= (uint8_t)~2u;
+    w[i - 1] &= (uint8_t)~4u;       w[i - ps - 1] &= (uint8_t)~8u;
+}
+
+void fl_skel_erase(fl_skel_t *s, uint32_t i)
+{
+    s->px[i] = (uint8_t)(s->px[i] & ~(SK_WHITE | SK_BORDER | SK_SEEN));
+    sk_weights_clear(s->wt, i, (uint32_t)s->pstride);
+}
+
+/* Working pixel i becomes white and joins the list (raster order). */
+static void sk_set_white(fl_skel_t *s, uint32_t i, int *overflow)
+{
+    s->px[i] = (uint8_t)SK_WHITE;
+    sk_weights_set(s->wt, i, (uint32_t)s->pstride);
+    s->n_white++;
+    if (s->n_contour < FL_SKEL_MAX_CONTOUR) {
+        s->contour[s->n_contour++] = i;
+        s->px[i] |= SK_LIST;
+    } else {
+        *overflow = 1;
+    }
+}
+
+/* One mask row into the working image.  Words of 8 background bytes whose
+ * outer neighbours are background too are skipped: a pinhole has a white
+ * left or right neighbour (3 of its 4 edge neighbours are white). */
+static void sk_load_row(fl_skel_t *s, const fl_skel_mask_t *m, int32_t y, int *overflow)
+{
+    const uint8_t *row = m->data + (size_t)y * (size_t)m->stride;
+    const uint32_t base = (uint32_t)(y + 1) * (uint32_t)s->pstride + 1u;
+    int32_t x = 0;
+    while (x < m->width) {
+        if (x + 8 <= m->width) {
+            uint64_t w8;
+            memcpy(&w8, row + x, 8);
+            if (w8 == 0 && (x == 0 || !row[x - 1]) && (x + 8 >= m->width || !row[x + 8])) {
+                x += 8;
+                continue;
+            }
+        }
+        if (row[x]) {
+            sk_set_white(s, base + (uint32_t)x, overflow);
+        } else if ((x > 0 && row[x - 1]) || (x + 1 < m->width && row[x + 1])) {
+            int n = sk_in(m, x - 1, y) + sk_in(m, x + 1, y) + sk_in(m, x, y - 1) +
+                    sk_in(m, x, y + 1);
+            if (n >= 3) {
+                sk_set_white(s, base + (uint32_t)x, overflow);
+                s->filled++;
+            }
+        }
+        x++;
+    }
+}
+
 /* Copy the mask into the bordered working image, filling pinholes: a
  * background pixel with 3 or 4 white edge neighbours in the mask (holes of
  * one or two pixels, one-pixel notches) becomes white.  Such noise would
  * put a loop, and so nodes, into the skeleton; the white pixels next to
- * it are already 8-connected, so no components merge.  Then the white
- * pixels that touch the background start the contour list, in raster
- * order. */
+ * it are already 8-connected, so no components merge.  Every white pixel
+ * is listed as it is copied; then those inside (all 8 neighbours white)
+ * leave the list, so it starts as the contour, in raster order.  When the
+ * list was full, a raster pass lists the contour pixels that fit (the
+ * others are counted). */
 static void sk_load(fl_skel_t *s, const fl_skel_mask_t *m)
 {
     const uint32_t ps = (uint32_t)m->width + 2u;
-    int32_t x, y;
+    int32_t y, r, w = 0;
+    int overflow = 0;
     s->pstride = (int32_t)ps;
     memset(s->px, 0, ps * ((uint32_t)m->height + 2u));
-    for (y = 0; y < m->height; y++) {
-        const uint8_t *row = m->data + (size_t)y * (size_t)m->stride;
-        uint8_t *out = s->px + (uint32_t)(y + 1) * ps + 1u;
-        for (x = 0; x < m->width; x++) {
-            if (row[x]) {
-                out[x] = (uint8_t)SK_WHITE;
-            } else if ((x > 0 && row[x - 1]) || (x + 1 < m->width && row[x + 1])) {
-                int n = sk_in(m, x - 1, y) + sk_in(m, x + 1, y) + sk_in(m, x, y - 1) +
-                        sk_in(m, x, y + 1);
-                if (n >= 3) {
-                    out[x] = (uint8_t)SK_WHITE;
-                    s->filled++;
-                }
-            }
-        }
+    memset(s->wt, 0, ps * ((uint32_t)m->height + 2u));
+    for (y = 0; y < m->height; y++)
+        sk_load_row(s, m, y, &overflow);
+    for (r = 0; r < s->n_contour; r++) {
+        uint32_t i = s->contour[r];
+        if (sk_weight(s, i) != 255u)
+            s->contour[w++] = i;
+        else
+            s->px[i] = (uint8_t)SK_WHITE;
     }
-    for (y = 1; y <= m->height; y++) {
-        uint32_t i = (uint32_t)y * ps + 1u, end = i + (uint32_t)m->width;
-        for (; i < end; i++) {
-            if (!(s->px[i] & SK_WHITE))
-                continue;
-            s->n_white++;
-            if (sk_weight(s->px, i, ps) != 255u)
-                sk_push(s, i);
+    s->n_contour = w;
+    if (overflow) {
+        for (y = 1; y <= m->height; y++) {
+            uint32_t i = (uint32_t)y * ps + 1u, end = i + (uint32_t)m->width;
+            for (; i < end; i++)
+                if ((s->px[i] & (SK_WHITE | SK_LIST)) == SK_WHITE && sk_weight(s, i) != 255u)
+                    sk_push(s, i);
         }
     }
 }
@@ -217,11 +282,16 @@ static void sk_load(fl_skel_t *s, const fl_skel_mask_t *m)
  * list (they may now touch the background). */
 static void sk_delete(fl_skel_t *s, uint32_t i, const int32_t off[8])
 {
+    uint32_t nb = s->wt[i];
     int k;
     s->px[i] = (uint8_t)(s->px[i] & ~(SK_WHITE | SK_BORDER));
-    for (k = 0; k < 8; k++) {
-        uint32_t j = (uint32_t)((int32_t)i + off[k]);
-        if ((s->px[j] & (SK_WHITE | SK_LIST)) == SK_WHITE)
+    sk_weights_clear(s->wt, i, (uint32_t)s->pstride);
+    for (k = 0; nb != 0; k++, nb >>= 1) {   /* the white neighbours */
+        uint32_t j;
+        if (!(nb & 1u))
+            continue;
+        j = (uint32_t)((int32_t)i + off[k]);
+        if (!(s->px[j] & SK_LIST))
             sk_push(s, j);
     }
 }
@@ -244,19 +314,18 @@ void fl_skel_compact(fl_skel_t *s)
 /* One K3M iteration (phases 0..5); returns the pixels deleted. */
 static int32_t sk_iteration(fl_skel_t *s, const int32_t off[8])
 {
-    const uint32_t ps = (uint32_t)s->pstride;
     int32_t r, n = s->n_contour, deleted = 0;
     int phase;
     for (r = 0; r < n; r++) {
         uint32_t i = s->contour[r];
-        if ((s->px[i] & SK_WHITE) && (sk_k3m[sk_weight(s->px, i, ps)] & 1u))
+        if ((s->px[i] & SK_WHITE) && (sk_k3m[sk_weight(s, i)] & 1u))
             s->px[i] |= SK_BORDER;
     }
     for (phase = 1; phase <= 5; phase++) {
         for (r = 0; r < n; r++) {
             uint32_t i = s->contour[r];
             if ((s->px[i] & SK_BORDER) &&
-                (sk_k3m[sk_weight(s->px, i, ps)] & (1u << phase))) {
+                (sk_k3m[sk_weight(s, i)] & (1u << phase))) {
                 sk_delete(s, i, off);
                 deleted++;
             }
@@ -271,11 +340,10 @@ static int32_t sk_iteration(fl_skel_t *s, const int32_t off[8])
  * Returns the pixels deleted. */
 static int32_t sk_pass(fl_skel_t *s, const int32_t off[8], uint32_t bit)
 {
-    const uint32_t ps = (uint32_t)s->pstride;
     int32_t r, n = s->n_contour, deleted = 0;
     for (r = 0; r < n; r++) {
         uint32_t i = s->contour[r];
-        if ((s->px[i] & SK_WHITE) && (sk_k3m[sk_weight(s->px, i, ps)] & bit)) {
+        if ((s->px[i] & SK_WHITE) && (sk_k3m[sk_weight(s, i)] & bit)) {
             sk_delete(s, i, off);
             deleted++;
         }

@@ -45,7 +45,7 @@ static int32_t sk_abs(int32_t a) { return a < 0 ? -a : a; }
 
 static int sk_degree_at(const fl_skel_t *s, uint32_t i)
 {
-    return fl_skel_degree((uint8_t)sk_weight(s->px, i, (uint32_t)s->pstride));
+    return fl_skel_degree((uint8_t)sk_weight(s, i));
 }
 
 /* The next pixel of a walk: the first white, unvisited neighbour, edge
@@ -86,9 +86,12 @@ static void sk_spur(fl_skel_t *s, uint32_t e, const int32_t off[8])
         s->px[nx] |= SK_SEEN;
         cur = nx;
     }
-    for (k = 0; k < len; k++)
-        s->px[path[k]] = spur ? (uint8_t)(s->px[path[k]] & ~(SK_WHITE | SK_SEEN))
-                              : (uint8_t)(s->px[path[k]] & ~SK_SEEN);
+    for (k = 0; k < len; k++) {
+        if (spur)
+            fl_skel_erase(s, path[k]);
+        else
+            s->px[path[k]] = (uint8_t)(s->px[path[k]] & ~SK_SEEN);
+    }
     if (spur)
         s->spurs++;
 }
