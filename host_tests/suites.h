@@ -33,6 +33,7 @@ T_SUITE(robots);
 T_SUITE(camera_vision);
 T_SUITE(beacon);
 T_SUITE(hlvision);
+T_SUITE(skeleton);
 T_SUITE(goal_white);
 T_SUITE(localize);
 T_SUITE(picture);

@@ -373,9 +373,9 @@
  *                    1..255 (more are counted).
  * FL_SKEL_MAX_POINTS  skeleton pixels sampled per run (white points).
  *                    Default 48, range 0..1024.
- * Memory: 1 byte per mask pixel (plus a 1-pixel border) + 4 B per contour
- * entry + 6 B per node + 16 B per crossing + 4 B per point: about 144 KB
- * at the defaults. */
+ * Memory: 2 bytes per mask pixel (plus a 1-pixel border) + 4 B per
+ * contour entry + 6 B per node + 16 B per crossing + 4 B per point: about
+ * 220 KB at the defaults. */
 #ifndef FL_SKEL_MAX_WIDTH
 #define FL_SKEL_MAX_WIDTH 320
 #endif

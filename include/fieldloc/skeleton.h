@@ -34,6 +34,10 @@
  * Several adjacent pixels of one junction may be nodes: they are merged,
  * and a crossing's arm count comes from its branches, not from a degree.
  *
+ * Pinholes: a background pixel with 3 or 4 white edge neighbours (a hole
+ * of one or two pixels, a one-pixel notch) is taken as white: such noise
+ * in a line would put a loop, and so nodes, into its skeleton.
+ *
  * Crossings: end branches of at most spur_px pixels that end at a node
  * (ragged mask edges) are removed first; the remaining node pixels
  * within merge_px of each other (Chebyshev, chained) are one cluster;
@@ -51,7 +55,7 @@
  * list (the white pixels that may still change: those next to the
  * background, plus those a deletion exposes), at most FL_SKEL_MAX_CONTOUR
  * entries, 6 phases per iteration (K3M's phases 0..5), at most
- * max_iterations iterations, then one pass of the final phase; node and
+ * max_iterations iterations, then at most 16 passes of the final phases; node and
  * degree passes are O(skeleton pixels); spur walks at most spur_px steps
  * per end; clustering O(nodes^2) (<= FL_SKEL_MAX_NODES^2 / 2); each
  * crossing a flood of its box ((2 arm_px + merge extent)^2 pixels); the
@@ -90,11 +94,11 @@ typedef struct {
                                up to about 64 px thick thin completely */
     int32_t spur_px;        /* end branches of at most this many pixels
                                that end at a node are removed, 0..32;
-                               default 3 */
+                               default 4 */
     int32_t merge_px;       /* node pixels this close (Chebyshev, chained)
-                               are one crossing, 1..32; default 4 */
+                               are one crossing, 1..32; default 6 */
     int32_t arm_px;         /* an arm must reach this far beyond the node
-                               box, 2..32; default 6 */
+                               box, 2..32; default 8 */
     int32_t n_points;       /* skeleton pixels sampled per run,
                                0..FL_SKEL_MAX_POINTS; default all */
     int32_t report_l;       /* 1: report two-arm corners (FL_SKEL_L) too;
@@ -135,7 +139,9 @@ typedef struct {
     int32_t n_points;
     fl_skel_point_t point[FL_SKEL_MAX_POINTS];
     /* statistics */
-    int32_t n_white;        /* white pixels of the mask */
+    int32_t n_white;        /* white pixels of the mask, pinholes filled */
+    int32_t filled;         /* pinholes filled (background pixels with 3
+                               or 4 white edge neighbours) */
     int32_t n_skeleton;     /* skeleton pixels after spur removal */
     int32_t n_nodes;        /* node pixels (degree >= 3) kept */
     int32_t iterations;     /* K3M iterations run */
@@ -150,18 +156,21 @@ typedef struct {
     int32_t rejected;          /* clusters with more than 4 arms, or 2
                                   straight, or 2 with report_l off */
     /* private: working image, (width + 2) x (height + 2) with a border of
-     * background, one flag byte per pixel; the contour list (indices into
-     * px); node pixel indices and their union-find parents */
+     * background, one flag byte per pixel, and each pixel's neighbourhood
+     * weight kept up to date as pixels turn white or are deleted; the
+     * contour list (indices into px); node pixels and their union-find
+     * parents */
     uint32_t magic;         /* set by a successful init */
     int32_t pstride;
     int32_t n_contour;
     uint8_t px[(FL_SKEL_MAX_WIDTH + 2) * (FL_SKEL_MAX_HEIGHT + 2)];
+    uint8_t wt[(FL_SKEL_MAX_WIDTH + 2) * (FL_SKEL_MAX_HEIGHT + 2)];
     uint32_t contour[FL_SKEL_MAX_CONTOUR];
     uint32_t node[FL_SKEL_MAX_NODES];
     uint16_t parent[FL_SKEL_MAX_NODES];
 } fl_skel_t;
 
-/* max_iterations 32, spur_px 3, merge_px 4, arm_px 6, n_points
+/* max_iterations 32, spur_px 4, merge_px 6, arm_px 8, n_points
  * FL_SKEL_MAX_POINTS, report_l 0. */
 void fl_skel_params_default(fl_skel_params_t *p);
 
@@ -192,7 +201,8 @@ int fl_skel_pixel(const fl_skel_t *s, int32_t x, int32_t y);
 int fl_skel_degree(uint8_t w);
 
 /* K3M's lookup arrays as one byte per weight w: bit 0 set when w is in
- * A0, bits 1..5 in A1..A5, bit 6 in A1pix (skeleton.c; for the tests). */
+ * A0, bits 1..5 in A1..A5, bit 6 in A1pix, bit 7 in the last pass's
+ * (skeleton.c; for the tests). */
 int fl_skel_k3m_table(uint8_t w);
 
 #ifdef __cplusplus

@@ -5,9 +5,13 @@
  * Algorithm.  (1) Spurs: from every end (degree 1) walk along the
  * skeleton, edge neighbours before corner ones (so a 4-connected turn is
  * walked through its corner pixel), at most spur_px pixels; when the walk
- * meets a node (degree >= 3) before that, the walked pixels are deleted.
+ * meets a node (degree >= 3) before that, the walked pixels are deleted,
+ * and K3M's final phase runs again (the node may have become thinnable).
  * (2) Nodes: the skeleton pixels of degree >= 3.  (3) Clusters: union-find
- * over the node pairs within merge_px (Chebyshev).  (4) Per cluster, a
+ * over the node pairs within merge_px (Chebyshev); then clusters whose
+ * floods (below) reach each other's node pixels are joined (the skeleton
+ * piece between them is shorter than an arm: at an acute X the thinned
+ * junction is two T nodes far apart).  (4) Per cluster, a
  * flood over the skeleton from its node pixels inside its node box grown
  * by arm_px; the runs of flooded pixels along the box's border are the
  * arms (a branch shorter than arm_px, or one that comes back, never
@@ -33,6 +37,7 @@
 #define SK_MAX_SPAN 32        /* node box side above which a cluster is a
                                  tangle (a blob's skeleton), not a crossing */
 #define SK_SPUR_MAX 32        /* params.spur_px range */
+#define SK_JOIN_PASSES 4      /* cluster joining passes */
 
 static int32_t sk_min(int32_t a, int32_t b) { return a < b ? a : b; }
 static int32_t sk_max(int32_t a, int32_t b) { return a > b ? a : b; }
@@ -40,7 +45,7 @@ static int32_t sk_abs(int32_t a) { return a < 0 ? -a : a; }
 
 static int sk_degree_at(const fl_skel_t *s, uint32_t i)
 {
-    return fl_skel_degree((uint8_t)sk_weight(s->px, i, (uint32_t)s->pstride));
+    return fl_skel_degree((uint8_t)sk_weight(s, i));
 }
 
 /* The next pixel of a walk: the first white, unvisited neighbour, edge
@@ -81,9 +86,12 @@ static void sk_spur(fl_skel_t *s, uint32_t e, const int32_t off[8])
         s->px[nx] |= SK_SEEN;
         cur = nx;
     }
-    for (k = 0; k < len; k++)
-        s->px[path[k]] = spur ? (uint8_t)(s->px[path[k]] & ~(SK_WHITE | SK_SEEN))
-                              : (uint8_t)(s->px[path[k]] & ~SK_SEEN);
+    for (k = 0; k < len; k++) {
+        if (spur)
+            fl_skel_erase(s, path[k]);
+        else
+            s->px[path[k]] = (uint8_t)(s->px[path[k]] & ~SK_SEEN);
+    }
     if (spur)
         s->spurs++;
 }
@@ -99,6 +107,8 @@ static void sk_prune(fl_skel_t *s, const int32_t off[8])
             sk_spur(s, i, off);
     }
     fl_skel_compact(s);
+    if (s->spurs > 0)
+        fl_skel_one_pixel(s);
 }
 
 /* Node pixels, packed as y << 16 | x (working coordinates). */
@@ -111,6 +121,7 @@ static void sk_nodes(fl_skel_t *s)
         if (sk_degree_at(s, i) < 3)
             continue;
         if (s->n_nodes < FL_SKEL_MAX_NODES) {
+            s->px[i] |= SK_NODE;
             s->node[s->n_nodes] = (i / ps) << 16 | (i % ps);
             s->parent[s->n_nodes] = (uint16_t)s->n_nodes;
             s->n_nodes++;
@@ -157,7 +168,9 @@ typedef struct {
     int32_t n;                    /* node pixels */
     int32_t cx_q4, cy_q4;         /* node centroid, working coordinates */
     int32_t n_arms;
-    int32_t ax_q4[4], ay_q4[4];   /* arm border points */
+    int32_t ax_q4[4], ay_q4[4];   /* arm points: the end of a walk out of
+                                     the box, else the border run's centre */
+    uint32_t mid[4];              /* a pixel of each border run */
     fl_angle_t arm[4];
 } sk_cluster_t;
 
@@ -217,15 +230,43 @@ static void sk_ring_xy(const sk_cluster_t *c, int32_t p, int32_t *x, int32_t *y,
     }
 }
 
-/* The arms: runs of flooded pixels along the box border.  Returns 0 when
- * the cluster is to be rejected (an arm at a clipped side, more than 4
- * arms, the whole border flooded). */
-static int sk_arms(const fl_skel_t *s, sk_cluster_t *c)
+/* Walk out of the box along an arm from its border pixel, at most
+ * arm_px pixels, listing the walked pixels (flagged) in q from *n (cap:
+ * cap); the arm point becomes the walk's end when it went at least
+ * arm_px / 2 pixels (a longer baseline for the direction). */
+static void sk_arm_walk(fl_skel_t *s, sk_cluster_t *c, int32_t a, uint32_t *q, int32_t *n,
+                        int32_t cap, const int32_t off[8])
+{
+    const uint32_t ps = (uint32_t)s->pstride;
+    uint32_t cur = c->mid[a];
+    int32_t len = 0;
+    while (len < s->params.arm_px && *n < cap) {
+        uint32_t nx = sk_next(s, cur, off);
+        if (nx == SK_NONE)
+            break;
+        s->px[nx] |= SK_SEEN;
+        q[(*n)++] = nx;
+        cur = nx;
+        len++;
+    }
+    if (len * 2 >= s->params.arm_px) {
+        c->ax_q4[a] = (int32_t)(cur % ps) * 16;
+        c->ay_q4[a] = (int32_t)(cur / ps) * 16;
+    }
+}
+
+/* The arms: runs of flooded pixels along the box border, then a walk out
+ * along each (its pixels appended to the flood's list q, *n).  Returns 0
+ * when the cluster is to be rejected (an arm at a clipped side, more than
+ * 4 arms, the whole border flooded). */
+static int sk_arms(fl_skel_t *s, sk_cluster_t *c, uint32_t *q, int32_t *n, int32_t cap,
+                   const int32_t off[8])
 {
     static const int32_t side_clip[4] = {2, 4, 8, 1};   /* top right bottom left */
     const uint32_t ps = (uint32_t)s->pstride;
     int32_t per = 2 * ((c->bx1 - c->bx0) + (c->by1 - c->by0));
     int32_t p, p0 = -1, x, y, side, sx = 0, sy = 0, cnt = 0, k;
+    uint32_t first = 0;
     if (per < 4)
         return 0;
     for (p = 0; p < per && p0 < 0; p++) {
@@ -237,12 +278,14 @@ static int sk_arms(const fl_skel_t *s, sk_cluster_t *c)
         return 0;
     c->n_arms = 0;
     for (k = 1; k <= per; k++) {
-        int on;
+        uint32_t i;
         sk_ring_xy(c, (p0 + k) % per, &x, &y, &side);
-        on = (s->px[(uint32_t)y * ps + (uint32_t)x] & SK_SEEN) != 0;
-        if (on) {
+        i = (uint32_t)y * ps + (uint32_t)x;
+        if (s->px[i] & SK_SEEN) {
             if (c->clip & side_clip[side])
                 return 0;
+            if (cnt == 0)
+                first = i;
             sx += x;
             sy += y;
             cnt++;
@@ -251,11 +294,14 @@ static int sk_arms(const fl_skel_t *s, sk_cluster_t *c)
                 return 0;
             c->ax_q4[c->n_arms] = (sx * 16 + cnt / 2) / cnt;
             c->ay_q4[c->n_arms] = (sy * 16 + cnt / 2) / cnt;
-            c->arm[c->n_arms] = fl_atan2(c->ay_q4[c->n_arms] - c->cy_q4,
-                                         c->ax_q4[c->n_arms] - c->cx_q4);
+            c->mid[c->n_arms] = first;
             c->n_arms++;
             sx = sy = cnt = 0;
         }
+    }
+    for (k = 0; k < c->n_arms; k++) {
+        sk_arm_walk(s, c, k, q, n, cap, off);
+        c->arm[k] = fl_atan2(c->ay_q4[k] - c->cy_q4, c->ax_q4[k] - c->cx_q4);
     }
     return 1;
 }
@@ -342,6 +388,14 @@ static int sk_classify(const fl_skel_t *s, sk_cluster_t *c, fl_skel_crossing_t *
     /* stay within the node box grown by one pixel */
     x = sk_max((c->x0 - 1) * 16, sk_min((c->x1 + 1) * 16, x));
     y = sk_max((c->y0 - 1) * 16, sk_min((c->y1 + 1) * 16, y));
+    for (i = 0; i < c->n_arms; i++)    /* directions from the position found */
+        c->arm[i] = fl_atan2(c->ay_q4[i] - y, c->ax_q4[i] - x);
+    for (i = 1; i < c->n_arms; i++)
+        for (j = i; j > 0 && c->arm[j - 1] > c->arm[j]; j--) {
+            fl_angle_t ta = c->arm[j];
+            c->arm[j] = c->arm[j - 1];
+            c->arm[j - 1] = ta;
+        }
     conf = 255 - (int32_t)((int64_t)bend * 255 / FL_ANGLE_45);
     out->kind = (uint8_t)c->n_arms;
     out->n_nodes = (uint8_t)sk_min(c->n, 255);
@@ -382,13 +436,68 @@ static void sk_cluster_box(fl_skel_t *s, uint16_t root, sk_cluster_t *c)
               (c->bx1 != c->x1 + a) << 2 | (c->by1 != c->y1 + a) << 3;
 }
 
+/* Clear the flood flags of q[0 .. n). */
+static void sk_unflag(fl_skel_t *s, const uint32_t *q, int32_t n)
+{
+    int32_t f;
+    for (f = 0; f < n; f++)
+        s->px[q[f]] = (uint8_t)(s->px[q[f]] & ~SK_SEEN);
+}
+
+/* Join the clusters whose floods reach each other's node pixels: nodes
+ * linked by a skeleton path inside the grown box are one crossing (the
+ * piece between them is shorter than an arm).  Passes until none joins,
+ * at most SK_JOIN_PASSES.  Returns the joins. */
+static int32_t sk_join(fl_skel_t *s, const int32_t off[8])
+{
+    const uint32_t ps = (uint32_t)s->pstride;
+    uint32_t *q = s->contour + s->n_contour;
+    int32_t pass, k, joins = 0;
+    for (pass = 0; pass < SK_JOIN_PASSES; pass++) {
+        int32_t before = joins;
+        for (k = 0; k < s->n_nodes; k++) {
+            sk_cluster_t c;
+            int32_t n, f, m;
+            if (sk_find(s, (uint16_t)k) != (uint16_t)k)
+                continue;
+            sk_cluster_box(s, (uint16_t)k, &c);
+            if (c.x1 - c.x0 >= SK_MAX_SPAN || c.y1 - c.y0 >= SK_MAX_SPAN)
+                continue;
+            n = sk_flood(s, (uint16_t)k, &c, off);
+            for (f = 0; f < n; f++) {
+                if (!(s->px[q[f]] & SK_NODE))
+                    continue;
+                for (m = 0; m < s->n_nodes; m++) {
+                    uint32_t i = (s->node[m] >> 16) * ps + (s->node[m] & 0xFFFFu);
+                    uint16_t r = sk_find(s, (uint16_t)m);
+                    if (i == q[f] && r != (uint16_t)k) {
+                        if (r < (uint16_t)k)
+                            s->parent[k] = r;
+                        else
+                            s->parent[r] = (uint16_t)k;
+                        joins++;
+                        break;
+                    }
+                }
+                if (sk_find(s, (uint16_t)k) != (uint16_t)k)
+                    break;    /* k joined an earlier cluster */
+            }
+            if (n > 0)
+                sk_unflag(s, q, n);
+        }
+        if (joins == before)
+            break;
+    }
+    return joins;
+}
+
 static void sk_crossings(fl_skel_t *s, const int32_t off[8])
 {
     int32_t k;
     for (k = 0; k < s->n_nodes; k++) {
         sk_cluster_t c;
         fl_skel_crossing_t out;
-        int32_t n, f, ok;
+        int32_t n, ok;
         if (sk_find(s, (uint16_t)k) != (uint16_t)k)
             continue;
         sk_cluster_box(s, (uint16_t)k, &c);
@@ -401,11 +510,8 @@ static void sk_crossings(fl_skel_t *s, const int32_t off[8])
             s->rejected++;
             continue;
         }
-        ok = sk_arms(s, &c);
-        for (f = 0; f < n; f++) {
-            uint32_t i = s->contour[s->n_contour + f];
-            s->px[i] = (uint8_t)(s->px[i] & ~SK_SEEN);
-        }
+        ok = sk_arms(s, &c, s->contour + s->n_contour, &n, FL_SKEL_MAX_CONTOUR - s->n_contour, off);
+        sk_unflag(s, s->contour + s->n_contour, n);
         if (!ok || !sk_classify(s, &c, &out)) {
             s->rejected++;
             continue;
@@ -448,6 +554,7 @@ void fl_skel_find_crossings(fl_skel_t *s, uint32_t seed)
     s->n_skeleton = s->n_contour;
     sk_nodes(s);
     sk_cluster(s);
+    (void)sk_join(s, off);
     sk_crossings(s, off);
     sk_sample(s, seed);
 }

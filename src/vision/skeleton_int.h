@@ -13,17 +13,17 @@
 #define SK_LIST   2u   /* in the contour list */
 #define SK_BORDER 4u   /* K3M phase 0 mark of this iteration */
 #define SK_SEEN   8u   /* visited by a walk or a flood (cleared after) */
+#define SK_NODE   16u  /* a listed node pixel (skeleton_cross.c) */
 
 #define SK_MAGIC 0x736b656cu
 
 /* Neighbourhood weight of working pixel i: bit 0 N, 1 NE, 2 E, 3 SE, 4 S,
- * 5 SW, 6 W, 7 NW (K3M's weights 1, 2, 4, ... 128 clockwise from N). */
-static inline uint32_t sk_weight(const uint8_t *px, uint32_t i, uint32_t ps)
+ * 5 SW, 6 W, 7 NW (K3M's weights 1, 2, 4, ... 128 clockwise from N), kept
+ * in s->wt: a pixel turning white sets its bit in its 8 neighbours'
+ * weights, a deletion clears it (fl_skel_erase, skeleton.c). */
+static inline uint32_t sk_weight(const fl_skel_t *s, uint32_t i)
 {
-    return (px[i - ps] & 1u) | (uint32_t)(px[i - ps + 1] & 1u) << 1 |
-           (uint32_t)(px[i + 1] & 1u) << 2 | (uint32_t)(px[i + ps + 1] & 1u) << 3 |
-           (uint32_t)(px[i + ps] & 1u) << 4 | (uint32_t)(px[i + ps - 1] & 1u) << 5 |
-           (uint32_t)(px[i - 1] & 1u) << 6 | (uint32_t)(px[i - ps - 1] & 1u) << 7;
+    return s->wt[i];
 }
 
 /* Offsets of the 8 neighbours in weight-bit order, for a row stride ps. */
@@ -33,9 +33,17 @@ static inline void sk_offsets(int32_t ps, int32_t off[8])
     off[4] = ps;      off[5] = ps - 1;  off[6] = -1;     off[7] = -ps - 1;
 }
 
+/* Working pixel i becomes background; its neighbours' weights follow. */
+void fl_skel_erase(fl_skel_t *s, uint32_t i);
+
 /* Drop the pixels that are no longer white from the contour list and
  * clear their flags; clear the border marks of the others (skeleton.c). */
 void fl_skel_compact(fl_skel_t *s);
+
+/* K3M's final phase (A1pix), repeated while it deletes, at most
+ * SK_ONE_PIXEL_PASSES passes (skeleton.c). */
+#define SK_ONE_PIXEL_PASSES 4
+void fl_skel_one_pixel(fl_skel_t *s);
 
 /* Nodes, spur removal, crossings and the sample over the thinned image
  * (skeleton_cross.c). */
