@@ -580,13 +580,18 @@ static void test_features_in_mask(void)
         sc.noise_x10 = 0;
         CHECK_EQ(render_frame(&sc, &fr), 0);
         CHECK_EQ(truth_compute(&sc, &fr, t), 0);
+        /* hl3x2's 25 mm lines, seen at 320 x 240 from a 460 mm high camera,
+         * are less than one pixel row thick beyond about 1.8 m (rows per
+         * mm of range ~ f h / r^2: 25 * 277 * 460 / r^2 < 1), so a
+         * crossing's rounded pixel may show the carpet there */
+        double line_limit = strcmp(sc.field->name, "hl3x2") == 0 ? 1500 : 3000;
         for (j = 0; j < t->n; j++) {
             const truth_feature_t *f = &t->f[j];
             int u = (int)lround(f->u), v = (int)lround(f->v);
             if (f->occluded || u < 0 || v < 0 || u >= fr.width || v >= fr.height)
                 continue;
             if ((f->kind == TRUTH_L || f->kind == TRUTH_T || f->kind == TRUTH_X ||
-                 f->kind == TRUTH_PENALTY_MARK) && f->range_mm < 3000) {
+                 f->kind == TRUTH_PENALTY_MARK) && f->range_mm < line_limit) {
                 CHECK_EQ(fr.mask[(size_t)v * (size_t)fr.width + (size_t)u], RENDER_CLASS_LINE);
                 n_line++;
             }

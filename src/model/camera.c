@@ -103,9 +103,12 @@ static const fl_camera_model_t fl_camera_catalogue[] = {
     {"aibo-ers7",        208, 160,  3071, 1656, 1272, 81,  -15,    0, 160, 0},
     {"uva2013",          320, 240,  4405, 2552, 1912, 51,   18, 7227, 450, 1140},
     {"acyut-640",        640, 480,  8868, 5112, 3832, 30,   40,    0, 420, 0},
+    {"acyut-320",        320, 240,  4434, 2552, 1912, 30,   40,    0, 420, 0},
 };
 /* acyut-640: seed 002's robot AcYut (BITS Pilani) with its "PointGrey
- * Firefly" camera (seed 002 section VI), at 640x480.  Seed 002 states
+ * Firefly" camera (seed 002 section VI), at 640x480; acyut-320 the same
+ * optics at 320x240 (f = 160 / tan 30 deg = 277.1 px -> 4434: the
+ * committed hl3x2 fixtures use it to stay within the fixture set's size).  Seed 002 states
  * neither lens nor geometry; every number here is INFERRED:
  *  - HFOV 60 deg (f = 320 / tan 30 deg = 554.3 px -> 8868; VFOV 46.8 deg):
  *    a Firefly MV has a 1/3" sensor (6 um pixels: 3.84 mm for 640 columns)
