@@ -101,7 +101,7 @@ static void test_boxes(void)
     }
     /* params: ranges refused */
     fl_hlv_params_default(&p, NULL);
-    p.mask_step_u = 0;
+    p.mask_step_u = 17;
     CHECK_EQ(fl_hlv_init(&hv, &p), FL_ERR_RANGE);
     fl_hlv_params_default(&p, NULL);
     p.max_range_mm = FL_OBS_MAX_RANGE_MM + 1;

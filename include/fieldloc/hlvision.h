@@ -106,8 +106,10 @@ typedef struct {
     int32_t min_band_px;    /* each band of a pole, 1..160 */
     int32_t min_cols;       /* scanned columns per object, 1..64 */
     int32_t foot_tol_px;    /* feet of adjoining columns, 0..480 */
-    int32_t mask_step_u;    /* image columns per grid (mask) column, 1..16 */
-    int32_t mask_step_v;    /* image rows per grid (mask) row, 1..16 */
+    int32_t mask_step_u;    /* image columns per grid (mask) column, 1..16;
+                               0 (default): width / 160 rounded up */
+    int32_t mask_step_v;    /* image rows per grid (mask) row, 1..16;
+                               0 (default): height / 240 rounded up */
     int32_t surround_px;    /* green within this many mask px, 1..32 */
     int32_t post_diameter_mm;  /* 10..1000 */
     int32_t pole_diameter_mm;  /* 10..1000 */
@@ -142,6 +144,7 @@ typedef struct {
     uint8_t ytab[256], cbtab[256], crtab[256];
     /* the grid: class bits (every row), and the mask (0/1) of the
      * skeleton stage (rows above the horizon 0) */
+    int32_t step_u, step_v;   /* the grid steps of the last frame */
     int32_t mask_w, mask_h;
     uint8_t cls[FL_SKEL_MAX_WIDTH * FL_SKEL_MAX_HEIGHT];
     uint8_t mask[FL_SKEL_MAX_WIDTH * FL_SKEL_MAX_HEIGHT];
@@ -194,7 +197,7 @@ static inline uint8_t fl_hlv_class(const fl_hlv_t *s, uint8_t y, uint8_t cb, uin
 int32_t fl_hlv_frame(fl_hlv_t *s, const fl_image_t *img, const fl_camera_t *cam,
                      fl_obs_list_t *out);
 
-/* Mask pixel (Q4) -> image pixel (Q4) of the state's current steps. */
+/* Mask pixel (Q4) -> image pixel (Q4) of the last frame's grid steps. */
 void fl_hlv_mask_to_image(const fl_hlv_t *s, int32_t mx_q4, int32_t my_q4, int32_t *u_q4,
                           int32_t *v_q4);
 

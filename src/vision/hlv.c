@@ -19,7 +19,9 @@
  * changes luma most), white from 160 (below it the green box's top, 153,
  * stays apart).  The boxes do not overlap.
  *
- * Default grid (mask_step_u 4, mask_step_v 2 on 640x480: 160 x 240).  On a
+ * Default grid (mask_step_u, mask_step_v 0: auto, the image's width over
+ * 160 and its height over 240, rounded up: 4 x 2 on 640x480, 2 x 1 on
+ * 320x240, the same angles per cell; a 160 x 240 grid).  On a
  * camera looking down from a small humanoid's head, a painted line w wide
  * at ground range d is about f * w / d pixels wide when it runs away from
  * the camera and f * h * w / d^2 pixels tall when it runs across the view
@@ -65,8 +67,8 @@ void fl_hlv_params_default(fl_hlv_params_t *p, const fl_field_t *field)
     p->min_band_px = 4;
     p->min_cols = 2;
     p->foot_tol_px = 12;
-    p->mask_step_u = 4;
-    p->mask_step_v = 2;
+    p->mask_step_u = 0;   /* auto: 4 x 2 at 640x480 */
+    p->mask_step_v = 0;
     p->surround_px = 12;
     p->post_diameter_mm = 100;
     p->pole_diameter_mm = 100;
@@ -96,7 +98,7 @@ fl_status_t fl_hlv_params_check(const fl_hlv_params_t *p)
     if (!in(p->gap_px, 0, 32) ||
         !in(p->green_gap_px, 0, 32) || !in(p->min_green_px, 1, 64) ||
         !in(p->min_post_px, 2, 480) || !in(p->min_band_px, 1, 160) || !in(p->min_cols, 1, 64) ||
-        !in(p->foot_tol_px, 0, 480) || !in(p->mask_step_u, 1, 16) || !in(p->mask_step_v, 1, 16) ||
+        !in(p->foot_tol_px, 0, 480) || !in(p->mask_step_u, 0, 16) || !in(p->mask_step_v, 0, 16) ||
         !in(p->surround_px, 1, 32) || !in(p->post_diameter_mm, 10, 1000) ||
         !in(p->pole_diameter_mm, 10, 1000) || !in(p->goal_width_mm, 100, 5000) || !in(p->max_range_mm, 100, FL_OBS_MAX_RANGE_MM) ||
         !in(p->crossings, 0, 1))
@@ -142,7 +144,7 @@ fl_status_t fl_hlv_init_cfg(fl_hlv_t *s, const fl_hlv_params_t *p, uint32_t call
 void fl_hlv_mask_to_image(const fl_hlv_t *s, int32_t mx_q4, int32_t my_q4, int32_t *u_q4,
                           int32_t *v_q4)
 {
-    const int32_t su = s ? s->params.mask_step_u : 1, sv = s ? s->params.mask_step_v : 1;
+    const int32_t su = s && s->step_u > 0 ? s->step_u : 1, sv = s && s->step_v > 0 ? s->step_v : 1;
     if (u_q4)
         *u_q4 = mx_q4 * su + (su / 2) * 16;
     if (v_q4)
@@ -161,7 +163,7 @@ static bool width_fits(const fl_hlv_t *s, const fl_hlv_object_t *o, const fl_cam
                        int32_t range_mm, bool pole)
 {
     const int32_t d = pole ? s->params.pole_diameter_mm : s->params.post_diameter_mm;
-    const int32_t step = s->params.mask_step_u, width = o->u1 - o->u0 + step;
+    const int32_t step = s->step_u, width = o->u1 - o->u0 + step;
     int64_t expect_q4;
     if (range_mm < 1)
         range_mm = 1;
@@ -329,6 +331,12 @@ static int32_t ground_row(const fl_camera_t *cam, int32_t width, int32_t height)
     return hz / 16 + 1;
 }
 
+/* The grid step: the param, or (0) the size over cells rounded up. */
+static int32_t grid_step(int32_t param, int32_t size, int32_t cells)
+{
+    return param > 0 ? param : (size + cells - 1) / cells;
+}
+
 static fl_status_t frame_check(const fl_hlv_t *s, const fl_image_t *img, const fl_camera_t *cam)
 {
     fl_status_t st;
@@ -343,8 +351,10 @@ static fl_status_t frame_check(const fl_hlv_t *s, const fl_image_t *img, const f
         return FL_ERR_CAMERA;
     if (cam->model.width_px != img->width || cam->model.height_px != img->height)
         return FL_ERR_MISMATCH;
-    if ((img->width + s->params.mask_step_u - 1) / s->params.mask_step_u > FL_SKEL_MAX_WIDTH ||
-        (img->height + s->params.mask_step_v - 1) / s->params.mask_step_v > FL_SKEL_MAX_HEIGHT)
+    if ((img->width + grid_step(s->params.mask_step_u, img->width, 160) - 1) /
+                grid_step(s->params.mask_step_u, img->width, 160) > FL_SKEL_MAX_WIDTH ||
+        (img->height + grid_step(s->params.mask_step_v, img->height, 240) - 1) /
+                grid_step(s->params.mask_step_v, img->height, 240) > FL_SKEL_MAX_HEIGHT)
         return FL_ERR_SIZE;
     return FL_OK;
 }
@@ -365,8 +375,10 @@ int32_t fl_hlv_frame(fl_hlv_t *s, const fl_image_t *img, const fl_camera_t *cam,
     }
     s->frames++;
     v0 = ground_row(cam, img->width, img->height);
-    s->mask_w = (img->width + s->params.mask_step_u - 1) / s->params.mask_step_u;
-    s->mask_h = (img->height + s->params.mask_step_v - 1) / s->params.mask_step_v;
+    s->step_u = grid_step(s->params.mask_step_u, img->width, 160);
+    s->step_v = grid_step(s->params.mask_step_v, img->height, 240);
+    s->mask_w = (img->width + s->step_u - 1) / s->step_u;
+    s->mask_h = (img->height + s->step_v - 1) / s->step_v;
     fl_hlv_int_classify(s, img);
     fl_hlv_int_objects(s, img, v0);
     for (i = 0; i < s->n_objects; i++)
@@ -378,7 +390,7 @@ int32_t fl_hlv_frame(fl_hlv_t *s, const fl_image_t *img, const fl_camera_t *cam,
             push_object(s, &s->objects[i], cam, out);
     if (s->params.crossings) {
         fl_skel_mask_t m;
-        fl_hlv_int_mask(s, (v0 + s->params.mask_step_v - 1) / s->params.mask_step_v);
+        fl_hlv_int_mask(s, (v0 + s->step_v - 1) / s->step_v);
         m.data = s->mask;
         m.width = s->mask_w;
         m.height = s->mask_h;

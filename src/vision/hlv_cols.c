@@ -52,7 +52,7 @@ static uint8_t run_class(uint8_t c)
  * their count. */
 static int32_t column_runs(fl_hlv_t *s, int32_t i, int32_t height, hlv_run_t *runs)
 {
-    const int32_t step = s->params.mask_step_v, gap = s->params.gap_px;
+    const int32_t step = s->step_v, gap = s->params.gap_px;
     int32_t n = 0, j, last_v = -1;
     uint8_t cur = 0;
     for (j = s->mask_h - 1; j >= 0; j--) {
@@ -99,7 +99,7 @@ static void classify_column(const fl_hlv_t *s, const hlv_run_t *runs, int32_t n,
         uint8_t other;
         if (a->cls != FL_HLV_YELLOW && a->cls != FL_HLV_BLUE)
             continue;
-        if (!adjacent(g, a, p->green_gap_px, p->mask_step_v))
+        if (!adjacent(g, a, p->green_gap_px, s->step_v))
             continue;
         /* a painted line right below and green below that: a post on
          * the goal line */
@@ -108,20 +108,20 @@ static void classify_column(const fl_hlv_t *s, const hlv_run_t *runs, int32_t n,
              * (on hl3x2 25 mm lines seen from 460 mm up against 450 mm
              * posts: under 1/10 at any range over 0.3 m); a longer white
              * run is a floor or a wall between an object and the carpet */
-            if (k < 2 || !adjacent(&runs[k - 2], g, p->green_gap_px, p->mask_step_v) ||
-                8 * run_len(g, p->mask_step_v) > run_len(a, p->mask_step_v))
+            if (k < 2 || !adjacent(&runs[k - 2], g, p->green_gap_px, s->step_v) ||
+                8 * run_len(g, s->step_v) > run_len(a, s->step_v))
                 continue;
             g = &runs[k - 2];
         }
-        if (g->cls != FL_HLV_GREEN || run_len(g, p->mask_step_v) < p->min_green_px)
+        if (g->cls != FL_HLV_GREEN || run_len(g, s->step_v) < p->min_green_px)
             continue;
         other = a->cls == FL_HLV_YELLOW ? FL_HLV_BLUE : FL_HLV_YELLOW;
         out->foot = a->lo;
-        if (k + 1 < n && runs[k + 1].cls == other && adjacent(a, &runs[k + 1], p->gap_px, p->mask_step_v)) {
+        if (k + 1 < n && runs[k + 1].cls == other && adjacent(a, &runs[k + 1], p->gap_px, s->step_v)) {
             const hlv_run_t *b = &runs[k + 1], *c = k + 2 < n ? &runs[k + 2] : NULL;
-            if (c && c->cls == a->cls && adjacent(b, c, p->gap_px, p->mask_step_v) &&
-                run_len(a, p->mask_step_v) >= p->min_band_px && run_len(b, p->mask_step_v) >= p->min_band_px &&
-                run_len(c, p->mask_step_v) >= p->min_band_px) {
+            if (c && c->cls == a->cls && adjacent(b, c, p->gap_px, s->step_v) &&
+                run_len(a, s->step_v) >= p->min_band_px && run_len(b, s->step_v) >= p->min_band_px &&
+                run_len(c, s->step_v) >= p->min_band_px) {
                 out->kind = a->cls == FL_HLV_YELLOW ? FL_HLV_POLE_YBY : FL_HLV_POLE_BYB;
                 out->top = c->hi;
                 out->band_lo = a->hi;
@@ -129,7 +129,7 @@ static void classify_column(const fl_hlv_t *s, const hlv_run_t *runs, int32_t n,
             }
             return;   /* two colours without a third band: not identified */
         }
-        if (run_len(a, p->mask_step_v) >= p->min_post_px) {
+        if (run_len(a, s->step_v) >= p->min_post_px) {
             out->kind = a->cls == FL_HLV_YELLOW ? FL_HLV_POST_YELLOW : FL_HLV_POST_BLUE;
             out->top = a->hi;
             out->band_lo = out->band_hi = -1;
@@ -143,7 +143,7 @@ static void classify_column(const fl_hlv_t *s, const hlv_run_t *runs, int32_t n,
  * be off by up to half its width). */
 static void close_object(fl_hlv_t *s, fl_hlv_object_t *o, int32_t width)
 {
-    const int32_t step = s->params.mask_step_u;
+    const int32_t step = s->step_u;
     if (o->cols < s->params.min_cols || o->u0 - step < 0 || o->u1 + step >= width)
         return;
     if (s->n_objects == FL_HLV_MAX_OBJECTS) {
@@ -162,7 +162,7 @@ static void close_object(fl_hlv_t *s, fl_hlv_object_t *o, int32_t width)
 static int32_t crossbar_side(const fl_hlv_t *s, const fl_image_t *img, const fl_hlv_object_t *o,
                              uint8_t cls)
 {
-    const int32_t w = o->u1 - o->u0 + s->params.mask_step_u;
+    const int32_t w = o->u1 - o->u0 + s->step_u;
     int32_t side, k, dv, hits[2] = {0, 0};
     if (o->top_v <= 0)
         return 0;   /* the top is not in the image */
@@ -256,7 +256,7 @@ static void add_column(fl_hlv_object_t *o, const hlv_col_t *col, int32_t u, int3
 
 void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start)
 {
-    const int32_t step = s->params.mask_step_u;
+    const int32_t step = s->step_u;
     hlv_run_t runs[FL_HLV_MAX_RUNS];
     fl_hlv_object_t cur;
     hlv_col_t last;
@@ -293,7 +293,7 @@ void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start)
         }
         if (col.kind == 0)
             continue;
-        add_column(&cur, &col, u, s->params.mask_step_v);
+        add_column(&cur, &col, u, s->step_v);
         last_u = u;
         last = col;
     }

@@ -35,7 +35,7 @@ static int32_t grid_px(int32_t i, int32_t step, int32_t size)
  * goes through image.c's integer conversion. */
 static void classify_row(fl_hlv_t *s, const fl_image_t *img, int32_t v, uint8_t *c)
 {
-    const int32_t mw = s->mask_w, su = s->params.mask_step_u, w1 = img->width - 1;
+    const int32_t mw = s->mask_w, su = s->step_u, w1 = img->width - 1;
     int32_t i, u;
     if (img->format == FL_FMT_YUYV422) {
         const uint8_t *row = img->plane[0] + v * img->stride[0];
@@ -64,7 +64,7 @@ void fl_hlv_int_classify(fl_hlv_t *s, const fl_image_t *img)
     int32_t j;
     memset(s->colbits, 0, sizeof s->colbits);
     for (j = 0; j < s->mask_h; j++)
-        classify_row(s, img, grid_px(j, s->params.mask_step_v, img->height), s->cls + j * s->mask_w);
+        classify_row(s, img, grid_px(j, s->step_v, img->height), s->cls + j * s->mask_w);
 }
 
 /* Green within r cells of (i, j) going by (di, dj), inside the grid. */

@@ -77,7 +77,7 @@ static void rect(uint8_t *rgb, int w, int h, int u0, int v0, int u1, int v1, con
 static void draw_mask(const fl_hlv_t *hv, uint8_t *rgb, int w, int h)
 {
     static const uint8_t c_mask[3] = {120, 200, 255}, c_skel[3] = {255, 0, 0};
-    const int su = hv->params.mask_step_u, sv = hv->params.mask_step_v;
+    const int su = hv->step_u, sv = hv->step_v;
     int i, j, a, b;
     for (j = 0; j < hv->mask_h; j++)
         for (i = 0; i < hv->mask_w; i++) {
