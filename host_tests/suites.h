@@ -33,6 +33,8 @@ T_SUITE(features);
 T_SUITE(robots);
 T_SUITE(camera_vision);
 T_SUITE(beacon);
+T_SUITE(hlvision);
+T_SUITE(skeleton);
 T_SUITE(goal_white);
 T_SUITE(localize);
 T_SUITE(picture);

@@ -359,6 +359,79 @@
 #error "FL_ODOCAL_MAX_FIXES must be in 4..64"
 #endif
 
+/* ---- skeleton and line crossings (skeleton.h, seed 002) -----------------
+ * FL_SKEL_MAX_WIDTH/HEIGHT  largest mask, pixels.  Default 320 x 240 (a
+ *                    humanoid's 640 x 480 frame subsampled by 2).  Range
+ *                    16..FL_IMAGE_MAX_DIM each.
+ * FL_SKEL_MAX_CONTOUR  contour list of the thinning (white pixels that may
+ *                    still change, then the skeleton).  Default 16384,
+ *                    range 64..1048576; pixels beyond it are never thinned
+ *                    and are counted.
+ * FL_SKEL_MAX_NODES  skeleton pixels of degree >= 3 per run.  Default 256,
+ *                    range 8..4096 (more are counted).
+ * FL_SKEL_MAX_CROSSINGS  crossings reported per run.  Default 16, range
+ *                    1..255 (more are counted).
+ * FL_SKEL_MAX_POINTS  skeleton pixels sampled per run (white points).
+ *                    Default 48, range 0..1024.
+ * Memory: 2 bytes per mask pixel (plus a 1-pixel border) + 4 B per
+ * contour entry + 6 B per node + 16 B per crossing + 4 B per point: about
+ * 220 KB at the defaults. */
+#ifndef FL_SKEL_MAX_WIDTH
+#define FL_SKEL_MAX_WIDTH 320
+#endif
+#ifndef FL_SKEL_MAX_HEIGHT
+#define FL_SKEL_MAX_HEIGHT 240
+#endif
+#if FL_SKEL_MAX_WIDTH < 16 || FL_SKEL_MAX_WIDTH > FL_IMAGE_MAX_DIM || \
+    FL_SKEL_MAX_HEIGHT < 16 || FL_SKEL_MAX_HEIGHT > FL_IMAGE_MAX_DIM
+#error "FL_SKEL_MAX_WIDTH and FL_SKEL_MAX_HEIGHT must be in 16..FL_IMAGE_MAX_DIM"
+#endif
+#ifndef FL_SKEL_MAX_CONTOUR
+#define FL_SKEL_MAX_CONTOUR 16384
+#endif
+#if FL_SKEL_MAX_CONTOUR < 64 || FL_SKEL_MAX_CONTOUR > 1048576
+#error "FL_SKEL_MAX_CONTOUR must be in 64..1048576"
+#endif
+#ifndef FL_SKEL_MAX_NODES
+#define FL_SKEL_MAX_NODES 256
+#endif
+#if FL_SKEL_MAX_NODES < 8 || FL_SKEL_MAX_NODES > 4096
+#error "FL_SKEL_MAX_NODES must be in 8..4096"
+#endif
+#ifndef FL_SKEL_MAX_CROSSINGS
+#define FL_SKEL_MAX_CROSSINGS 16
+#endif
+#if FL_SKEL_MAX_CROSSINGS < 1 || FL_SKEL_MAX_CROSSINGS > 255
+#error "FL_SKEL_MAX_CROSSINGS must be in 1..255"
+#endif
+#ifndef FL_SKEL_MAX_POINTS
+#define FL_SKEL_MAX_POINTS 48
+#endif
+#if FL_SKEL_MAX_POINTS < 0 || FL_SKEL_MAX_POINTS > 1024
+#error "FL_SKEL_MAX_POINTS must be in 0..1024"
+#endif
+
+/* ---- seed 002's vision path (hlvision.h) ---------------------------------
+ * The white-surrounded-by-green mask it builds is the skeleton stage's
+ * input: its largest size is FL_SKEL_MAX_WIDTH x FL_SKEL_MAX_HEIGHT.
+ * FL_HLV_MAX_RUNS      colour runs kept per scanned column (a column
+ *                      through a pole over the field has about 6).  Default
+ *                      32, range 4..255.
+ * FL_HLV_MAX_OBJECTS   posts and poles per frame (4 posts and 2 poles on
+ *                      hl3x2, plus clutter).  Default 16, range 2..64. */
+#ifndef FL_HLV_MAX_RUNS
+#define FL_HLV_MAX_RUNS 32
+#endif
+#if FL_HLV_MAX_RUNS < 4 || FL_HLV_MAX_RUNS > 255
+#error "FL_HLV_MAX_RUNS must be in 4..255"
+#endif
+#ifndef FL_HLV_MAX_OBJECTS
+#define FL_HLV_MAX_OBJECTS 16
+#endif
+#if FL_HLV_MAX_OBJECTS < 2 || FL_HLV_MAX_OBJECTS > 64
+#error "FL_HLV_MAX_OBJECTS must be in 2..64"
+#endif
+
 /* ---- the configuration fingerprint ---------------------------------------
  * FNV-1a over 32-bit words: the layout version, then every option above
  * (each one guarded by #ifndef in this file; the host test config.
@@ -370,6 +443,8 @@
 #define FL_CFG_MIX_(h, v) \
     (((((h) ^ ((unsigned long)(v) & 0xFFFFFFFFUL)) * 16777619UL)) & 0xFFFFFFFFUL)
 #define FL_CONFIG_FINGERPRINT ((uint32_t)( \
+    FL_CFG_MIX_(FL_CFG_MIX_( \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
@@ -382,6 +457,8 @@
     FL_CIRCLE_MAX_POINTS), FL_LINES_NEAR_MAX), FL_OBS_MAX), FL_BEACON_MAX_RUNS), FL_BEACON_MAX_BLOBS), FL_BEACON_MAX_FOUND), \
     FL_HOMOG_MAX_POINTS), FL_COACH_MAX_WIDTH), FL_COACH_MAX_HEIGHT), FL_COACH_MAX_RUNS), FL_COACH_MAX_REGIONS), FL_COACH_MAX_FEET), \
     FL_COACH_MAX_BAND_PX), FL_REPORT_MAX), FL_REPORT_MAX_PLAYERS), \
-    FL_ODOCAL_MAX_FIXES), FL_OBS_MAX_POINTS)))
+    FL_ODOCAL_MAX_FIXES), FL_OBS_MAX_POINTS), FL_SKEL_MAX_WIDTH), FL_SKEL_MAX_HEIGHT), \
+    FL_SKEL_MAX_CONTOUR), FL_SKEL_MAX_NODES), FL_SKEL_MAX_CROSSINGS), FL_SKEL_MAX_POINTS), \
+    FL_HLV_MAX_RUNS), FL_HLV_MAX_OBJECTS)))
 
 #endif /* FIELDLOC_CONFIG_H */

@@ -40,6 +40,8 @@ HEADER_LAYER = {
     "color.h": "vision", "scan.h": "vision", "lines.h": "vision",
     "crossings.h": "vision", "circle.h": "vision", "goal.h": "vision",
     "beacon.h": "vision", "vision.h": "vision", "color_auto.h": "vision",
+    "skeleton.h": "vision",      # thinning and crossings of a binary mask
+    "hlvision.h": "vision",      # seed 002's path: boxes, poles, mask, skeleton
     "fuzzy.h": "loc", "localizer.h": "loc", "mcl.h": "loc",
     "ukf.h": "loc", "upf.h": "loc",
     "report.h": "loc",           # observer reports: assignment, re-seed policy
