@@ -41,7 +41,7 @@ HEADER_LAYER = {
     "crossings.h": "vision", "circle.h": "vision", "goal.h": "vision",
     "beacon.h": "vision", "vision.h": "vision", "color_auto.h": "vision",
     "fuzzy.h": "loc", "localizer.h": "loc", "mcl.h": "loc",
-    "ukf.h": "loc", "upf.h": "loc",
+    "ukf.h": "loc", "upf.h": "loc", "relmap.h": "loc",
     "report.h": "loc",           # observer reports: assignment, re-seed policy
                                  # over localizer.h, the message
     "odocal.h": "loc",           # odometry scale from an observer's track
