@@ -12,6 +12,7 @@ T_SUITE(render);
 T_SUITE(coach_scene);
 T_SUITE(coach_cli);
 T_SUITE(sim);
+T_SUITE(seed002);
 T_SUITE(realdata);
 T_SUITE(color);
 T_SUITE(color_file);
