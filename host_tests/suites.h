@@ -23,6 +23,7 @@ T_SUITE(localizer);
 T_SUITE(mcl);
 T_SUITE(ukf);
 T_SUITE(upf);
+T_SUITE(relmap);
 T_SUITE(confidence);
 T_SUITE(reseed);
 T_SUITE(team);

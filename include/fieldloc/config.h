@@ -236,6 +236,51 @@
 #error "FL_OBS_MAX_POINTS must be in 0..255"
 #endif
 
+/* ---- relative-map position grid (relmap.h, seed 002) --------------------
+ * FL_RELMAP_NX / NY   grid of position particles along field x / y.
+ *                     Default 54 x 36 (seed 002's grid of its 3 x 2 m
+ *                     field); on every field the same count spans the
+ *                     carpet (lines plus border).  Range 8..96 each, and
+ *                     NX * NY <= 2048: the grid (belief, heading and their
+ *                     predict copies, 8 bytes a cell) stays within 16 KiB.
+ * FL_RELMAP_MAX_CAND  particles the relative map is built for per frame
+ *                     (those over the threshold, the best first).
+ *                     Default 48, range 4..255.
+ * FL_RELMAP_MAX_OBS   landmarks of a frame the relative map uses (the
+ *                     nearest).  Default 8, range 2..32.
+ * FL_RELMAP_MAX_WHITE white points projected per tied pose.  Default 16,
+ *                     range 0..64. */
+#ifndef FL_RELMAP_NX
+#define FL_RELMAP_NX 54
+#endif
+#ifndef FL_RELMAP_NY
+#define FL_RELMAP_NY 36
+#endif
+#if FL_RELMAP_NX < 8 || FL_RELMAP_NX > 96 || FL_RELMAP_NY < 8 || FL_RELMAP_NY > 96
+#error "FL_RELMAP_NX and FL_RELMAP_NY must be in 8..96"
+#endif
+#if FL_RELMAP_NX * FL_RELMAP_NY > 2048
+#error "FL_RELMAP_NX * FL_RELMAP_NY must be at most 2048 (16 KiB grid)"
+#endif
+#ifndef FL_RELMAP_MAX_CAND
+#define FL_RELMAP_MAX_CAND 48
+#endif
+#if FL_RELMAP_MAX_CAND < 4 || FL_RELMAP_MAX_CAND > 255
+#error "FL_RELMAP_MAX_CAND must be in 4..255"
+#endif
+#ifndef FL_RELMAP_MAX_OBS
+#define FL_RELMAP_MAX_OBS 8
+#endif
+#if FL_RELMAP_MAX_OBS < 2 || FL_RELMAP_MAX_OBS > 32
+#error "FL_RELMAP_MAX_OBS must be in 2..32"
+#endif
+#ifndef FL_RELMAP_MAX_WHITE
+#define FL_RELMAP_MAX_WHITE 16
+#endif
+#if FL_RELMAP_MAX_WHITE < 0 || FL_RELMAP_MAX_WHITE > 64
+#error "FL_RELMAP_MAX_WHITE must be in 0..64"
+#endif
+
 /* ---- colored beacons and goals (beacon.h, AIBO fields) -------------------
  * FL_BEACON_MAX_RUNS   colored vertical runs per frame.  Default 384
  *                      (a 208x160 frame full of color at the default
@@ -443,22 +488,21 @@
 #define FL_CFG_MIX_(h, v) \
     (((((h) ^ ((unsigned long)(v) & 0xFFFFFFFFUL)) * 16777619UL)) & 0xFFFFFFFFUL)
 #define FL_CONFIG_FINGERPRINT ((uint32_t)( \
-    FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
-    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
     FL_ABI_VERSION), FL_IMAGE_MAX_DIM), FL_FUZZY_CELL_MM), FL_FUZZY_MAX_NX), FL_FUZZY_MAX_NY), FL_FUZZY_MAX_REGIONS), \
     FL_MCL_MAX_PARTICLES), FL_UPF_MAX_PARTICLES), FL_SCAN_MAX_COLS), FL_SCAN_MAX_ROWS), FL_SCAN_MAX_FEET), FL_LINES_MAX_POINTS), \
     FL_LINES_MAX_SEGMENTS), FL_LINES_MAX_BUCKETS), FL_LINES_WTAB), FL_CROSSINGS_MAX), FL_GOAL_MAX_POSTS), FL_CIRCLE_MAX_CHORDS), \
     FL_CIRCLE_MAX_POINTS), FL_LINES_NEAR_MAX), FL_OBS_MAX), FL_BEACON_MAX_RUNS), FL_BEACON_MAX_BLOBS), FL_BEACON_MAX_FOUND), \
     FL_HOMOG_MAX_POINTS), FL_COACH_MAX_WIDTH), FL_COACH_MAX_HEIGHT), FL_COACH_MAX_RUNS), FL_COACH_MAX_REGIONS), FL_COACH_MAX_FEET), \
-    FL_COACH_MAX_BAND_PX), FL_REPORT_MAX), FL_REPORT_MAX_PLAYERS), \
-    FL_ODOCAL_MAX_FIXES), FL_OBS_MAX_POINTS), FL_SKEL_MAX_WIDTH), FL_SKEL_MAX_HEIGHT), \
-    FL_SKEL_MAX_CONTOUR), FL_SKEL_MAX_NODES), FL_SKEL_MAX_CROSSINGS), FL_SKEL_MAX_POINTS), \
-    FL_HLV_MAX_RUNS), FL_HLV_MAX_OBJECTS)))
+    FL_COACH_MAX_BAND_PX), FL_REPORT_MAX), FL_REPORT_MAX_PLAYERS), FL_ODOCAL_MAX_FIXES), FL_OBS_MAX_POINTS), FL_SKEL_MAX_WIDTH), \
+    FL_SKEL_MAX_HEIGHT), FL_SKEL_MAX_CONTOUR), FL_SKEL_MAX_NODES), FL_SKEL_MAX_CROSSINGS), FL_SKEL_MAX_POINTS), FL_HLV_MAX_RUNS), \
+    FL_HLV_MAX_OBJECTS), FL_RELMAP_NX), FL_RELMAP_NY), FL_RELMAP_MAX_CAND), FL_RELMAP_MAX_OBS), FL_RELMAP_MAX_WHITE)))
 
 #endif /* FIELDLOC_CONFIG_H */

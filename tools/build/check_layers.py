@@ -43,7 +43,7 @@ HEADER_LAYER = {
     "skeleton.h": "vision",      # thinning and crossings of a binary mask
     "hlvision.h": "vision",      # seed 002's path: boxes, poles, mask, skeleton
     "fuzzy.h": "loc", "localizer.h": "loc", "mcl.h": "loc",
-    "ukf.h": "loc", "upf.h": "loc",
+    "ukf.h": "loc", "upf.h": "loc", "relmap.h": "loc",
     "report.h": "loc",           # observer reports: assignment, re-seed policy
                                  # over localizer.h, the message
     "odocal.h": "loc",           # odometry scale from an observer's track
