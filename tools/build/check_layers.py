@@ -79,6 +79,8 @@ LOC_INTERFACE = {"localizer.h", "obs.h",
                  "odocal.h"}   # no localizer's API: corrects the odometry fed to any
 LOC_OWN_TOOLS = {"bench/bench_fuzzy.c": "the fuzzy grid's benchmark section "
                                         "(worst-case cells, sizeof)",
+                 "eval/eval_relmap.c": "seed 002's evaluation: the relative map's "
+                                       "eq. 4 pose and tie set per frame",
                  "cli/cmd_ukf_check.c": "the UKF step's numerics against the double "
                                         "reference (ukf.h building blocks)"}
 # ---------------------------------------------------------------------------
