@@ -43,6 +43,19 @@ static void sk_setup(const fl_skel_params_t *p)
     memset(M, 0, (size_t)SW * SH);
 }
 
+/* Params for the thick test lines (up to 12 px wide, ragged): the arm
+ * length must exceed the bumps that ragged edges of such lines thin to,
+ * and the acute crossings of 5 px lines thin to nodes 7 px apart. */
+static void sk_setup_thick(void)
+{
+    fl_skel_params_t p;
+    fl_skel_params_default(&p);
+    p.spur_px = 4;
+    p.merge_px = 6;
+    p.arm_px = 8;
+    sk_setup(&p);
+}
+
 static fl_status_t sk_run(int w, int h, uint32_t seed)
 {
     fl_skel_mask_t m = {M, w, h, SW};
@@ -322,7 +335,7 @@ static void plus_case(double cx, double cy, double a, double cross, double hw, d
 {
     double r = a * M_PI / 180, r2 = (a + cross) * M_PI / 180, dirs[4];
     int i, j, w = 160, h = 160;
-    sk_setup(NULL);
+    sk_setup_thick();
     lm_segment(M, w, h, SW, cx - len * cos(r), cy - len * sin(r), cx + len * cos(r),
                cy + len * sin(r), hw, hw);
     lm_segment(M, w, h, SW, cx - len * cos(r2), cy - len * sin(r2), cx + len * cos(r2),
@@ -447,7 +460,7 @@ static void test_straight(void)
     for (k = 0; k < 8; k++) {
         double a = k * 22.5 * M_PI / 180;
         char what[64];
-        sk_setup(NULL);
+        sk_setup_thick();
         lm_segment(M, 160, 160, SW, 80 - 70 * cos(a), 80 - 70 * sin(a), 80 + 70 * cos(a),
                    80 + 70 * sin(a), 2.5 + k * 0.5, 2.5 + k * 0.5);
         if (k & 1)

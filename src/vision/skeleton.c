@@ -110,9 +110,9 @@ void fl_skel_params_default(fl_skel_params_t *p)
     if (!p)
         return;
     p->max_iterations = 32;
-    p->spur_px = 4;
+    p->spur_px = 3;
     p->merge_px = 6;
-    p->arm_px = 8;
+    p->arm_px = 6;
     p->n_points = FL_SKEL_MAX_POINTS;
     p->report_l = 0;
 }

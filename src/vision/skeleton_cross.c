@@ -17,9 +17,10 @@
  * arms (a branch shorter than arm_px, or one that comes back, never
  * reaches it).  An arm on a side clipped by the mask edge leaves the image
  * before it is known to be an arm: the cluster is rejected.  (5) Position:
- * X, the intersection of the two lines through opposite arms' border
- * points; T, the node centroid projected onto the line through the
- * straightest pair; L, the node centroid.  (6) The sample: a partial
+ * X, the intersection of the two lines through opposite arms' points; T,
+ * the bar's line (the straightest pair's points) meets the stem's (its
+ * border point to its walk's end), or the node centroid projected onto
+ * the bar; L, the node centroid.  (6) The sample: a partial
  * Fisher-Yates shuffle of the skeleton list by xorshift32 (Marsaglia
  * 2003) seeded from the caller's seed.
  *
@@ -170,6 +171,7 @@ typedef struct {
     int32_t n_arms;
     int32_t ax_q4[4], ay_q4[4];   /* arm points: the end of a walk out of
                                      the box, else the border run's centre */
+    int32_t rx_q4[4], ry_q4[4];   /* the border run's centre */
     uint32_t mid[4];              /* a pixel of each border run */
     fl_angle_t arm[4];
 } sk_cluster_t;
@@ -292,8 +294,8 @@ static int sk_arms(fl_skel_t *s, sk_cluster_t *c, uint32_t *q, int32_t *n, int32
         } else if (cnt > 0) {
             if (c->n_arms >= 4)
                 return 0;
-            c->ax_q4[c->n_arms] = (sx * 16 + cnt / 2) / cnt;
-            c->ay_q4[c->n_arms] = (sy * 16 + cnt / 2) / cnt;
+            c->ax_q4[c->n_arms] = c->rx_q4[c->n_arms] = (sx * 16 + cnt / 2) / cnt;
+            c->ay_q4[c->n_arms] = c->ry_q4[c->n_arms] = (sy * 16 + cnt / 2) / cnt;
             c->mid[c->n_arms] = first;
             c->n_arms++;
             sx = sy = cnt = 0;
@@ -349,9 +351,12 @@ static int sk_classify(const fl_skel_t *s, sk_cluster_t *c, fl_skel_crossing_t *
     memset(out, 0, sizeof *out);
     for (i = 1; i < c->n_arms; i++) {    /* ascending angles */
         for (j = i; j > 0 && c->arm[j - 1] > c->arm[j]; j--) {
-            fl_angle_t ta = c->arm[j]; int32_t tx = c->ax_q4[j], ty = c->ay_q4[j];
+            fl_angle_t ta = c->arm[j];
+            int32_t tx = c->ax_q4[j], ty = c->ay_q4[j], ux = c->rx_q4[j], uy = c->ry_q4[j];
             c->arm[j] = c->arm[j - 1]; c->ax_q4[j] = c->ax_q4[j - 1]; c->ay_q4[j] = c->ay_q4[j - 1];
+            c->rx_q4[j] = c->rx_q4[j - 1]; c->ry_q4[j] = c->ry_q4[j - 1];
             c->arm[j - 1] = ta; c->ax_q4[j - 1] = tx; c->ay_q4[j - 1] = ty;
+            c->rx_q4[j - 1] = ux; c->ry_q4[j - 1] = uy;
         }
     }
     if (c->n_arms == 4) {
@@ -372,10 +377,17 @@ static int sk_classify(const fl_skel_t *s, sk_cluster_t *c, fl_skel_crossing_t *
                 best = i;
             }
         }
-        {
-            int32_t k = (best + 1) % 3;
+        {   /* the bar's line meets the stem's (its border point to the
+               end of its walk); without a walk, the node centroid onto
+               the bar */
+            int32_t k = (best + 1) % 3, st = (best + 2) % 3;
             int32_t la[4] = {c->ax_q4[best], c->ay_q4[best], c->ax_q4[k], c->ay_q4[k]};
-            (void)sk_project(la, &x, &y);
+            int32_t lb[4] = {c->rx_q4[st], c->ry_q4[st], c->ax_q4[st], c->ay_q4[st]};
+            if (!sk_intersect(la, lb, &x, &y)) {
+                x = c->cx_q4;
+                y = c->cy_q4;
+                (void)sk_project(la, &x, &y);
+            }
         }
     } else if (c->n_arms == 2) {
         bend = sk_bend(c->arm[0], c->arm[1]);
