@@ -83,7 +83,7 @@ int s002_to_field_pose(s002_reading_t r, int fig_index, int est, int32_t *x_mm,
                        int32_t *y_mm, int32_t *heading_deg);
 
 /* The scene of a table I pose: hl3x2, acyut-640 in its default stance
- * (render_scene_default), robot at the pose. */
+ * (render_scene_default), robot at the pose, no room around the carpet. */
 void s002_scene(render_scene_t *sc, int32_t x_mm, int32_t y_mm, int32_t heading_deg);
 
 /* What the camera sees at a pose (not occluded truth features): counts of
