@@ -593,10 +593,19 @@ static void test_random(void)
                 for (x = 0; x < w; x++)
                     M[y * SW + x] = (int)(xs(&r) % 100) < pct;
         } else {
-            for (s = 0; s < 1 + (int)(xs(&r) % 6); s++)
-                lm_segment(M, w, hh, SW, xs(&r) % (uint32_t)w, xs(&r) % (uint32_t)hh,
-                           xs(&r) % (uint32_t)w, xs(&r) % (uint32_t)hh, 0.5 + (xs(&r) % 60) / 10.0,
-                           0.5 + (xs(&r) % 60) / 10.0);
+            int n_seg = 1 + (int)(xs(&r) % 6);
+            for (s = 0; s < n_seg; s++) {
+                /* one draw per statement: the order in which a call's
+                 * arguments are evaluated differs between compilers and
+                 * targets, and the digest must not */
+                double x0 = xs(&r) % (uint32_t)w, y0 = 0, x1 = 0, y1 = 0, hw0 = 0, hw1 = 0;
+                y0 = xs(&r) % (uint32_t)hh;
+                x1 = xs(&r) % (uint32_t)w;
+                y1 = xs(&r) % (uint32_t)hh;
+                hw0 = 0.5 + (xs(&r) % 60) / 10.0;
+                hw1 = 0.5 + (xs(&r) % 60) / 10.0;
+                lm_segment(M, w, hh, SW, x0, y0, x1, y1, hw0, hw1);
+            }
             if (k % 3 == 2)
                 lm_ragged(M, w, hh, SW, r, 40);
         }
