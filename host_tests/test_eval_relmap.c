@@ -65,12 +65,15 @@ static void test_runs(void)
     CHECK(strstr(a, "\nwrong_side_pct ") != NULL);
     CHECK(strstr(a, "\nframe_ms ") != NULL);
     CHECK(strstr(a, "# 2(a)") != NULL && strstr(a, "# 2(c)") != NULL);
-    /* the same seed gives the same poses and estimates */
-    CHECK_EQ(run(&o, &r2, b, sizeof b), 0);
-    drop_time(a);
-    drop_time(b);
-    CHECK(strcmp(a, b) == 0);
-    CHECK(r.median_pos_mm == r2.median_pos_mm);
+    /* the same seed gives the same poses and estimates (not under --quick:
+     * the emulated and instrumented runs render slowly) */
+    if (!t_quick) {
+        CHECK_EQ(run(&o, &r2, b, sizeof b), 0);
+        drop_time(a);
+        drop_time(b);
+        CHECK(strcmp(a, b) == 0);
+        CHECK(r.median_pos_mm == r2.median_pos_mm);
+    }
     /* any catalogue localizer; an unknown one is refused */
     o.poses = 0;
     o.localizer = "mcl";

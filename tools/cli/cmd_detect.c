@@ -14,7 +14,8 @@
  * IMAGE: binary PPM, or an FLRAW fixture frame (yuyv / planar).  Defaults:
  * field uva2013, camera uva2013 (the UvA 2013 dataset of seed 000); head
  * pitch and yaw 0, except -0.54 rad pitch for camera uva2013 (the
- * dataset's HeadPitch); the neck height and pitch offset are the
+ * dataset's HeadPitch) and 20 deg down for the acyut cameras (the rendered
+ * hl3x2 frames' stance; field hl3x2 defaults to camera acyut-640); the neck height and pitch offset are the
  * camera model's defaults (default_neck_height_mm, default_pitch_offset)
  * unless --neck MM gives the neck height.
  * --calib CALIB applies a per-robot calibration (fieldloc/calib.h, written by
@@ -207,6 +208,7 @@ static int detect_hl(const render_frame_t *fr, const fl_camera_t *cam, const fl_
 
 int cmd_detect(int argc, char **argv)
 {
+    int cam_given = 0;
     const char *field_name = "uva2013", *cam_name = "uva2013", *path = NULL,
                *picture = NULL, *calib_path = NULL;
     fl_calib_t calib;
@@ -232,8 +234,10 @@ int cmd_detect(int argc, char **argv)
     for (i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--field") && i + 1 < argc)
             field_name = argv[++i];
-        else if (!strcmp(argv[i], "--camera") && i + 1 < argc)
+        else if (!strcmp(argv[i], "--camera") && i + 1 < argc) {
             cam_name = argv[++i];
+            cam_given = 1;
+        }
         else if (!strcmp(argv[i], "--head") && i + 2 < argc) {
             /* numbers now, their range once the camera is known */
             head_text[0] = argv[++i];
@@ -300,6 +304,8 @@ int cmd_detect(int argc, char **argv)
         fprintf(stderr, "detect: unknown field %s (see: fieldloc fields)\n", field_name);
         return 2;
     }
+    if (!cam_given && render_field_camera(field) != NULL)
+        cam_name = render_field_camera(field);   /* hl3x2: its humanoid camera */
     m = fl_camera_model_find(cam_name);
     if (!m) {
         fprintf(stderr, "detect: unknown camera %s (see: fieldloc cameras)\n", cam_name);
@@ -332,6 +338,8 @@ int cmd_detect(int argc, char **argv)
     }
     if (!head_given && !strcmp(m->name, "uva2013"))
         pitch = -0.54;  /* the dataset's HeadPitch (see realdata/SOURCES.md) */
+    if (!head_given && !strncmp(m->name, "acyut-", 6))
+        pitch = RENDER_HUMANOID_HEAD_PITCH * (2.0 * M_PI / 65536.0);  /* rendered hl3x2 frames */
     if (det_camera(&cam, m, pitch, yaw) != FL_OK) {
         fprintf(stderr, "detect: invalid head pose\n");
         render_frame_free(&fr);
