@@ -76,6 +76,12 @@ CXX      ?= g++
 CV_DEFS   = -DFL_HAVE_OPENCV
 CV_CFLAGS := $(shell pkg-config --cflags opencv4)
 CV_LIBS   := $(filter-out -lopencv_%,$(shell pkg-config --libs opencv4)) -lopencv_imgproc -lopencv_core
+# cv::ximgproc::thinning (opencv_contrib), the skeleton benchmark's peer,
+# when that module's header is installed
+ifneq ($(wildcard $(shell pkg-config --variable=includedir opencv4 2>/dev/null)/opencv2/ximgproc.hpp),)
+CV_DEFS  += -DFL_HAVE_XIMGPROC
+CV_LIBS  := $(CV_LIBS) -lopencv_ximgproc
+endif
 TOOL_CXX_SRC := $(sort $(wildcard tools/*/*.cpp))
 endif
 TOOL_CXX_OBJ := $(TOOL_CXX_SRC:%.cpp=$(BUILD)/%.o)

@@ -324,12 +324,13 @@ static void test_catalogue(void)
     static const struct {
         const char *prefix;
         double hfov_deg;
-    } hfov[] = {{"nao3-", 47.8}, {"nao4-", 60.9}, {"nao6-", 56.3}, {"aibo-ers7", 56.9}};
+    } hfov[] = {{"nao3-", 47.8}, {"nao4-", 60.9}, {"nao6-", 56.3}, {"aibo-ers7", 56.9},
+                {"acyut-", 60.0}};
     static const char *const required[] = {
         "nao3-top-320", "nao3-top-640", "nao3-bottom-320", "nao3-bottom-640",
         "nao4-top-320", "nao4-top-640", "nao4-bottom-320", "nao4-bottom-640",
         "nao6-top-320", "nao6-top-640", "nao6-bottom-320", "nao6-bottom-640",
-        "nao6-top-1280", "nao6-bottom-1280", "aibo-ers7"};
+        "nao6-top-1280", "nao6-bottom-1280", "aibo-ers7", "acyut-640"};
     size_t i, j, n = fl_camera_model_count();
     const fl_camera_model_t *m;
     fl_camera_pose_t ps = {450, 0, 0, 0, 0, 0, 0};
@@ -416,6 +417,14 @@ static void test_catalogue(void)
     if (m) {
         CHECK_EQ(m->width_px, 208);
         CHECK_EQ(m->height_px, 160);
+    }
+    /* acyut-640 (seed 002's humanoid, inferred numbers: camera.c): a
+     * kid-size head height and a level mount looking down by head pitch */
+    m = fl_camera_model_find("acyut-640");
+    if (m) {
+        CHECK(m->default_neck_height_mm >= 300 && m->default_neck_height_mm <= 600);
+        CHECK_EQ(m->mount_tilt, 0);
+        CHECK(m->mount_z_mm > 0 && m->mount_x_mm > 0);
     }
     /* uva2013: the NAO v4 bottom camera of the UvA 2013 set, calibrated
      * from its hand labels (test_realdata checks it against them): the

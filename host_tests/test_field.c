@@ -232,6 +232,10 @@ static const spec_t specs[] = {
     /* seed 003's field: spl2013's lines, white goals, marks at 3200 */
     {"spl2016", 9000, 6000, 50, 700, 750, 600, 2200, 0, 0, 3200, 100, 1600, 100, 800,
      FL_COLOR_WHITE, FL_COLOR_WHITE, 1, {8, 6, 2, 2, 1, 4, 1, 0}},
+    /* seed 002's field: the KidSize field of 2009-2012 halved (numbers and
+     * their basis in src/model/field.c); 2 three-band landmark poles */
+    {"hl3x2", 3000, 2000, 25, 350, 300, 300, 1100, 0, 0, 600, 50, 800, 50, 450,
+     FL_COLOR_YELLOW, FL_COLOR_SKYBLUE, 0, {8, 6, 2, 2, 1, 4, 1, 2}},
 };
 #define N_SPECS (sizeof specs / sizeof specs[0])
 
@@ -698,6 +702,22 @@ static void test_beacons(void)
         for (i = 0; i < n; i++) {
             const fl_landmark_t *b = fl_field_nth_kind(f, FL_LM_BEACON, i);
             fl_color_t end = f->goal_color[b->x_mm > 0];
+            if (b->color == b->color2) {
+                /* three-band landmark pole (hl3x2): on the halfway line
+                 * extension just outside a touchline, within the carpet;
+                 * its outer bands have the color of the goal on the left
+                 * of a robot on the field facing it (+y pole: the -x
+                 * goal), the middle band the other goal's */
+                CHECK_EQ(b->x_mm, 0);
+                CHECK(abs(b->y_mm) > f->width_mm / 2 + f->line_width_mm / 2 +
+                                         f->beacon_diameter_mm / 2);
+                CHECK(abs(b->y_mm) + f->beacon_diameter_mm / 2 <= fl_field_carpet_half_y_mm(f));
+                CHECK_EQ(b->color, f->goal_color[b->y_mm > 0 ? 0 : 1]);
+                CHECK(!f->symmetric);
+                for (j = 0; j < i; j++)
+                    CHECK(fl_field_nth_kind(f, FL_LM_BEACON, j)->color != b->color);
+                continue;
+            }
             /* outside the lines, one band pink, the other the nearer goal's */
             CHECK(abs(b->x_mm) > f->length_mm / 2 && abs(b->y_mm) > f->width_mm / 2);
             CHECK(b->x_mm != 0);
@@ -709,7 +729,16 @@ static void test_beacons(void)
             }
         }
         if (n > 0)
-            CHECK(f->beacon_diameter_mm > 0 && f->beacon_height_mm > f->post_height_mm);
+            CHECK(f->beacon_diameter_mm > 0 && f->beacon_height_mm > 0);
+        /* AIBO beacons (two bands) stand above the goals; the KidSize
+         * poles (three bands, 600 mm) are lower than the crossbar (900) */
+        if (n > 0) {
+            const fl_landmark_t *b0 = fl_field_nth_kind(f, FL_LM_BEACON, 0);
+            if (b0->color != b0->color2)
+                CHECK(f->beacon_height_mm > f->post_height_mm);
+            else
+                CHECK(f->beacon_height_mm < f->post_height_mm);
+        }
     }
 }
 

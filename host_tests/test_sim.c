@@ -1087,6 +1087,76 @@ static void test_others_rendered(void)
            shown, picked, least, total);
 }
 
+/* Feature mode's white points: with noise off every point, taken back to
+ * the field frame with the integer true pose, lies on paint (within half
+ * a line width plus rounding of a line or the circle); with noise on within
+ * the range noise's reach; never more than SIM_POINTS_PER_FRAME; most
+ * frames of every walk carry a full sample; and the landmark observations
+ * do not depend on them (the trace digests of test_fixtures compare with
+ * the committed traces, made before points existed). */
+static double paint_dist(const fl_field_t *f, double x, double y)
+{
+    double best = f->circle_radius_mm > 0 ? fabs(hypot(x, y) - f->circle_radius_mm) : 1e30;
+    uint16_t i;
+    for (i = 0; i < f->n_lines; i++) {
+        const fl_field_line_t *l = &f->lines[i];
+        double dx = l->x1_mm - l->x0_mm, dy = l->y1_mm - l->y0_mm, t, d;
+        double len2 = dx * dx + dy * dy;
+        t = len2 > 0 ? ((x - l->x0_mm) * dx + (y - l->y0_mm) * dy) / len2 : 0;
+        t = t < 0 ? 0 : t > 1 ? 1 : t;
+        d = hypot(x - (l->x0_mm + t * dx), y - (l->y0_mm + t * dy));
+        if (d < best)
+            best = d;
+    }
+    return best;
+}
+
+static void test_white_points(void)
+{
+    int i, noise;
+    for (i = 0; i < SIM_BUILTIN_COUNT; i++)
+        for (noise = 0; noise < 2; noise++) {
+            sim_scenario_t sc;
+            sim_t sim;
+            sim_step_t st;
+            long frames = 0, full = 0, pts = 0;
+            double worst = 0, worst_rel = 0;
+            if (load_builtin(&sc, i) != 0)
+                continue;
+            if (!noise)
+                sim_scenario_noise_off(&sc);
+            sc.duration_s = t_quick ? 10 : 60;
+            CHECK_EQ(sim_init(&sim, &sc), 0);
+            while (sim_step(&sim, &st)) {
+                double h = ang_rad(st.heading), c = cos(h), s = sin(h);
+                int k;
+                frames++;
+                CHECK(st.obs.n_points <= SIM_POINTS_PER_FRAME);
+                CHECK_EQ(st.obs.points_dropped, 0);
+                full += st.obs.n_points == SIM_POINTS_PER_FRAME;
+                for (k = 0; k < st.obs.n_points; k++) {
+                    double rx = st.obs.points[k].x_mm, ry = st.obs.points[k].y_mm;
+                    double fx = st.x_mm + rx * c - ry * s, fy = st.y_mm + rx * s + ry * c;
+                    double d = paint_dist(sc.field, fx, fy), r = hypot(rx, ry);
+                    pts++;
+                    CHECK(r <= sc.max_range_mm * 1.5 + 1);
+                    if (d > worst)
+                        worst = d;
+                    if (r > 0 && d / r > worst_rel)
+                        worst_rel = d / r;
+                }
+            }
+            if (!noise)   /* on paint: half a line width + 1 mm of rounding */
+                CHECK_LE(worst, 0.5 * sc.field->line_width_mm + 1.5);
+            else          /* range and bearing noise: about 6 sigma of each */
+                CHECK_LE(worst_rel, 6 * sc.range_sigma_pct / 100.0 + 6 * sc.bearing_sigma_deg * PI / 180 + 0.05);
+            CHECK(full * 2 > frames);
+            t_info("%s noise %d: %ld frames, %ld full samples, %.1f points/frame, "
+                   "farthest from paint %.1f mm (%.3f of range)", sim_builtin_names[i], noise,
+                   frames, full, frames ? (double)pts / (double)frames : 0.0, worst, worst_rel);
+        }
+}
+
 void suite_sim(void)
 {
     t_run("sim.consistency", test_consistency);
@@ -1102,4 +1172,5 @@ void suite_sim(void)
     t_run("sim.sequence", test_sequence);
     t_run("sim.others", test_others);
     t_run("sim.others_rendered", test_others_rendered);
+    t_run("sim.white_points", test_white_points);
 }

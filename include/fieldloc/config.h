@@ -236,6 +236,51 @@
 #error "FL_OBS_MAX_POINTS must be in 0..255"
 #endif
 
+/* ---- relative-map position grid (relmap.h, seed 002) --------------------
+ * FL_RELMAP_NX / NY   grid of position particles along field x / y.
+ *                     Default 54 x 36 (seed 002's grid of its 3 x 2 m
+ *                     field); on every field the same count spans the
+ *                     carpet (lines plus border).  Range 8..96 each, and
+ *                     NX * NY <= 2048: the grid (belief, heading and their
+ *                     predict copies, 8 bytes a cell) stays within 16 KiB.
+ * FL_RELMAP_MAX_CAND  particles the relative map is built for per frame
+ *                     (those over the threshold, the best first).
+ *                     Default 48, range 4..255.
+ * FL_RELMAP_MAX_OBS   landmarks of a frame the relative map uses (the
+ *                     nearest).  Default 8, range 2..32.
+ * FL_RELMAP_MAX_WHITE white points projected per tied pose.  Default 16,
+ *                     range 0..64. */
+#ifndef FL_RELMAP_NX
+#define FL_RELMAP_NX 54
+#endif
+#ifndef FL_RELMAP_NY
+#define FL_RELMAP_NY 36
+#endif
+#if FL_RELMAP_NX < 8 || FL_RELMAP_NX > 96 || FL_RELMAP_NY < 8 || FL_RELMAP_NY > 96
+#error "FL_RELMAP_NX and FL_RELMAP_NY must be in 8..96"
+#endif
+#if FL_RELMAP_NX * FL_RELMAP_NY > 2048
+#error "FL_RELMAP_NX * FL_RELMAP_NY must be at most 2048 (16 KiB grid)"
+#endif
+#ifndef FL_RELMAP_MAX_CAND
+#define FL_RELMAP_MAX_CAND 48
+#endif
+#if FL_RELMAP_MAX_CAND < 4 || FL_RELMAP_MAX_CAND > 255
+#error "FL_RELMAP_MAX_CAND must be in 4..255"
+#endif
+#ifndef FL_RELMAP_MAX_OBS
+#define FL_RELMAP_MAX_OBS 8
+#endif
+#if FL_RELMAP_MAX_OBS < 2 || FL_RELMAP_MAX_OBS > 32
+#error "FL_RELMAP_MAX_OBS must be in 2..32"
+#endif
+#ifndef FL_RELMAP_MAX_WHITE
+#define FL_RELMAP_MAX_WHITE 16
+#endif
+#if FL_RELMAP_MAX_WHITE < 0 || FL_RELMAP_MAX_WHITE > 64
+#error "FL_RELMAP_MAX_WHITE must be in 0..64"
+#endif
+
 /* ---- colored beacons and goals (beacon.h, AIBO fields) -------------------
  * FL_BEACON_MAX_RUNS   colored vertical runs per frame.  Default 384
  *                      (a 208x160 frame full of color at the default
@@ -359,6 +404,79 @@
 #error "FL_ODOCAL_MAX_FIXES must be in 4..64"
 #endif
 
+/* ---- skeleton and line crossings (skeleton.h, seed 002) -----------------
+ * FL_SKEL_MAX_WIDTH/HEIGHT  largest mask, pixels.  Default 320 x 240 (a
+ *                    humanoid's 640 x 480 frame subsampled by 2).  Range
+ *                    16..FL_IMAGE_MAX_DIM each.
+ * FL_SKEL_MAX_CONTOUR  contour list of the thinning (white pixels that may
+ *                    still change, then the skeleton).  Default 16384,
+ *                    range 64..1048576; pixels beyond it are never thinned
+ *                    and are counted.
+ * FL_SKEL_MAX_NODES  skeleton pixels of degree >= 3 per run.  Default 256,
+ *                    range 8..4096 (more are counted).
+ * FL_SKEL_MAX_CROSSINGS  crossings reported per run.  Default 16, range
+ *                    1..255 (more are counted).
+ * FL_SKEL_MAX_POINTS  skeleton pixels sampled per run (white points).
+ *                    Default 48, range 0..1024.
+ * Memory: 2 bytes per mask pixel (plus a 1-pixel border) + 4 B per
+ * contour entry + 6 B per node + 16 B per crossing + 4 B per point: about
+ * 220 KB at the defaults. */
+#ifndef FL_SKEL_MAX_WIDTH
+#define FL_SKEL_MAX_WIDTH 320
+#endif
+#ifndef FL_SKEL_MAX_HEIGHT
+#define FL_SKEL_MAX_HEIGHT 240
+#endif
+#if FL_SKEL_MAX_WIDTH < 16 || FL_SKEL_MAX_WIDTH > FL_IMAGE_MAX_DIM || \
+    FL_SKEL_MAX_HEIGHT < 16 || FL_SKEL_MAX_HEIGHT > FL_IMAGE_MAX_DIM
+#error "FL_SKEL_MAX_WIDTH and FL_SKEL_MAX_HEIGHT must be in 16..FL_IMAGE_MAX_DIM"
+#endif
+#ifndef FL_SKEL_MAX_CONTOUR
+#define FL_SKEL_MAX_CONTOUR 16384
+#endif
+#if FL_SKEL_MAX_CONTOUR < 64 || FL_SKEL_MAX_CONTOUR > 1048576
+#error "FL_SKEL_MAX_CONTOUR must be in 64..1048576"
+#endif
+#ifndef FL_SKEL_MAX_NODES
+#define FL_SKEL_MAX_NODES 256
+#endif
+#if FL_SKEL_MAX_NODES < 8 || FL_SKEL_MAX_NODES > 4096
+#error "FL_SKEL_MAX_NODES must be in 8..4096"
+#endif
+#ifndef FL_SKEL_MAX_CROSSINGS
+#define FL_SKEL_MAX_CROSSINGS 16
+#endif
+#if FL_SKEL_MAX_CROSSINGS < 1 || FL_SKEL_MAX_CROSSINGS > 255
+#error "FL_SKEL_MAX_CROSSINGS must be in 1..255"
+#endif
+#ifndef FL_SKEL_MAX_POINTS
+#define FL_SKEL_MAX_POINTS 48
+#endif
+#if FL_SKEL_MAX_POINTS < 0 || FL_SKEL_MAX_POINTS > 1024
+#error "FL_SKEL_MAX_POINTS must be in 0..1024"
+#endif
+
+/* ---- seed 002's vision path (hlvision.h) ---------------------------------
+ * The white-surrounded-by-green mask it builds is the skeleton stage's
+ * input: its largest size is FL_SKEL_MAX_WIDTH x FL_SKEL_MAX_HEIGHT.
+ * FL_HLV_MAX_RUNS      colour runs kept per scanned column (a column
+ *                      through a pole over the field has about 6).  Default
+ *                      32, range 4..255.
+ * FL_HLV_MAX_OBJECTS   posts and poles per frame (4 posts and 2 poles on
+ *                      hl3x2, plus clutter).  Default 16, range 2..64. */
+#ifndef FL_HLV_MAX_RUNS
+#define FL_HLV_MAX_RUNS 32
+#endif
+#if FL_HLV_MAX_RUNS < 4 || FL_HLV_MAX_RUNS > 255
+#error "FL_HLV_MAX_RUNS must be in 4..255"
+#endif
+#ifndef FL_HLV_MAX_OBJECTS
+#define FL_HLV_MAX_OBJECTS 16
+#endif
+#if FL_HLV_MAX_OBJECTS < 2 || FL_HLV_MAX_OBJECTS > 64
+#error "FL_HLV_MAX_OBJECTS must be in 2..64"
+#endif
+
 /* ---- the configuration fingerprint ---------------------------------------
  * FNV-1a over 32-bit words: the layout version, then every option above
  * (each one guarded by #ifndef in this file; the host test config.
@@ -375,13 +493,16 @@
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
-    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(2166136261UL, \
     FL_ABI_VERSION), FL_IMAGE_MAX_DIM), FL_FUZZY_CELL_MM), FL_FUZZY_MAX_NX), FL_FUZZY_MAX_NY), FL_FUZZY_MAX_REGIONS), \
     FL_MCL_MAX_PARTICLES), FL_UPF_MAX_PARTICLES), FL_SCAN_MAX_COLS), FL_SCAN_MAX_ROWS), FL_SCAN_MAX_FEET), FL_LINES_MAX_POINTS), \
     FL_LINES_MAX_SEGMENTS), FL_LINES_MAX_BUCKETS), FL_LINES_WTAB), FL_CROSSINGS_MAX), FL_GOAL_MAX_POSTS), FL_CIRCLE_MAX_CHORDS), \
     FL_CIRCLE_MAX_POINTS), FL_LINES_NEAR_MAX), FL_OBS_MAX), FL_BEACON_MAX_RUNS), FL_BEACON_MAX_BLOBS), FL_BEACON_MAX_FOUND), \
     FL_HOMOG_MAX_POINTS), FL_COACH_MAX_WIDTH), FL_COACH_MAX_HEIGHT), FL_COACH_MAX_RUNS), FL_COACH_MAX_REGIONS), FL_COACH_MAX_FEET), \
-    FL_COACH_MAX_BAND_PX), FL_REPORT_MAX), FL_REPORT_MAX_PLAYERS), \
-    FL_ODOCAL_MAX_FIXES), FL_OBS_MAX_POINTS)))
+    FL_COACH_MAX_BAND_PX), FL_REPORT_MAX), FL_REPORT_MAX_PLAYERS), FL_ODOCAL_MAX_FIXES), FL_OBS_MAX_POINTS), FL_SKEL_MAX_WIDTH), \
+    FL_SKEL_MAX_HEIGHT), FL_SKEL_MAX_CONTOUR), FL_SKEL_MAX_NODES), FL_SKEL_MAX_CROSSINGS), FL_SKEL_MAX_POINTS), FL_HLV_MAX_RUNS), \
+    FL_HLV_MAX_OBJECTS), FL_RELMAP_NX), FL_RELMAP_NY), FL_RELMAP_MAX_CAND), FL_RELMAP_MAX_OBS), FL_RELMAP_MAX_WHITE)))
 
 #endif /* FIELDLOC_CONFIG_H */

@@ -26,7 +26,8 @@ typedef enum {
     FL_LM_CENTRE_MARK = 4,  /* centre mark (4 arms) */
     FL_LM_POST = 5,         /* goal post foot (centre of the post base) */
     FL_LM_CENTRE_CIRCLE = 6,/* centre of the centre circle */
-    FL_LM_BEACON = 7,       /* colored corner beacon (AIBO fields) */
+    FL_LM_BEACON = 7,       /* colored beacon (AIBO corners) or striped
+                               landmark pole (hl3x2; color == color2) */
     FL_LM_KIND_COUNT = 8
 } fl_landmark_kind_t;
 
@@ -79,8 +80,8 @@ typedef struct {
 
 typedef struct {
     const char *name;            /* "spl2013", "uva2013", "spl2020", "aibo2004",
-                                    "spl2016"
-                                    (aibo2004: partly unverified numbers,
+                                    "spl2016", "hl3x2"
+                                    (aibo2004, hl3x2: partly unverified numbers,
                                     sources and uncertainty in src/model/field.c) */
     int32_t length_mm;           /* between goal line centres (x extent) */
     int32_t width_mm;            /* between touchline centres (y extent) */
@@ -100,7 +101,8 @@ typedef struct {
     uint16_t n_landmarks;
     const fl_field_line_t *lines;
     uint16_t n_lines;
-    /* added: colored beacons (AIBO fields), 0 when the field has none */
+    /* added: colored beacons (AIBO fields) or landmark poles (hl3x2),
+     * 0 when the field has none */
     int32_t beacon_diameter_mm, beacon_height_mm;
 } fl_field_t;
 
@@ -108,8 +110,8 @@ typedef struct {
  * (length/2 truncated toward zero; saturated to int32; NULL gives 0). */
 int32_t fl_field_carpet_half_x_mm(const fl_field_t *f);
 int32_t fl_field_carpet_half_y_mm(const fl_field_t *f);
-/* The catalogue: "spl2013", "uva2013", "spl2020", "aibo2004", "spl2016" (in that
- * order; see src/model/field.c for every number and its source).  Names are
+/* The catalogue: "spl2013", "uva2013", "spl2020", "aibo2004", "spl2016",
+ * "hl3x2" (in that order; see src/model/field.c for every number and its source).  Names are
  * compared exactly (case-sensitive); NULL name gives NULL. */
 const fl_field_t *fl_field_find(const char *name);  /* NULL if unknown */
 size_t fl_field_count(void);

@@ -60,6 +60,11 @@ fl_status_t fl_image_validate(const fl_image_t *img);
 bool fl_image_get_ycbcr(const fl_image_t *img, int32_t u, int32_t v,
                         uint8_t ycbcr[3]);
 
+/* The same without checks, for per-pixel loops of a stage: img must have
+ * passed fl_image_validate and (u, v) must lie inside it (nothing is
+ * checked; anything else reads out of bounds). */
+void fl_image_ycbcr_at(const fl_image_t *img, int32_t u, int32_t v, uint8_t ycbcr[3]);
+
 /* Read one pixel as R, G, B (integer BT.601 full-range from Y, Cb, Cr,
  * rounded and clamped).  Outside the view: 0, 0, 0 and false. */
 bool fl_image_get_rgb(const fl_image_t *img, int32_t u, int32_t v,

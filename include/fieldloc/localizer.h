@@ -278,6 +278,9 @@ extern const fl_localizer_t fl_localizer_fuzzy;
 extern const fl_localizer_t fl_localizer_mcl;
 /* The unscented particle filter (upf.h; adapter src/loc/loc_upf.c), "upf". */
 extern const fl_localizer_t fl_localizer_upf;
+/* Seed 002's particle grid with the relative landmark map (relmap.h;
+ * adapter src/loc/loc_relmap.c), "relmap". */
+extern const fl_localizer_t fl_localizer_relmap;
 
 /* NULL for NULL or an unknown name. */
 const fl_localizer_t *fl_localizer_find(const char *name);

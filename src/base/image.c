@@ -144,7 +144,6 @@ static void ycbcr_to_rgb(int32_t y, int32_t cb, int32_t cr, uint8_t out[3])
 bool fl_image_get_ycbcr(const fl_image_t *img, int32_t u, int32_t v,
                         uint8_t ycbcr[3])
 {
-    const uint8_t *px;
     if (ycbcr == NULL)
         return false;
     if (!inside(img, u, v)) {
@@ -153,6 +152,13 @@ bool fl_image_get_ycbcr(const fl_image_t *img, int32_t u, int32_t v,
         ycbcr[2] = 128;
         return false;
     }
+    fl_image_ycbcr_at(img, u, v, ycbcr);
+    return true;
+}
+
+void fl_image_ycbcr_at(const fl_image_t *img, int32_t u, int32_t v, uint8_t ycbcr[3])
+{
+    const uint8_t *px;
     switch (img->format) {
     case FL_FMT_RGB888:
         rgb_to_ycbcr(img->plane[0] + v * img->stride[0] + 3 * u, ycbcr);
@@ -169,7 +175,6 @@ bool fl_image_get_ycbcr(const fl_image_t *img, int32_t u, int32_t v,
         ycbcr[2] = img->plane[2][v * img->stride[2] + u];
         break;
     }
-    return true;
 }
 
 bool fl_image_get_rgb(const fl_image_t *img, int32_t u, int32_t v,

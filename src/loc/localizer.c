@@ -11,6 +11,7 @@ static const fl_localizer_t *const catalogue[] = {
     &fl_localizer_fuzzy,
     &fl_localizer_mcl,
     &fl_localizer_upf,
+    &fl_localizer_relmap,
 };
 #define N_LOC ((uint16_t)(sizeof catalogue / sizeof catalogue[0]))
 

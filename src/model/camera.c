@@ -102,7 +102,25 @@ static const fl_camera_model_t fl_camera_catalogue[] = {
     {"nao6-bottom-1280",1280, 960, 19138, 10232, 7672, 51,  18, 7227, 445, 0},
     {"aibo-ers7",        208, 160,  3071, 1656, 1272, 81,  -15,    0, 160, 0},
     {"uva2013",          320, 240,  4405, 2552, 1912, 51,   18, 7227, 450, 1140},
+    {"acyut-640",        640, 480,  8868, 5112, 3832, 30,   40,    0, 420, 0},
+    {"acyut-320",        320, 240,  4434, 2552, 1912, 30,   40,    0, 420, 0},
 };
+/* acyut-640: seed 002's robot AcYut (BITS Pilani) with its "PointGrey
+ * Firefly" camera (seed 002 section VI), at 640x480; acyut-320 the same
+ * optics at 320x240 (f = 160 / tan 30 deg = 277.1 px -> 4434: the
+ * committed hl3x2 fixtures use it to stay within the fixture set's size).  Seed 002 states
+ * neither lens nor geometry; every number here is INFERRED:
+ *  - HFOV 60 deg (f = 320 / tan 30 deg = 554.3 px -> 8868; VFOV 46.8 deg):
+ *    a Firefly MV has a 1/3" sensor (6 um pixels: 3.84 mm for 640 columns)
+ *    and took CS/M12 lenses; 60 deg is a 3.3 mm lens, a common choice for
+ *    soccer robots of that time (not stated by seed 002: +-15 deg).
+ *  - head pitch axis 420 mm above the ground, camera 30 mm forward of and
+ *    40 mm above it (camera ~460 mm high): a kid-size humanoid (the
+ *    KidSize league of 2009-2012 allowed 30-60 cm robots; a press report
+ *    of 2008 gives the first AcYut prototype as 50 cm tall, twocircles.net
+ *    2008feb14); the later AcYut 4 may be taller (+-150 mm).
+ *  - no mount tilt: a humanoid looks down with its head pitch joint (the
+ *    scenes give the pitch; render_scene_default uses 20 deg). */
 /* Default poses (default_neck_height_mm, default_pitch_offset), nominal:
  *  - NAO (all versions, same leg and neck geometry): StandInit, hip pitch
  *    about -0.45 rad, knee 0.7, ankle -0.35: the legs (thigh 100, tibia

@@ -70,6 +70,55 @@
  *             (d 100, h 400, guessed) with a pink band and a band of the
  *             color of the nearer goal; our convention: pink on top on
  *             the +y side, pink below on the -y side, so all four differ.
+ *  hl3x2    Seed 002's field: the RoboCup Humanoid League KidSize field
+ *           of 2009-2012 scaled to 3000 x 2000 mm between line centres
+ *           (seed 002: "3m x 2m", "a scaled down soccer field", yellow
+ *           and blue goals, YBY and BYB poles "midway from the two goals
+ *           just outside the field boundary").  The league field was
+ *           6000 x 4000, so every length below is the league's halved.
+ *           Each number's basis ("source" = a page found and read;
+ *           "recollection" = from memory of the KidSize rule books of
+ *           2009-2012, no copy of which was available, NOT verified):
+ *           - lines 6000 x 4000 -> 3000 x 2000: recollection; the scale
+ *             1/2 and seed 002's 3 m x 2 m agree (same 3:2 aspect).
+ *           - line width 50 -> 25: recollection (every RoboCup field of
+ *             that time used 5 cm lines).
+ *           - border 700 -> 350: recollection (KidSize border strip at
+ *             least 70 cm); a public field configuration of a 6 x 4 m
+ *             humanoid field of 2009 has its carpet edge 700 beyond the
+ *             lines (xPosOpponentFieldBorder 3700, groundline 3000).
+ *             Carpet 3700 x 2700.
+ *           - centre circle diameter 1200 -> radius 300: recollection.
+ *           - goal area 600 deep x 2200 wide -> 300 x 1100 (the only box
+ *             of that field, stored as the penalty area like spl2013's
+ *             single box): recollection, +-100 mm (scaled) uncertain.
+ *           - penalty mark 1800 from the goal line -> 900, so x = +-600;
+ *             mark cross 100 -> 50; a centre mark: recollection.
+ *           - goals: 1500 wide, crossbar 900 high, 500 deep: source (a
+ *             2009 paper summarising the 2009 KidSize rules, IEEE Xplore
+ *             document 5420187: "90cm of height for the crossbar", "150cm
+ *             of width", "50cm of depth").  Scaled: goal_width 800 post
+ *             centre to centre (1500 inner width + one 100 post, the SPL
+ *             convention of spl2013's 1600), post height 450; post
+ *             diameter 100 -> 50: recollection.  Posts 12 mm behind the
+ *             goal line centre (their front at the line's inner edge, as
+ *             spl2013's 4525 = 4500 + 50 - 25; 12.5 truncated).
+ *           - goal colours: yellow at -x, sky-blue at +x (the league's
+ *             goals were yellow and sky blue; seed 002 says "blue").
+ *           - landmark poles: cylinder 200 diameter, three 200 high
+ *             segments: source (the same 2009 summary: "a diameter of
+ *             20cm", "three segments of 20cm height").  Scaled: diameter
+ *             100, height 300, bands of 100.  Placement: on the halfway
+ *             line extension (source: "at each side of the two
+ *             intersection points between the touch line and the center
+ *             line"), 400 outside the touchline centre -> 200, so y =
+ *             +-1200: the distance is recollection.
+ *           - which pole where: "the lowest and the highest segments are
+ *             with the same color as the goal of its left side" (source,
+ *             same summary): a robot on the field facing the +y pole has
+ *             the -x (yellow) goal on its left, so YBY stands at +y and
+ *             BYB at -y.  Stored as beacons, color = top band, color2 =
+ *             bottom band: YBY (yellow, yellow), BYB (sky-blue, sky-blue).
  */
 #include "fieldloc/field.h"
 
@@ -229,6 +278,28 @@ static const fl_field_line_t aibo2004_lines[] = {
     BOX_LINES(2100, 1450, 500)
 };
 
+/* ---- hl3x2 (numbers and their basis: file top) ---------------------- */
+
+static const fl_landmark_t hl3x2_lm[] = {
+    CORNERS(1500, 1000),
+    BOX_CROSSINGS(1500, 1200, 550),
+    HALFWAY_CROSSINGS(1000, 300),
+    LM_CROSS4(FL_LM_PENALTY_MARK, 600, 0),
+    LM_CROSS4(FL_LM_PENALTY_MARK, -600, 0),
+    LM_CROSS4(FL_LM_CENTRE_MARK, 0, 0),
+    POSTS(1512, 400, 1, FL_COLOR_SKYBLUE),
+    POSTS(-1512, 400, -1, FL_COLOR_YELLOW),
+    CIRCLE_CENTRE,
+    /* three-band poles: color == color2 (top and bottom band) */
+    LM_POINT(FL_LM_BEACON, 0, 1200, FL_SIDE_UNKNOWN, FL_COLOR_YELLOW, 0, FL_COLOR_YELLOW),
+    LM_POINT(FL_LM_BEACON, 0, -1200, FL_SIDE_UNKNOWN, FL_COLOR_SKYBLUE, 0, FL_COLOR_SKYBLUE)
+};
+
+static const fl_field_line_t hl3x2_lines[] = {
+    BOUNDARY_LINES(1500, 1000),
+    BOX_LINES(1500, 1200, 550)
+};
+
 /* ---- catalogue ---------------------------------------------------------- */
 
 static const fl_field_t fields[] = {
@@ -261,6 +332,12 @@ static const fl_field_t fields[] = {
         1600, 100, 800, { FL_COLOR_WHITE, FL_COLOR_WHITE }, true,
         spl2016_lm, COUNT_OF(spl2016_lm), spl2013_lines, COUNT_OF(spl2013_lines),
         0, 0
+    },
+    {
+        "hl3x2", 3000, 2000, 25, 350, 300, 300, 1100, 0, 0, 600, 50,
+        800, 50, 450, { FL_COLOR_YELLOW, FL_COLOR_SKYBLUE }, false,
+        hl3x2_lm, COUNT_OF(hl3x2_lm), hl3x2_lines, COUNT_OF(hl3x2_lines),
+        100, 300
     }
 };
 

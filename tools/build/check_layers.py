@@ -40,8 +40,10 @@ HEADER_LAYER = {
     "color.h": "vision", "scan.h": "vision", "lines.h": "vision",
     "crossings.h": "vision", "circle.h": "vision", "goal.h": "vision",
     "beacon.h": "vision", "vision.h": "vision", "color_auto.h": "vision",
+    "skeleton.h": "vision",      # thinning and crossings of a binary mask
+    "hlvision.h": "vision",      # seed 002's path: boxes, poles, mask, skeleton
     "fuzzy.h": "loc", "localizer.h": "loc", "mcl.h": "loc",
-    "ukf.h": "loc", "upf.h": "loc",
+    "ukf.h": "loc", "upf.h": "loc", "relmap.h": "loc",
     "report.h": "loc",           # observer reports: assignment, re-seed policy
                                  # over localizer.h, the message
     "odocal.h": "loc",           # odometry scale from an observer's track
@@ -77,6 +79,8 @@ LOC_INTERFACE = {"localizer.h", "obs.h",
                  "odocal.h"}   # no localizer's API: corrects the odometry fed to any
 LOC_OWN_TOOLS = {"bench/bench_fuzzy.c": "the fuzzy grid's benchmark section "
                                         "(worst-case cells, sizeof)",
+                 "eval/eval_relmap.c": "seed 002's evaluation: the relative map's "
+                                       "eq. 4 pose and tie set per frame",
                  "cli/cmd_ukf_check.c": "the UKF step's numerics against the double "
                                         "reference (ukf.h building blocks)"}
 # ---------------------------------------------------------------------------

@@ -14,7 +14,8 @@
  * IMAGE: binary PPM, or an FLRAW fixture frame (yuyv / planar).  Defaults:
  * field uva2013, camera uva2013 (the UvA 2013 dataset of seed 000); head
  * pitch and yaw 0, except -0.54 rad pitch for camera uva2013 (the
- * dataset's HeadPitch); the neck height and pitch offset are the
+ * dataset's HeadPitch) and 20 deg down for the acyut cameras (the rendered
+ * hl3x2 frames' stance; field hl3x2 defaults to camera acyut-640); the neck height and pitch offset are the
  * camera model's defaults (default_neck_height_mm, default_pitch_offset)
  * unless --neck MM gives the neck height.
  * --calib CALIB applies a per-robot calibration (fieldloc/calib.h, written by
@@ -36,6 +37,11 @@
  * Numbers are checked (tools/cli/args.h): --head within the NAO head joints
  * (the camera's limit for a non-NAO camera), --neck 50..2000 mm, --repeat
  * 1..1000000; a bad value or option exits with status 2.
+ * --vision default|hl picks the vision path: seed 000's (vision.h) or seed
+ * 002's (hlvision.h: posts, striped poles, the skeleton's crossings); by
+ * default hl on field hl3x2, else default.  The hl path prints kinds G
+ * (post foot), P (pole foot), X and T; --stats gives its counters and its
+ * picture shows the mask, the skeleton, posts and poles (hldetect.h).
  * --imu ANGLEX ANGLEY gives the torso roll and pitch (rad, a NAO inertial
  * unit's AngleX / AngleY: fieldloc/camera.h), applied after --calib and
  * --neck; |angle| <= 45 deg (0.7854 rad).
@@ -43,6 +49,7 @@
 #include "cli/args.h"
 #include "eval/colors_opt.h"
 #include "eval/detect.h"
+#include "eval/hldetect.h"
 #include "eval/calib_frames.h"
 #include "eval/picture.h"
 #include "io/ppm.h"
@@ -64,6 +71,7 @@ static int detect_usage(void)
             "  --head: NAO HeadPitch -0.6720..0.5149 rad, HeadYaw -2.0857..2.0857 rad\n"
             "  --neck 50..2000 mm, --repeat 1..1000000\n"
             "  --imu ANGLEX ANGLEY: torso roll and pitch, rad (NAO AngleX / AngleY)\n"
+            "  --vision default|hl: seed 000's path or seed 002's (default: hl on hl3x2)\n"
             "  --calib: a calibration file from `fieldloc calibrate --out`\n"
             "  --colors: default (2013 boxes), auto (from the frame) or a colour file\n"
             "            (`fieldloc colors`, `fieldloc calibrate-colors`)\n"
@@ -134,8 +142,73 @@ static int detect_picture(const det_ctx_t *ctx, const render_frame_t *fr, const 
     return rc;
 }
 
+/* Write a picture with its legend strip, .png or .ppm by the name. */
+static int detect_write(host_image_t *img, unsigned sets, const char *caption, const char *picture)
+{
+    host_image_t out;
+    size_t len = strlen(picture);
+    int rc = 0;
+    if (pic_add_legend(img, sets, caption, &out) != 0)
+        return 1;
+    if (len > 4 && !strcmp(picture + len - 4, ".png") ? png_write(picture, out.rgb, out.width, out.height) != 0
+                                                      : ppm_write(picture, out.rgb, out.width, out.height) != 0) {
+        fprintf(stderr, "detect: cannot write %s\n", picture);
+        rc = 1;
+    }
+    host_image_free(&out);
+    return rc;
+}
+
+/* Seed 002's path (hlvision.h) on one frame: features, stats, picture. */
+static int detect_hl(const render_frame_t *fr, const fl_camera_t *cam, const fl_field_t *field,
+                     const fl_camera_model_t *m, const char *path, int repeat, int stats,
+                     const char *picture)
+{
+    det_feature_t feat[DET_MAX_FEATURES];
+    fl_obs_list_t obs;
+    fl_hlv_t *hv = hld_new(field);
+    int i, n, rc = 0;
+    if (!hv) {
+        fprintf(stderr, "detect: out of memory\n");
+        return 1;
+    }
+    for (i = 1; i < repeat; i++)
+        fl_hlv_frame(hv, &fr->view, cam, &obs);
+    n = hld_run(hv, &fr->view, cam, &obs, feat, DET_MAX_FEATURES);
+    for (i = 0; i < n; i++)
+        printf("%c\t%.1f\t%.1f\t%.2f\t%d\t%.1f\n", feat[i].kind, feat[i].u, feat[i].v,
+               feat[i].confidence, (int)feat[i].range_mm, feat[i].bearing_deg);
+    if (stats)
+        fprintf(stderr,
+                "# hl status %s objects %d (dropped %u, runs dropped %u) mask %dx%d obs %d "
+                "(dropped %u) points %d (dropped %u)\n",
+                fl_status_str(hv->status), (int)hv->n_objects, (unsigned)hv->objects_dropped,
+                (unsigned)hv->runs_dropped, (int)hv->mask_w, (int)hv->mask_h, (int)obs.n,
+                (unsigned)obs.dropped, (int)obs.n_points, (unsigned)obs.points_dropped);
+    if (picture) {
+        host_image_t img;
+        char caption[512];
+        const char *base = strrchr(path, '/');
+        img.width = fr->width;
+        img.height = fr->height;
+        img.rgb = det_rgb_copy(&fr->view);
+        if (!img.rgb) {
+            free(hv);
+            return 1;
+        }
+        hld_draw(hv, &obs, img.rgb, fr->width, fr->height, cam);
+        snprintf(caption, sizeof caption, "%s: %d features, %d white points (field %s, camera %s, seed 002 path)",
+                 base ? base + 1 : path, n, (int)obs.n_points, field->name, m->name);
+        rc = detect_write(&img, PIC_LEGEND_HLV, caption, picture);
+        free(img.rgb);
+    }
+    free(hv);
+    return rc;
+}
+
 int cmd_detect(int argc, char **argv)
 {
+    int cam_given = 0;
     const char *field_name = "uva2013", *cam_name = "uva2013", *path = NULL,
                *picture = NULL, *calib_path = NULL;
     fl_calib_t calib;
@@ -146,7 +219,7 @@ int cmd_detect(int argc, char **argv)
     int i, n, stats = 0, rc = 0, repeat = 1, head_given = 0, show_border = 0, show_classes = 0;
     int32_t neck = 0;
     double imu[2] = {0, 0};
-    int imu_given = 0;
+    int imu_given = 0, hl = -1;
     const fl_field_t *field;
     const fl_camera_model_t *m;
     fl_camera_t cam;
@@ -161,8 +234,10 @@ int cmd_detect(int argc, char **argv)
     for (i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--field") && i + 1 < argc)
             field_name = argv[++i];
-        else if (!strcmp(argv[i], "--camera") && i + 1 < argc)
+        else if (!strcmp(argv[i], "--camera") && i + 1 < argc) {
             cam_name = argv[++i];
+            cam_given = 1;
+        }
         else if (!strcmp(argv[i], "--head") && i + 2 < argc) {
             /* numbers now, their range once the camera is known */
             head_text[0] = argv[++i];
@@ -196,6 +271,17 @@ int cmd_detect(int argc, char **argv)
             if (arg_int32("detect", "--neck", argv[++i], FL_CAMERA_NECK_MIN_MM,
                           FL_CAMERA_NECK_MAX_MM, "mm", &neck) != 0)
                 return 2;
+        } else if (!strcmp(argv[i], "--vision") && i + 1 < argc) {
+            i++;
+            if (!strcmp(argv[i], "hl"))
+                hl = 1;
+            else if (!strcmp(argv[i], "default"))
+                hl = 0;
+            else {
+                fprintf(stderr, "fieldloc detect: --vision: unknown path \"%s\" (default, hl)\n",
+                        argv[i]);
+                return 2;
+            }
         } else if (!strcmp(argv[i], "--show") && i + 1 < argc) {
             if (detect_show(argv[++i], &show_border, &show_classes) != 0)
                 return 2;
@@ -205,7 +291,7 @@ int cmd_detect(int argc, char **argv)
         } else if (argv[i][0] == '-' && argv[i][1] != '\0')
             return arg_unknown("detect", argv[i],
                                "--field=1 --camera=1 --head=2 --picture=1 --repeat=1 --neck=1 "
-                               "--show=1 --calib=1 --colors=1 --imu=2");
+                               "--show=1 --calib=1 --colors=1 --imu=2 --vision=1");
         else if (!path)
             path = argv[i];
         else
@@ -218,6 +304,8 @@ int cmd_detect(int argc, char **argv)
         fprintf(stderr, "detect: unknown field %s (see: fieldloc fields)\n", field_name);
         return 2;
     }
+    if (!cam_given && render_field_camera(field) != NULL)
+        cam_name = render_field_camera(field);   /* hl3x2: its humanoid camera */
     m = fl_camera_model_find(cam_name);
     if (!m) {
         fprintf(stderr, "detect: unknown camera %s (see: fieldloc cameras)\n", cam_name);
@@ -250,6 +338,8 @@ int cmd_detect(int argc, char **argv)
     }
     if (!head_given && !strcmp(m->name, "uva2013"))
         pitch = -0.54;  /* the dataset's HeadPitch (see realdata/SOURCES.md) */
+    if (!head_given && !strncmp(m->name, "acyut-", 6))
+        pitch = RENDER_HUMANOID_HEAD_PITCH * (2.0 * M_PI / 65536.0);  /* rendered hl3x2 frames */
     if (det_camera(&cam, m, pitch, yaw) != FL_OK) {
         fprintf(stderr, "detect: invalid head pose\n");
         render_frame_free(&fr);
@@ -283,6 +373,13 @@ int cmd_detect(int argc, char **argv)
             render_frame_free(&fr);
             return 2;
         }
+    }
+    if (hl < 0)
+        hl = hld_field_wants(field);
+    if (hl) {
+        rc = detect_hl(&fr, &cam, field, m, path, repeat, stats, picture);
+        render_frame_free(&fr);
+        return rc;
     }
     if (det_ctx_init(&ctx) != 0) {
         fprintf(stderr, "detect: out of memory\n");

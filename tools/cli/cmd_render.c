@@ -26,7 +26,8 @@ static void render_usage(void)
             "         --gain PCT  --grad X_PCT Y_PCT  --no-shadows  --noise SIGMA_X10  --jpeg 0..4\n"
             "         --blur PX DIR_DEG  --supersample 1..4  --no-background\n"
             "         --mask OUT.ppm (class mask picture)  --rgb OUT.ppm (RGB picture of any format)\n"
-            "  Defaults: spl2013, nao4-bottom-320, robot at the centre facing +x, level head,\n"
+            "  Defaults: spl2013, nao4-bottom-320 (on hl3x2: acyut-640, head 20 deg down),\n"
+            "  robot at the centre facing +x, level head,\n"
             "  the camera's default neck height and pitch offset (fieldloc cameras).\n"
             "  Head pitch: NAOqi, positive looks down.\n"
             "  --out writes PPM for rgb, else the FLRAW container (fixtures/README.md).\n"
@@ -132,8 +133,10 @@ int cmd_render(int argc, char **argv)
         if (field) sc.field = fl_field_find(field);
         if (camera) sc.camera = fl_camera_model_find(camera);
     } else {
-        render_scene_default(&sc, fl_field_find(field ? field : "spl2013"),
-                             fl_camera_model_find(camera ? camera : "nao4-bottom-320"));
+        const fl_field_t *ff = fl_field_find(field ? field : "spl2013");
+        const char *dc = render_field_camera(ff);
+        render_scene_default(&sc, ff,
+                             fl_camera_model_find(camera ? camera : dc ? dc : "nao4-bottom-320"));
     }
     if (!sc.field) {
         fprintf(stderr, "render: unknown field %s (see: fieldloc fields)\n", field);

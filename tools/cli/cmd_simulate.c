@@ -3,7 +3,7 @@
  * localized through the localizer interface (include/fieldloc/localizer.h;
  * default the fuzzy position grid).
  *
- *   fieldloc simulate --field spl2013|uva2013|aibo2004|spl2020 --localizer fuzzy
+ *   fieldloc simulate --field spl2013|uva2013|aibo2004|spl2020|hl3x2 --localizer fuzzy
  *                     --seed N [--features | --frames] [--steps N] [--quiet]
  *                     [--scenario FILE.walk] [--every N] [--param NAME=V]...
  *                     [--obs-cache FILE] [--print-obs] [--kidnaps N]
@@ -186,7 +186,7 @@ static int cache_of_other_walk(const char *path, const char *walk)
 static void usage(void)
 {
     fprintf(stderr,
-            "usage: fieldloc simulate --field spl2013|uva2013|aibo2004 [--localizer fuzzy]\n"
+            "usage: fieldloc simulate --field spl2013|uva2013|aibo2004|spl2020|hl3x2 [--localizer fuzzy]\n"
             "                         --seed N [--features | --frames] [--steps N] [--quiet]\n"
             "                         [--scenario FILE.walk] [--every N] [--param NAME=V]...\n"
             "                         [--obs-cache FILE] [--print-obs] [--kidnaps N]\n"
@@ -422,7 +422,7 @@ int cmd_simulate(int argc, char **argv)
             goto done;
         }
     } else if (sim_scenario_builtin(&sc, field_name) != 0) {
-        fprintf(stderr, "simulate: no built-in walk for field '%s' (spl2013, uva2013, aibo2004, spl2020)\n",
+        fprintf(stderr, "simulate: no built-in walk for field '%s' (spl2013, uva2013, aibo2004, spl2020, hl3x2)\n",
                 field_name);
         rc = 2;
         goto done;

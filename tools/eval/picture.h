@@ -116,6 +116,7 @@ int pic_side_by_side(const host_image_t *a, const host_image_t *b, int gap,
 #define PIC_LEGEND_PARTICLES 0x200u /* pic_belief of samples (instead of _BELIEF):
                                        carpet, particles, cluster, lines, estimate,
                                        obs */
+#define PIC_LEGEND_HLV     0x400u /* hld_draw: seed 002's mask, skeleton, posts, poles */
 
 /* Strip background; the caption and labels are drawn in PIC_LEGEND_FG. */
 #define PIC_LEGEND_BG 24

@@ -71,6 +71,16 @@ static const pic_item_t set_particles[] = {
     {MK_SQUARE, {255, 255, 255}, "observation from the estimate"},
     {MK_SQUARE, {255, 220, 0}, "post/beacon"},
 };
+static const pic_item_t set_hlv[] = {
+    {MK_FILL, {120, 200, 255}, "white surrounded by green (mask)"},
+    {MK_FILL, {255, 0, 0}, "skeleton"},
+    {MK_BOX, {255, 150, 0}, "T crossing"},
+    {MK_BOX, {255, 0, 255}, "X crossing"},
+    {MK_DOTS, {0, 0, 0}, "white point"},
+    {MK_BOX, {0, 255, 0}, "post (foot, column range)"},
+    {MK_BOX, {255, 255, 0}, "pole YBY (bands)"},
+    {MK_BOX, {0, 160, 255}, "pole BYB (bands)"},
+};
 static const pic_item_t set_truth[] = {
     {MK_RING, {0, 230, 255}, "truth"},
 };
@@ -119,6 +129,7 @@ static const struct {
     PIC_SET(PIC_LEGEND_BELIEF, set_belief), PIC_SET(PIC_LEGEND_PARTICLES, set_particles),
     PIC_SET(PIC_LEGEND_TRUTH, set_truth),
     PIC_SET(PIC_LEGEND_MASK, set_mask),
+    PIC_SET(PIC_LEGEND_HLV, set_hlv),
 #undef PIC_SET
 };
 

@@ -46,7 +46,9 @@ int lr_init(lr_t *r, const fl_localizer_t *loc, const fl_field_t *field,
     r->loc = loc;
     r->state = malloc(loc->state_size);
     r->params = malloc(loc->params_size);
-    if (r->state == NULL || r->params == NULL || det_ctx_init(&r->det) != 0) {
+    r->hlv = hld_field_wants(field) ? hld_new(field) : NULL;
+    if (r->state == NULL || r->params == NULL || det_ctx_init(&r->det) != 0 ||
+        (hld_field_wants(field) && r->hlv == NULL)) {
         if (err)
             snprintf(err, (size_t)err_len, "out of memory (vision context or localizer)");
         lr_free(r);
@@ -80,6 +82,8 @@ void lr_free(lr_t *r)
     r->state = NULL;
     free(r->params);
     r->params = NULL;
+    free(r->hlv);
+    r->hlv = NULL;
     if (r->det.colors != NULL || r->det.vis != NULL)
         det_ctx_free(&r->det);
 }
@@ -179,6 +183,16 @@ int lr_frame(lr_t *r, const fl_image_t *img, const fl_camera_pose_t *pose)
         return -1;
     if (fl_camera_init(&r->cam, r->model, pose) != FL_OK)
         return -1;
+    if (r->hlv != NULL) {
+        /* seed 002's field: its own vision path (colour boxes, no colour
+         * file) */
+        (void)fl_hlv_frame(r->hlv, img, &r->cam, &r->obs);
+        r->frames++;
+        lr_filter(r);
+        fl_vision_view(&r->cam, &r->view);
+        r->obs_used = lr_call_update(r, &r->obs, &r->view);
+        return r->obs_used;
+    }
     if (r->colors != NULL && !r->colors_ready) {
         /* start-up: --colors auto estimates the carpet of this frame */
         if (colors_opt_setup(r->colors, r->det.colors, r->field, img, &r->cam, NULL) < 0)

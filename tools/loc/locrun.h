@@ -38,6 +38,7 @@
 
 #include "eval/colors_opt.h"
 #include "eval/detect.h"
+#include "eval/hldetect.h"
 #include "fieldloc/fieldloc.h"
 #include "fieldloc/vision.h"
 
@@ -50,6 +51,9 @@ typedef struct {
     const fl_field_t *field;
     const fl_camera_model_t *model;
     det_ctx_t det;              /* color tables and vision workspace */
+    fl_hlv_t *hlv;              /* seed 002's vision path, used instead of
+                                   fl_vision_frame on its field (hl3x2:
+                                   hld_field_wants); NULL elsewhere */
     const fl_localizer_t *loc;  /* the localizer (localizer.h) */
     void *state;                /* malloc'd, loc->state_size bytes */
     void *params;               /* malloc'd, loc->params_size bytes: the

@@ -25,6 +25,8 @@ typedef struct {
 #define A04 "aibo2004"
 #define B320 "nao4-bottom-320"
 #define T320 "nao4-top-320"
+#define H32 "hl3x2"
+#define AC320 "acyut-320"
 
 static const fixture_t fixtures[] = {
     /* ---- spl2013: every crossing type near and far, goals, circle ---- */
@@ -206,6 +208,32 @@ static const fixture_t fixtures[] = {
     {"aibo2004_dark", A04, "aibo-ers7", "planar", -900, 200, 180000, 50000, 0, 160, 408,
      "light 50 0 0 1\nnoise 30",
      "sky-blue goal, dark and noisy, planar"},
+    /* ---- hl3x2: seed 002's scaled humanoid field, AcYut head camera at
+     * 320 x 240 (acyut-320: acyut-640's optics; the set's size budget),
+     * head 20 deg down; the three table I poses (tools/world/seed002.c) ---- */
+    {"hl3x2_table1_a", H32, AC320, "yuyv", -450, 150, 60000, 349066, 0, 420, 501, "",
+     "table I 2(a): the halfway T and the YBY pole only"},
+    {"hl3x2_table1_b", H32, AC320, "yuyv", -250, 200, -170000, 349066, 0, 420, 502, "",
+     "table I 2(b): the yellow goal's posts and its goal area"},
+    {"hl3x2_table1_c", H32, AC320, "rgb", 750, 350, -175000, 349066, 0, 420, 503, "",
+     "table I 2(c): yellow goal, circle X, marks, goal area"},
+    {"hl3x2_pole_yby_near", H32, AC320, "yuyv", 200, 300, 95000, 349066, 0, 420, 504, "",
+     "the YBY pole at 0.9 m and the halfway T"},
+    {"hl3x2_pole_byb_far", H32, AC320, "yuyv", -600, 600, -72000, 349066, 0, 420, 505, "",
+     "the BYB pole at 1.9 m across the field"},
+    {"hl3x2_goal_skyblue", H32, AC320, "yuyv", 300, -100, 0, 349066, 0, 420, 506, "",
+     "the sky-blue goal at 1.2 m, goal area, penalty mark"},
+    {"hl3x2_goal_yellow_far", H32, AC320, "yuyv", 1000, 200, 180000, 261799, 0, 420, 507, "",
+     "the yellow goal at 2.5 m across the circle"},
+    {"hl3x2_corner_l", H32, AC320, "yuyv", -1000, 600, 140000, 349066, 0, 420, 508, "",
+     "field corner L at 0.65 m"},
+    {"hl3x2_centre_x", H32, AC320, "yuyv", -800, 100, 10000, 349066, 0, 420, 509, "",
+     "centre circle X crossings and the centre mark"},
+    {"hl3x2_box_t", H32, AC320, "yuyv", 800, -250, -25000, 349066, 0, 420, 510, "",
+     "goal area L and T before the sky-blue goal"},
+    {"hl3x2_pole_robot", H32, AC320, "yuyv", -900, -300, 40000, 349066, 0, 420, 511,
+     "other -300 500 -16384 red",
+     "the YBY pole behind a robot, the halfway T"},
 };
 
 #define N_FIXTURES ((int)(sizeof fixtures / sizeof fixtures[0]))

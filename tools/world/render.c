@@ -179,6 +179,11 @@ void render_scene_default(render_scene_t *sc, const fl_field_t *field,
     } else {
         sc->head.neck_height_mm = is_aibo_camera(camera) ? 160 : 450;
     }
+    /* a humanoid with a level-mounted head camera (acyut-640) looks down
+     * by its head pitch: 20 deg puts the ground from about 0.5 m to the
+     * horizon in view (a NAO's tilt is in its mount instead) */
+    if (camera && camera->name && strncmp(camera->name, "acyut", 5) == 0)
+        sc->head.head_pitch = RENDER_HUMANOID_HEAD_PITCH;
     sc->seed = 1;
     sc->world_seed = 1;
     sc->background = 1;
@@ -186,6 +191,13 @@ void render_scene_default(render_scene_t *sc, const fl_field_t *field,
     sc->shadows = 1;
     sc->noise_x10 = 15;
     sc->supersample = 3;
+}
+
+const char *render_field_camera(const fl_field_t *field)
+{
+    if (field && field->name && strcmp(field->name, "hl3x2") == 0)
+        return "acyut-640";
+    return NULL;
 }
 
 fl_status_t render_scene_camera(const render_scene_t *sc, fl_camera_t *cam)
@@ -1043,6 +1055,25 @@ static void build_beacons(world_t *w)
         F.ox = lm->x_mm;
         F.oy = lm->y_mm;
         group_begin(w);
+        if (lm->color == lm->color2) {
+            /* A landmark pole of the humanoid league (hl3x2): three equal
+             * bands, top and bottom of color, the middle of the other
+             * goal color (YBY, BYB), standing on the carpet with no base.
+             * Two-color AIBO beacons (color != color2) keep their look
+             * below. */
+            fl_color_t mid = f->goal_color[0] == lm->color ? f->goal_color[1] : f->goal_color[0];
+            color_rgb(lm->color, c);
+            p = vcyl_l(w, &F, 0, 0, 0, h / 3.0, r, c, RENDER_CLASS_BEACON, TEX_NONE);
+            if (p) p->landmark = i;
+            color_rgb(mid, c);
+            p = vcyl_l(w, &F, 0, 0, h / 3.0, 2.0 * h / 3.0, r, c, RENDER_CLASS_BEACON, TEX_NONE);
+            if (p) p->landmark = i;
+            color_rgb(lm->color, c);
+            p = vcyl_l(w, &F, 0, 0, 2.0 * h / 3.0, h, r, c, RENDER_CLASS_BEACON, TEX_NONE);
+            if (p) p->landmark = i;
+            group_end(w);
+            continue;
+        }
         set_rgb(c, 240, 240, 238);
         p = vcyl_l(w, &F, 0, 0, 0, 0.5 * h, r, c, RENDER_CLASS_BEACON, TEX_NONE);
         if (p) p->landmark = i;

@@ -145,11 +145,18 @@ typedef struct {
  * shadows 1, noise_x10 15, jpeg 0, blur 0, supersample 3, format RGB888,
  * robot at the field centre facing +x, head: the camera's default stance
  * (camera->default_neck_height_mm and default_pitch_offset; 450 mm / 160 mm
- * for NAO / AIBO when the model has none), pitch 0, yaw 0, seed 1,
+ * for NAO / AIBO when the model has none), pitch 0 (humanoid head cameras
+ * "acyut-*": RENDER_HUMANOID_HEAD_PITCH), yaw 0, seed 1,
  * world_seed 1.  NULL field or camera are allowed
  * here (render_frame rejects them). */
+#define RENDER_HUMANOID_HEAD_PITCH 3641   /* 20 deg down, binary angle */
 void render_scene_default(render_scene_t *sc, const fl_field_t *field,
                           const fl_camera_model_t *camera);
+
+/* The camera a field's frames are rendered with when none is named: the
+ * humanoid head camera "acyut-640" on seed 002's "hl3x2", NULL (the
+ * caller's own default) for every other field. */
+const char *render_field_camera(const fl_field_t *field);
 
 /* The firmware camera for the scene's camera and head pose (what a
  * detector would use).  Returns fl_camera_init's status. */

@@ -25,6 +25,9 @@
  * posts of that goal are seen), and false positives at random image pixels
  * (fov_margin_px inside the image, as true landmarks) below the horizon and
  * within max range (random kind among the kinds the field has).
+ * White points: a sample of the visible painted-line points
+ * (sim_observe_points, SIM_POINTS_PER_FRAME of them, sim.h) with the
+ * landmarks' range and bearing noise, from a separate random stream.
  *
  * Invariant.  Everything that reaches an integer output is computed with
  * IEEE + - * / and sqrt from integers and exact decimal parameters, with
@@ -875,8 +878,59 @@ static const char sim_text_spl2020[] =
     "other -250 -250 180 red       # in the centre circle\n"
     "other 3250 -2300 135 red\n";
 
+/* Seed 002's setup: the scaled humanoid field hl3x2 with AcYut's head
+ * camera (acyut-640, its default neck height 420 mm), at seed 002's frame
+ * rate (about 20 fps, section VI).  The gait keeps the NAO defaults'
+ * noise ("robot nao" is the humanoid body and walk model); speeds are a
+ * kid-size humanoid's of that time (about 120 mm/s forward).  The head
+ * pitch alternates 0.30 / 0.45 rad so the near ground and the poles are
+ * both seen; the lap passes both poles, both goals and the circle. */
+static const char sim_text_hl3x2[] =
+    "# Seed 002's scaled humanoid field (3 m x 2 m, yellow and sky-blue goals,\n"
+    "# YBY / BYB landmark poles), AcYut head camera at 640 x 480, 20 fps.\n"
+    "robot nao\n"
+    "name hl3x2\n"
+    "field hl3x2\n"
+    "camera acyut-640\n"
+    "seed 2012\n"
+    "frame_hz 20\n"
+    "duration_s 120\n"
+    "neck_mm 420\n"
+    "head_pitch 0.30 0.45\n"
+    "pitch_period_s 4\n"
+    "yaw_amplitude_rad 1.2\n"
+    "yaw_period_s 5\n"
+    "v_forward_mm_s 120\n"
+    "v_backward_mm_s 60\n"
+    "v_side_mm_s 60\n"
+    "turn_deg_s 40\n"
+    "odo_scale 0.10 0.15 -0.07\n"
+    "odo_drift_deg_per_m 3\n"
+    "odo_sigma_trans 0.10\n"
+    "odo_sigma_rot 0.08\n"
+    "odo_sigma_rot_deg_per_m 2\n"
+    "slip_rate_hz 0.05\n"
+    "slip_max 40 10\n"
+    "max_range_mm 3600\n"
+    "range_sigma_pct 8\n"
+    "bearing_sigma_deg 1.5\n"
+    "orientation_sigma_deg 5\n"
+    "p_miss 0.2\n"
+    "fp_per_frame 0.15\n"
+    "p_confuse 0.05\n"
+    "penalty_x_mm -400\n"
+    "start -1200 -700 30\n"
+    "waypoint -400 200\n"
+    "waypoint 600 700\n"
+    "waypoint 1200 0\n"
+    "waypoint 600 -700\n"
+    "waypoint -400 -200\n"
+    "waypoint -1200 700\n"
+    "kidnap 50 900 500 -90\n"
+    "penalty 85 6\n";
+
 const char *const sim_builtin_names[SIM_BUILTIN_COUNT] = {"spl2013", "uva2013", "aibo2004",
-                                                          "spl2020"};
+                                                          "spl2020", "hl3x2"};
 
 const char *sim_builtin_text(const char *name)
 {
@@ -890,6 +944,8 @@ const char *sim_builtin_text(const char *name)
         return sim_text_aibo2004;
     if (strcmp(name, "spl2020") == 0)
         return sim_text_spl2020;
+    if (strcmp(name, "hl3x2") == 0)
+        return sim_text_hl3x2;
     return NULL;
 }
 
@@ -1074,6 +1130,95 @@ static fl_landmark_kind_t sim_kind_present(const fl_field_t *f, uint64_t *rng)
     return kinds[k < n ? k : n - 1];
 }
 
+/* ---- painted-line points (feature mode's "white points") ------------------ */
+
+/* Is the ground point (rx, ry) (robot frame, mm) one the camera sees:
+ * inside the image by fov_margin_px, within max range, not behind another
+ * robot?  (fx, fy): the same point in the field frame. */
+static int sim_point_visible(const sim_scenario_t *sc, const fl_camera_t *cam,
+                             int32_t x_mm, int32_t y_mm, fl_angle_t heading,
+                             double rx, double ry, double fx, double fy)
+{
+    fl_point_t gp;
+    int32_t u, v, m = 16 * sc->fov_margin_px;
+    if (rx * rx + ry * ry > sc->max_range_mm * sc->max_range_mm)
+        return 0;
+    gp.x_mm = sim_iround(rx);
+    gp.y_mm = sim_iround(ry);
+    if (!fl_camera_ground_to_pixel(cam, gp, &u, &v) || u < m || v < m ||
+        u > 16 * (cam->model.width_px - 1) - m || v > 16 * (cam->model.height_px - 1) - m)
+        return 0;
+    return !sim_occluded(sc, cam, x_mm, y_mm, heading, fx, fy, 0);
+}
+
+/* Reservoir sample (Algorithm R) of the visible painted-line points: the
+ * lines and the centre circle walked every SIM_POINT_STEP_MM, each point
+ * moved across the paint by a uniform offset within the line width; then
+ * range and bearing noise as the landmarks' (range_sigma_pct,
+ * bearing_sigma_deg).  Its own random stream, seeded from *rng without
+ * advancing it, so the landmark observations (and every trace) are the
+ * same with or without points. */
+static void sim_observe_points(const sim_scenario_t *sc, const fl_camera_t *cam,
+                               int32_t x_mm, int32_t y_mm, fl_angle_t heading,
+                               const uint64_t *rng, sim_step_t *out)
+{
+    const fl_field_t *f = sc->field;
+    double pick[SIM_POINTS_PER_FRAME > 0 ? SIM_POINTS_PER_FRAME : 1][2], sh, ch, lw = f->line_width_mm;
+    uint64_t prng = *rng ^ 0x5bd1e9955bd1e995ULL;
+    long seen = 0;
+    int i, k, n_circle = 0;
+    sim_sincos(sim_rad(heading), &sh, &ch);
+    if (f->circle_radius_mm > 0)
+        n_circle = (int)(SIM_TWO_PI * f->circle_radius_mm / SIM_POINT_STEP_MM);
+    for (i = 0; i < f->n_lines + (n_circle > 0); i++) {
+        const fl_field_line_t *l = i < f->n_lines ? &f->lines[i] : NULL;
+        double len = l ? sqrt((double)(l->x1_mm - l->x0_mm) * (l->x1_mm - l->x0_mm) +
+                              (double)(l->y1_mm - l->y0_mm) * (l->y1_mm - l->y0_mm))
+                       : 0;
+        int n = l ? (int)(len / SIM_POINT_STEP_MM) + 1 : n_circle;
+        for (k = 0; k < n; k++) {
+            double fx, fy, across = (sim_u01(&prng) - 0.5) * lw, dx, dy, rx, ry;
+            if (l) {
+                double t = n > 1 ? (double)k / (n - 1) : 0.5;
+                double nx = len > 0 ? -(l->y1_mm - l->y0_mm) / len : 0;
+                double ny = len > 0 ? (l->x1_mm - l->x0_mm) / len : 0;
+                fx = l->x0_mm + t * (l->x1_mm - l->x0_mm) + across * nx;
+                fy = l->y0_mm + t * (l->y1_mm - l->y0_mm) + across * ny;
+            } else {
+                double a = SIM_TWO_PI * k / n, sa, ca;
+                sim_sincos(a, &sa, &ca);
+                fx = (f->circle_radius_mm + across) * ca;
+                fy = (f->circle_radius_mm + across) * sa;
+            }
+            dx = fx - x_mm;
+            dy = fy - y_mm;
+            rx = dx * ch + dy * sh;
+            ry = -dx * sh + dy * ch;
+            if (!sim_point_visible(sc, cam, x_mm, y_mm, heading, rx, ry, fx, fy))
+                continue;
+            if (seen < SIM_POINTS_PER_FRAME) {
+                pick[seen][0] = rx;
+                pick[seen][1] = ry;
+            } else {
+                long j = (long)(sim_u01(&prng) * (double)(seen + 1));
+                if (j < SIM_POINTS_PER_FRAME) {
+                    pick[j][0] = rx;
+                    pick[j][1] = ry;
+                }
+            }
+            seen++;
+        }
+    }
+    for (k = 0; k < SIM_POINTS_PER_FRAME && k < seen; k++) {
+        double g_r = sim_gauss(&prng), g_b = sim_gauss(&prng), s, c;
+        double r = sqrt(pick[k][0] * pick[k][0] + pick[k][1] * pick[k][1]);
+        double b = sim_atan2(pick[k][1], pick[k][0]) + g_b * sc->bearing_sigma_deg * SIM_DEG;
+        r *= 1.0 + g_r * sc->range_sigma_pct / 100.0;
+        sim_sincos(b, &s, &c);
+        (void)fl_obs_list_push_point(&out->obs, sim_iround(r * c), sim_iround(r * s));
+    }
+}
+
 void sim_observe(const sim_scenario_t *sc, const fl_camera_t *cam,
                  int32_t x_mm, int32_t y_mm, fl_angle_t heading,
                  uint64_t *rng, sim_step_t *out)
@@ -1094,6 +1239,7 @@ void sim_observe(const sim_scenario_t *sc, const fl_camera_t *cam,
     vmin = umin;
     umax = 16 * (cam->model.width_px - 1 - sc->fov_margin_px);
     vmax = 16 * (cam->model.height_px - 1 - sc->fov_margin_px);
+    sim_observe_points(sc, cam, x_mm, y_mm, heading, rng, out);
 
     for (i = 0; i < f->n_landmarks; i++) {
         const fl_landmark_t *lm = &f->landmarks[i];

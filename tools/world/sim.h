@@ -64,7 +64,17 @@
 #define SIM_MAX_EVENTS 16
 #define SIM_NAME_LEN 32
 #define SIM_MAX_OTHERS RENDER_MAX_ROBOTS
-#define SIM_BUILTIN_COUNT 4
+#define SIM_BUILTIN_COUNT 5
+
+/* Feature mode's white points (fl_obs_list_t.points, robot frame mm): a
+ * uniform random sample of SIM_POINTS_PER_FRAME (at most FL_OBS_MAX_POINTS)
+ * of the painted-line points the camera sees, taken every SIM_POINT_STEP_MM
+ * along every line and the centre circle (across the paint: uniform within
+ * the line width), with the scenario's range noise (range_sigma_pct) and
+ * bearing noise (bearing_sigma_deg), as the landmarks get.  Fewer when
+ * fewer are in view (none: n_points 0). */
+#define SIM_POINTS_PER_FRAME (FL_OBS_MAX_POINTS < 24 ? FL_OBS_MAX_POINTS : 24)
+#define SIM_POINT_STEP_MM 50
 
 /* Event bits of a step. */
 #define SIM_EV_KIDNAP      1u  /* truth only: teleported, nobody is told */
