@@ -179,15 +179,22 @@ check: $(LIB)
 # Cross targets: the same sources with each cross compiler, statically
 # linked, run under qemu-user with --quick, compared with the host's --quick
 # output (lines starting with '#' carry host doubles and are not compared).
+# The emulated runs go side by side (each is one process under qemu; the
+# slowest of them sets the time).
 CROSS_ARCHS ?= i686 mipsel mips
 cross-test: $(RUNNER)
 	@$(RUNNER) --quick | grep -v '^#' > $(BUILD)/quick-host.txt; \
-	 status=0; \
 	 for a in $(CROSS_ARCHS); do \
 	   case $$a in i686) q=qemu-i386;; *) q=qemu-$$a;; esac; \
 	   $(MAKE) --no-print-directory -s BUILD=$(BUILD)/cross/$$a CC=$$a-linux-gnu-gcc \
 	     AR=$$a-linux-gnu-ar ARCHFLAGS=-static TEST_EXEC=$$q $(BUILD)/cross/$$a/run_tests check || exit 1; \
-	   $$q $(BUILD)/cross/$$a/run_tests --quick | grep -v '^#' > $(BUILD)/quick-$$a.txt; \
+	 done; \
+	 for a in $(CROSS_ARCHS); do \
+	   case $$a in i686) q=qemu-i386;; *) q=qemu-$$a;; esac; \
+	   ( $$q $(BUILD)/cross/$$a/run_tests --quick | grep -v '^#' > $(BUILD)/quick-$$a.txt ) & \
+	 done; wait; \
+	 status=0; \
+	 for a in $(CROSS_ARCHS); do \
 	   if cmp -s $(BUILD)/quick-host.txt $(BUILD)/quick-$$a.txt; then \
 	     echo "cross-test $$a: identical to host ($$(tail -1 $(BUILD)/quick-$$a.txt))"; \
 	   else \
