@@ -360,9 +360,10 @@ static void shift(fl_relmap_t *s)
             continue;
         wx_q4 = ((int64_t)s->pend_x_mm * cs - (int64_t)s->pend_y_mm * sn) >> 15;
         wy_q4 = ((int64_t)s->pend_x_mm * sn + (int64_t)s->pend_y_mm * cs) >> 15;
-        /* landing point in Q8 cells (Q4 mm << 12 / Q8 mm) */
-        tx = (c % FL_RELMAP_NX) * 256 + (int32_t)((wx_q4 << 12) / s->cell_x_q8);
-        ty = (c / FL_RELMAP_NX) * 256 + (int32_t)((wy_q4 << 12) / s->cell_y_q8);
+        /* landing point in Q8 cells (Q4 mm * 4096 / Q8 mm; a multiply, as a left shift of a
+         * negative value is undefined) */
+        tx = (c % FL_RELMAP_NX) * 256 + (int32_t)((wx_q4 * 4096) / s->cell_x_q8);
+        ty = (c / FL_RELMAP_NX) * 256 + (int32_t)((wy_q4 * 4096) / s->cell_y_q8);
         tx = tx < 0 ? 0 : tx > (FL_RELMAP_NX - 1) * 256 ? (FL_RELMAP_NX - 1) * 256 : tx;
         ty = ty < 0 ? 0 : ty > (FL_RELMAP_NY - 1) * 256 ? (FL_RELMAP_NY - 1) * 256 : ty;
         for (k = 0; k < 4; k++) {
