@@ -45,6 +45,7 @@ void *t_loc_walk(const char *loc_name, const char *walk, int32_t seed, uint32_t 
         return NULL;
     }
     free(pp);
+    sim.sc.white_points = loc->reads_points;   /* costly; only relmap reads them */
     loc->set_prior_half(s, sc.start_x_mm < 0 ? -1 : 1);
     while (out->steps < steps && sim_step(&sim, &st)) {
         fl_loc_estimate_t e;

@@ -491,8 +491,24 @@ static int t_run_parallel(int jobs)
             next++;
         }
     }
-    while (wait(&status) > 0 || errno == EINTR)
-        ;
+    /* a worker that exits non-zero failed even when its suites passed:
+     * valgrind's --error-exitcode and the sanitizers report that way */
+    for (;;) {
+        pid = wait(&status);
+        if (pid < 0) {
+            if (errno == EINTR)
+                continue;
+            break;
+        }
+        if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+            printf("FAIL worker process %ld ended with %s %d\n", (long)pid,
+                   WIFEXITED(status) ? "exit status" : "signal",
+                   WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status));
+            fflush(stdout);
+            t_failed++;
+            all = 0;
+        }
+    }
     for (; next < t_nsuites; next++) {
         t_copy_out(out[next]);
         if (!state[next]) {

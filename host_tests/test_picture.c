@@ -35,7 +35,7 @@ static const fl_localizer_t fake_loc = {
     "fake", "fixed samples", sizeof(fake_state_t), 0, NULL, 0,
     NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
     NULL, NULL, NULL, NULL, NULL, NULL,
-    NULL, NULL, NULL, NULL, NULL, fake_samples, fake_sample, NULL, NULL};
+    NULL, NULL, NULL, NULL, NULL, fake_samples, fake_sample, NULL, NULL, false};
 
 static fl_loc_sample_t mk(int32_t x, int32_t y, int32_t mdeg, uint16_t w, bool in_mode)
 {

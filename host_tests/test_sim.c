@@ -40,10 +40,15 @@ static double wrap_pi(double a)
     return a;
 }
 
+/* A built-in walk without feature mode's white points (sim.h
+ * white_points): the tests here look at the landmarks, the walk and the
+ * events; sim.white_points turns them on and checks that nothing else
+ * changes. */
 static int load_builtin(sim_scenario_t *sc, int i)
 {
     int r = sim_scenario_builtin(sc, sim_builtin_names[i]);
     CHECK_EQ(r, 0);
+    sc->white_points = 0;
     return r;
 }
 
@@ -388,6 +393,7 @@ static void test_observation_noise(void)
     double n_post = 0, n_post_sided = 0, n_side_wrong = 0;
     double miss_rate, fp_rate, conf_rate;
     CHECK_EQ(sim_scenario_builtin(&sc, "spl2013"), 0);
+    sc.white_points = 0;
     sc.duration_s = t_quick ? 200 : 400;   /* quick (qemu): half */
     clean = sc;
     sim_scenario_noise_off(&clean);
@@ -649,6 +655,7 @@ static void test_scenario_text(void)
         sim_scenario_t back;
         if (load_builtin(&sc, i) != 0)
             continue;
+        sc.white_points = 1;   /* the default: the text form does not carry it */
         f = open_memstream(&buf, &len);
         CHECK(f != NULL);
         if (f == NULL)
@@ -898,6 +905,7 @@ static void test_others(void)
     long n_hidden = 0, n_reported_hidden = 0;
     double min_clear = 1e9;
     CHECK_EQ(sim_scenario_builtin(&sc, "spl2020"), 0);
+    sc.white_points = 0;
     CHECK_EQ(sc.n_others, 6);
     for (i = 0; i < sc.n_others; i++) {
         blue += sc.other[i].jersey == RENDER_JERSEY_BLUE;
@@ -1117,19 +1125,30 @@ static void test_white_points(void)
     for (i = 0; i < SIM_BUILTIN_COUNT; i++)
         for (noise = 0; noise < 2; noise++) {
             sim_scenario_t sc;
-            sim_t sim;
-            sim_step_t st;
-            long frames = 0, full = 0, pts = 0;
+            sim_t sim, bare;
+            sim_step_t st, bst;
+            long frames = 0, full = 0, pts = 0, differ = 0;
             double worst = 0, worst_rel = 0;
             if (load_builtin(&sc, i) != 0)
                 continue;
+            sc.white_points = 1;
             if (!noise)
                 sim_scenario_noise_off(&sc);
             sc.duration_s = t_quick ? 10 : 60;
             CHECK_EQ(sim_init(&sim, &sc), 0);
+            /* the same walk without points: everything else identical */
+            sc.white_points = 0;
+            CHECK_EQ(sim_init(&bare, &sc), 0);
+            sc.white_points = 1;
             while (sim_step(&sim, &st)) {
                 double h = ang_rad(st.heading), c = cos(h), s = sin(h);
                 int k;
+                CHECK(sim_step(&bare, &bst));
+                CHECK_EQ(bst.obs.n_points, 0);
+                differ += st.x_mm != bst.x_mm || st.y_mm != bst.y_mm ||
+                          st.heading != bst.heading || st.obs.n != bst.obs.n ||
+                          st.odo_dx_mm != bst.odo_dx_mm ||
+                          memcmp(st.obs.obs, bst.obs.obs, sizeof st.obs.obs[0] * st.obs.n) != 0;
                 frames++;
                 CHECK(st.obs.n_points <= SIM_POINTS_PER_FRAME);
                 CHECK_EQ(st.obs.points_dropped, 0);
@@ -1151,6 +1170,7 @@ static void test_white_points(void)
             else          /* range and bearing noise: about 6 sigma of each */
                 CHECK_LE(worst_rel, 6 * sc.range_sigma_pct / 100.0 + 6 * sc.bearing_sigma_deg * PI / 180 + 0.05);
             CHECK(full * 2 > frames);
+            CHECK_EQ(differ, 0);
             t_info("%s noise %d: %ld frames, %ld full samples, %.1f points/frame, "
                    "farthest from paint %.1f mm (%.3f of range)", sim_builtin_names[i], noise,
                    frames, full, frames ? (double)pts / (double)frames : 0.0, worst, worst_rel);

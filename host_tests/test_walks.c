@@ -103,6 +103,7 @@ static uint32_t replay_loc(const fl_localizer_t *loc, const char *name, uint32_t
         free(params);
         return 0;
     }
+    sim.sc.white_points = loc->reads_points;   /* costly; only relmap reads them */
     loc->set_prior_half(state, sc.start_x_mm < 0 ? -1 : 1);
     while (n < max_steps && sim_step(&sim, &st)) {
         fl_loc_estimate_t e;

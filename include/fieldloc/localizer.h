@@ -260,6 +260,11 @@ typedef struct fl_localizer {
      * onto it), UINT32_MAX when uninitialized.  A caller re-seeds when it
      * exceeds its threshold (FL_LOC_RESEED_SPREAD_MM). */
     uint32_t (*spread_mm)(const void *state);
+    /* Whether update reads obs->points (white line points: relmap's tie
+     * break).  A producer that pays to extract them (a simulator, a vision
+     * path with a spare stage) may leave them out for a localizer that
+     * does not; the others' results do not depend on them. */
+    bool reads_points;
 } fl_localizer_t;
 
 /* The spread (spread_mm) beyond which a belief is taken to have spread

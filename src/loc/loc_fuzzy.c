@@ -282,4 +282,5 @@ const fl_localizer_t fl_localizer_fuzzy = {
     fz_belief_sample,
     fz_reseed,
     fz_spread_mm,
+    false,   /* reads_points */
 };

@@ -292,4 +292,5 @@ const fl_localizer_t fl_localizer_mcl = {
     mc_belief_sample,
     mc_reseed,
     mc_spread_mm,
+    false,   /* reads_points */
 };

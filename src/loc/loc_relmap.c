@@ -221,4 +221,5 @@ const fl_localizer_t fl_localizer_relmap = {
     rm_belief_sample,
     rm_reseed,
     rm_spread_mm,
+    true,   /* reads_points */
 };

@@ -241,4 +241,5 @@ const fl_localizer_t fl_localizer_upf = {
     up_belief_sample,
     up_reseed,
     up_spread_mm,
+    false,   /* reads_points */
 };

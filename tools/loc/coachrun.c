@@ -99,6 +99,7 @@ static int cr_world_init(cr_world_t *w, const cr_opts_t *o, const fl_localizer_t
     colors_opt_resolve(&w->colors, fl_field_find("spl2016"), NULL);
     for (p = 0; p < 2; p++) {
         cr_scenario(&cfg[p].sc, p, seed);
+        cfg[p].sc.white_points = loc->reads_points;
         cfg[p].jersey = RENDER_JERSEY_RED;
     }
     if (team_init(&w->team, cfg, 2, NULL, err, err_len) != 0)

@@ -1132,6 +1132,10 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
         free(job);
         return -1;
     }
+    /* feature mode's white points only for a localizer that reads them
+     * (frames mode: the vision path makes its own) */
+    if (!lr.loc->reads_points || o->frames)
+        sim->sc.white_points = 0;
     lr.colors = o->colors;
     if (lr_metrics_init(&met, sc->field->symmetric) != 0) {
         lr_free(&lr);

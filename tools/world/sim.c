@@ -208,6 +208,7 @@ void sim_scenario_defaults(sim_scenario_t *sc, sim_robot_t robot)
     sc->pitch_period_s = 0;
     sc->fov_margin_px = 2;
     sc->penalty_x_mm = 0;
+    sc->white_points = 1;
     if (robot == SIM_ROBOT_AIBO) {
         /* ERS-7 (2004): learned trot gaits reached ~290 mm/s (Kohl and
          * Stone, ICRA 2004, on the ERS-210); 250 is a fast game walk. */
@@ -1079,42 +1080,69 @@ static int sim_segment_box(const double p[3], const double d[3], const double b[
     return 1;
 }
 
-int sim_occluded(const sim_scenario_t *sc, const fl_camera_t *cam, int32_t x_mm,
-                 int32_t y_mm, fl_angle_t heading, double fx, double fy, double fz)
-{
+/* The per-frame part of sim_occluded: the camera in the field frame and
+ * each other robot's rounded pose and heading's sine and cosine (the same
+ * arithmetic as computing them per test, so results are unchanged). */
+typedef struct {
     const double (*body)[6];
-    double sh, ch, cxr, cyr, c[3];
-    int i, j;
+    double c[3];
+    int n;
+    double ox[SIM_MAX_OTHERS], oy[SIM_MAX_OTHERS], os[SIM_MAX_OTHERS], oc[SIM_MAX_OTHERS];
+} sim_occ_t;
+
+static void sim_occ_prepare(sim_occ_t *o, const sim_scenario_t *sc, const fl_camera_t *cam,
+                            int32_t x_mm, int32_t y_mm, fl_angle_t heading)
+{
+    double sh, ch, cxr, cyr;
+    int i;
+    o->n = 0;
     if (sc == NULL || cam == NULL || sc->n_others == 0)
-        return 0;
+        return;
     /* the renderer's rule: AIBO bodies on an aibo field or camera */
-    body = strncmp(sc->field_name, "aibo", 4) == 0 ||
-                   (sc->camera != NULL && strncmp(sc->camera->name, "aibo", 4) == 0)
-               ? sim_body_aibo : sim_body_nao;
+    o->body = strncmp(sc->field_name, "aibo", 4) == 0 ||
+                      (sc->camera != NULL && strncmp(sc->camera->name, "aibo", 4) == 0)
+                  ? sim_body_aibo : sim_body_nao;
     sim_sincos(sim_rad(heading), &sh, &ch);
     cxr = cam->pos_q4[0] / 16.0;
     cyr = cam->pos_q4[1] / 16.0;
-    c[0] = x_mm + cxr * ch - cyr * sh;
-    c[1] = y_mm + cxr * sh + cyr * ch;
-    c[2] = cam->pos_q4[2] / 16.0;
-    for (i = 0; i < sc->n_others; i++) {
+    o->c[0] = x_mm + cxr * ch - cyr * sh;
+    o->c[1] = y_mm + cxr * sh + cyr * ch;
+    o->c[2] = cam->pos_q4[2] / 16.0;
+    o->n = sc->n_others < SIM_MAX_OTHERS ? sc->n_others : SIM_MAX_OTHERS;
+    for (i = 0; i < o->n; i++) {
         /* the segment in that robot's frame (its rounded pose, as rendered) */
-        double ox = sim_iround(sc->other[i].x_mm), oy = sim_iround(sc->other[i].y_mm);
-        double os, oc, p[3], q[3], d[3];
-        sim_sincos(sim_rad(sim_angle(sc->other[i].heading_deg * SIM_DEG)), &os, &oc);
-        p[0] = (c[0] - ox) * oc + (c[1] - oy) * os;
-        p[1] = -(c[0] - ox) * os + (c[1] - oy) * oc;
-        p[2] = c[2];
+        o->ox[i] = sim_iround(sc->other[i].x_mm);
+        o->oy[i] = sim_iround(sc->other[i].y_mm);
+        sim_sincos(sim_rad(sim_angle(sc->other[i].heading_deg * SIM_DEG)), &o->os[i], &o->oc[i]);
+    }
+}
+
+static int sim_occ_test(const sim_occ_t *o, double fx, double fy, double fz)
+{
+    int i, j;
+    for (i = 0; i < o->n; i++) {
+        double ox = o->ox[i], oy = o->oy[i], os = o->os[i], oc = o->oc[i], p[3], q[3], d[3];
+        p[0] = (o->c[0] - ox) * oc + (o->c[1] - oy) * os;
+        p[1] = -(o->c[0] - ox) * os + (o->c[1] - oy) * oc;
+        p[2] = o->c[2];
         q[0] = (fx - ox) * oc + (fy - oy) * os;
         q[1] = -(fx - ox) * os + (fy - oy) * oc;
         q[2] = fz;
         for (j = 0; j < 3; j++)
             d[j] = q[j] - p[j];
         for (j = 0; j < 3; j++)
-            if (sim_segment_box(p, d, body[j]))
+            if (sim_segment_box(p, d, o->body[j]))
                 return 1;
     }
     return 0;
+}
+
+int sim_occluded(const sim_scenario_t *sc, const fl_camera_t *cam, int32_t x_mm,
+                 int32_t y_mm, fl_angle_t heading, double fx, double fy, double fz)
+{
+    sim_occ_t o;
+    sim_occ_prepare(&o, sc, cam, x_mm, y_mm, heading);
+    return sim_occ_test(&o, fx, fy, fz);
 }
 
 static fl_landmark_kind_t sim_kind_present(const fl_field_t *f, uint64_t *rng)
@@ -1136,8 +1164,7 @@ static fl_landmark_kind_t sim_kind_present(const fl_field_t *f, uint64_t *rng)
  * inside the image by fov_margin_px, within max range, not behind another
  * robot?  (fx, fy): the same point in the field frame. */
 static int sim_point_visible(const sim_scenario_t *sc, const fl_camera_t *cam,
-                             int32_t x_mm, int32_t y_mm, fl_angle_t heading,
-                             double rx, double ry, double fx, double fy)
+                             const sim_occ_t *occ, double rx, double ry, double fx, double fy)
 {
     fl_point_t gp;
     int32_t u, v, m = 16 * sc->fov_margin_px;
@@ -1148,7 +1175,28 @@ static int sim_point_visible(const sim_scenario_t *sc, const fl_camera_t *cam,
     if (!fl_camera_ground_to_pixel(cam, gp, &u, &v) || u < m || v < m ||
         u > 16 * (cam->model.width_px - 1) - m || v > 16 * (cam->model.height_px - 1) - m)
         return 0;
-    return !sim_occluded(sc, cam, x_mm, y_mm, heading, fx, fy, 0);
+    return !sim_occ_test(occ, fx, fy, 0);
+}
+
+/* Is every point of line l (NULL: the centre circle of radius r_mm) farther
+ * than far mm from (x_mm, y_mm)? */
+static int sim_beyond(const fl_field_line_t *l, int32_t r_mm, int32_t x_mm, int32_t y_mm,
+                      double far)
+{
+    double px = x_mm, py = y_mm, d;
+    if (l == NULL) {
+        d = fabs(sqrt(px * px + py * py) - r_mm);
+    } else {
+        double ax = l->x0_mm, ay = l->y0_mm, bx = l->x1_mm - ax, by = l->y1_mm - ay;
+        double len2 = bx * bx + by * by, t = 0, ex, ey;
+        if (len2 > 0)
+            t = ((px - ax) * bx + (py - ay) * by) / len2;
+        t = t < 0 ? 0 : t > 1 ? 1 : t;
+        ex = px - (ax + t * bx);
+        ey = py - (ay + t * by);
+        d = sqrt(ex * ex + ey * ey);
+    }
+    return d > far;
 }
 
 /* Reservoir sample (Algorithm R) of the visible painted-line points: the
@@ -1167,6 +1215,12 @@ static void sim_observe_points(const sim_scenario_t *sc, const fl_camera_t *cam,
     uint64_t prng = *rng ^ 0x5bd1e9955bd1e995ULL;
     long seen = 0;
     int i, k, n_circle = 0;
+    /* a line (or the circle) whose every point is beyond max range by more
+     * than the paint's width is skipped whole: its offsets are still drawn,
+     * so the stream, and every result, is the same as testing each point */
+    double far = sc->max_range_mm + lw + 1.0;
+    sim_occ_t occ;
+    sim_occ_prepare(&occ, sc, cam, x_mm, y_mm, heading);
     sim_sincos(sim_rad(heading), &sh, &ch);
     if (f->circle_radius_mm > 0)
         n_circle = (int)(SIM_TWO_PI * f->circle_radius_mm / SIM_POINT_STEP_MM);
@@ -1176,6 +1230,11 @@ static void sim_observe_points(const sim_scenario_t *sc, const fl_camera_t *cam,
                               (double)(l->y1_mm - l->y0_mm) * (l->y1_mm - l->y0_mm))
                        : 0;
         int n = l ? (int)(len / SIM_POINT_STEP_MM) + 1 : n_circle;
+        if (sim_beyond(l, f->circle_radius_mm, x_mm, y_mm, far)) {
+            for (k = 0; k < n; k++)
+                (void)sim_u01(&prng);
+            continue;
+        }
         for (k = 0; k < n; k++) {
             double fx, fy, across = (sim_u01(&prng) - 0.5) * lw, dx, dy, rx, ry;
             if (l) {
@@ -1194,7 +1253,7 @@ static void sim_observe_points(const sim_scenario_t *sc, const fl_camera_t *cam,
             dy = fy - y_mm;
             rx = dx * ch + dy * sh;
             ry = -dx * sh + dy * ch;
-            if (!sim_point_visible(sc, cam, x_mm, y_mm, heading, rx, ry, fx, fy))
+            if (!sim_point_visible(sc, cam, &occ, rx, ry, fx, fy))
                 continue;
             if (seen < SIM_POINTS_PER_FRAME) {
                 pick[seen][0] = rx;
@@ -1228,6 +1287,7 @@ void sim_observe(const sim_scenario_t *sc, const fl_camera_t *cam,
     int i, n_fp = 0, trials;
     int seen_goal[2] = {0, 0};
     int32_t umin, umax, vmin, vmax;
+    sim_occ_t occ;
     if (sc == NULL || cam == NULL || rng == NULL || out == NULL)
         return;
     fl_obs_list_clear(&out->obs);
@@ -1239,7 +1299,9 @@ void sim_observe(const sim_scenario_t *sc, const fl_camera_t *cam,
     vmin = umin;
     umax = 16 * (cam->model.width_px - 1 - sc->fov_margin_px);
     vmax = 16 * (cam->model.height_px - 1 - sc->fov_margin_px);
-    sim_observe_points(sc, cam, x_mm, y_mm, heading, rng, out);
+    if (sc->white_points)
+        sim_observe_points(sc, cam, x_mm, y_mm, heading, rng, out);
+    sim_occ_prepare(&occ, sc, cam, x_mm, y_mm, heading);
 
     for (i = 0; i < f->n_landmarks; i++) {
         const fl_landmark_t *lm = &f->landmarks[i];
@@ -1255,7 +1317,7 @@ void sim_observe(const sim_scenario_t *sc, const fl_camera_t *cam,
         if (range > sc->max_range_mm ||
             !fl_camera_ground_to_pixel(cam, gp, &u, &v) ||
             u < umin || u > umax || v < vmin || v > vmax ||
-            sim_occluded(sc, cam, x_mm, y_mm, heading, lm->x_mm, lm->y_mm, 0))
+            sim_occ_test(&occ, lm->x_mm, lm->y_mm, 0))
             continue;
         /* every random draw below happens for every visible landmark, so
          * the stream does not depend on the outcome of earlier draws */

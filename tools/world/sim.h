@@ -212,6 +212,16 @@ typedef struct {
     int route_once;                       /* [route_once 0|1] 1: stand still
                                              at the last waypoint instead of
                                              looping (sim_arrived) */
+
+    /* not part of the text form: 1 (the default) samples the white points
+     * of feature mode (SIM_POINTS_PER_FRAME above); 0 leaves obs.points
+     * empty.  The sampling projects every painted-line point in range and
+     * tests it against the other robots, most of a feature-mode step's
+     * work; a caller whose localizer does not read the points
+     * (fl_localizer_t.reads_points) turns it off.  The landmark
+     * observations, the walk and every random draw are the same either
+     * way (the points have their own stream). */
+    int white_points;
 } sim_scenario_t;
 
 /* Robot-typical defaults (speeds, rates, noise; values and sources in
