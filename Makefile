@@ -283,28 +283,32 @@ FUZZ_LIB_SRC := $(FW_SRC) $(TOOL_LIB_SRC)
 fuzz-build:
 	@mkdir -p $(BUILD)/fuzz/obj
 	@# an object is rebuilt when its source or any header is newer (a
-	@# config.h change alters the fingerprint every init checks)
+	@# config.h change alters the fingerprint every init checks); objects
+	@# and harnesses are built TEST_JOBS at a time
 	@hdr=$$(ls -t include/fieldloc/*.h src/*/*.h tools/*/*.h | head -n 1); \
 	for f in $(FUZZ_LIB_SRC); do \
 	  o=$(BUILD)/fuzz/obj/$$(echo $$f | tr / _ | sed 's/\.c$$/.o/'); \
-	  { [ $$o -nt $$f ] && [ $$o -nt $$hdr ]; } || $(FUZZ_CC) $(FUZZ_FLAGS) -c $$f -o $$o || exit 1; \
-	done
-	@for n in $(FUZZ_NAMES); do \
-	  $(FUZZ_CC) $(FUZZ_FLAGS) -fsanitize=fuzzer host_tests/fuzz/fuzz_$$n.c $(BUILD)/fuzz/obj/*.o -lm \
-	    -o $(BUILD)/fuzz/fuzz_$$n || exit 1; \
-	done
+	  { [ $$o -nt $$f ] && [ $$o -nt $$hdr ]; } || echo "$$f $$o"; \
+	done | xargs -r -n 2 -P $(TEST_JOBS) sh -c '$(FUZZ_CC) $(FUZZ_FLAGS) -c "$$0" -o "$$1"' || exit 1
+	@printf '%s\n' $(FUZZ_NAMES) | xargs -n 1 -P $(TEST_JOBS) sh -c \
+	  '$(FUZZ_CC) $(FUZZ_FLAGS) -fsanitize=fuzzer host_tests/fuzz/fuzz_$$0.c $(BUILD)/fuzz/obj/*.o -lm -o $(BUILD)/fuzz/fuzz_$$0' \
+	  || exit 1
 	@echo "fuzz: built $(FUZZ_NAMES)"
 
+# The harnesses run TEST_JOBS at a time (each on its own core for
+# FUZZ_SECONDS), then report in name order.
 fuzz-smoke: fuzz-build
-	@status=0; for n in $(FUZZ_NAMES); do \
-	  rm -rf $(BUILD)/fuzz/corpus_$$n; mkdir -p $(BUILD)/fuzz/corpus_$$n; \
-	  cp host_tests/fuzz/corpus/$$n/* $(BUILD)/fuzz/corpus_$$n/ 2>/dev/null; \
-	  if $(BUILD)/fuzz/fuzz_$$n -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=2048 \
-	       -artifact_prefix=$(BUILD)/fuzz/crash_$$n- $(BUILD)/fuzz/corpus_$$n \
-	       > $(BUILD)/fuzz/log_$$n.txt 2>&1; then \
+	@rm -f $(BUILD)/fuzz/rc_*; printf '%s\n' $(FUZZ_NAMES) | xargs -n 1 -P $(TEST_JOBS) sh -c \
+	  'rm -rf $(BUILD)/fuzz/corpus_$$0; mkdir -p $(BUILD)/fuzz/corpus_$$0; \
+	   cp host_tests/fuzz/corpus/$$0/* $(BUILD)/fuzz/corpus_$$0/ 2>/dev/null; \
+	   $(BUILD)/fuzz/fuzz_$$0 -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=2048 \
+	     -artifact_prefix=$(BUILD)/fuzz/crash_$$0- $(BUILD)/fuzz/corpus_$$0 \
+	     > $(BUILD)/fuzz/log_$$0.txt 2>&1; echo $$? > $(BUILD)/fuzz/rc_$$0'; \
+	 status=0; for n in $(FUZZ_NAMES); do \
+	  if [ "$$(cat $(BUILD)/fuzz/rc_$$n 2>/dev/null)" = 0 ]; then \
 	    echo "fuzz $$n: $$(grep -o 'Done [0-9]* runs' $(BUILD)/fuzz/log_$$n.txt), no crash"; \
 	  else echo "fuzz $$n: CRASH (see $(BUILD)/fuzz/log_$$n.txt)"; tail -30 $(BUILD)/fuzz/log_$$n.txt; status=1; fi; \
-	done; exit $$status
+	 done; exit $$status
 
 # The installed config.h: the option defaults replaced by the values the
 # library's objects were compiled with (tools/build/config_header.sh asks

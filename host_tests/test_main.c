@@ -420,6 +420,7 @@ static int t_run_parallel(int jobs)
     double sec[T_SUITES_MAX];
     pid_t pid;
     struct t_done d;
+    memset(&d, 0, sizeof d);   /* its padding goes down the pipe too */
     t_queue_order(order);
     for (i = 0; i < t_nsuites; i++) {
         FILE *f = tmpfile();
