@@ -1207,8 +1207,8 @@ static int sim_beyond(const fl_field_line_t *l, int32_t r_mm, int32_t x_mm, int3
  * advancing it, so the landmark observations (and every trace) are the
  * same with or without points. */
 static void sim_observe_points(const sim_scenario_t *sc, const fl_camera_t *cam,
-                               int32_t x_mm, int32_t y_mm, fl_angle_t heading,
-                               const uint64_t *rng, sim_step_t *out)
+                               const sim_occ_t *occ, int32_t x_mm, int32_t y_mm,
+                               fl_angle_t heading, const uint64_t *rng, sim_step_t *out)
 {
     const fl_field_t *f = sc->field;
     double pick[SIM_POINTS_PER_FRAME > 0 ? SIM_POINTS_PER_FRAME : 1][2], sh, ch, lw = f->line_width_mm;
@@ -1219,8 +1219,6 @@ static void sim_observe_points(const sim_scenario_t *sc, const fl_camera_t *cam,
      * than the paint's width is skipped whole: its offsets are still drawn,
      * so the stream, and every result, is the same as testing each point */
     double far = sc->max_range_mm + lw + 1.0;
-    sim_occ_t occ;
-    sim_occ_prepare(&occ, sc, cam, x_mm, y_mm, heading);
     sim_sincos(sim_rad(heading), &sh, &ch);
     if (f->circle_radius_mm > 0)
         n_circle = (int)(SIM_TWO_PI * f->circle_radius_mm / SIM_POINT_STEP_MM);
@@ -1253,7 +1251,7 @@ static void sim_observe_points(const sim_scenario_t *sc, const fl_camera_t *cam,
             dy = fy - y_mm;
             rx = dx * ch + dy * sh;
             ry = -dx * sh + dy * ch;
-            if (!sim_point_visible(sc, cam, &occ, rx, ry, fx, fy))
+            if (!sim_point_visible(sc, cam, occ, rx, ry, fx, fy))
                 continue;
             if (seen < SIM_POINTS_PER_FRAME) {
                 pick[seen][0] = rx;
@@ -1299,9 +1297,9 @@ void sim_observe(const sim_scenario_t *sc, const fl_camera_t *cam,
     vmin = umin;
     umax = 16 * (cam->model.width_px - 1 - sc->fov_margin_px);
     vmax = 16 * (cam->model.height_px - 1 - sc->fov_margin_px);
-    if (sc->white_points)
-        sim_observe_points(sc, cam, x_mm, y_mm, heading, rng, out);
     sim_occ_prepare(&occ, sc, cam, x_mm, y_mm, heading);
+    if (sc->white_points)
+        sim_observe_points(sc, cam, &occ, x_mm, y_mm, heading, rng, out);
 
     for (i = 0; i < f->n_landmarks; i++) {
         const fl_landmark_t *lm = &f->landmarks[i];
