@@ -8,6 +8,7 @@
  * through localizer.h like every other localizer.
  */
 #include "test.h"
+#include "fieldloc/localizer.h"
 #include "fieldloc/relmap.h"
 
 #include <math.h>
@@ -315,6 +316,78 @@ static void test_odometry(void)
     free(s);
 }
 
+/* The vision preset (fl_relmap_params_vision) through the catalogue: its
+ * values, a caller's change kept by params_adapt, the feature-level
+ * values for a low-resolution camera.  Then the frame that motivated its
+ * eq.-2 cap: seed 002's vision on a rendered hl3x2 frame of the robot at
+ * (-428, -461, 21 deg) reported both blue posts, the T at (1500, -550) and
+ * a false T 628 mm away (the centre mark's node on the halfway line); the
+ * numbers are that frame's (`fieldloc eval-relmap --verbose`, pose 164 of
+ * seed 1).  With the feature-level 1500 mm cap the false T outweighed two
+ * posts at the pose mirrored about the x axis. */
+static void test_vision_preset(void)
+{
+    const fl_field_t *f = fl_field_find("hl3x2");
+    const fl_localizer_t *L = &fl_localizer_relmap;
+    fl_relmap_params_t p, v, d;
+    fl_relmap_t *s = malloc(sizeof *s);
+    static const struct { fl_landmark_kind_t kind; int32_t range_mm; int32_t bearing_mdeg; } seen[4] = {
+        {FL_LM_POST, 2140, 3000}, {FL_LM_POST, 1940, -19400}, {FL_LM_T, 1921, -24100}, {FL_LM_T, 628, 26200}};
+    fl_obs_list_t obs;
+    fl_loc_estimate_t e;
+    int i, k;
+    CHECK(s != NULL && f != NULL);
+    if (s == NULL || f == NULL)
+        return;
+    fl_relmap_params_vision(&v);
+    fl_relmap_params_default(&d);
+    CHECK(v.sigma_base_mm < d.sigma_base_mm && v.sigma_pct < d.sigma_pct && v.err_cap_mm < d.err_cap_mm);
+    CHECK_EQ(fl_relmap_params_check(&v), FL_OK);
+    L->params_preset(&p, FL_LOC_PRESET_VISION);
+    CHECK(memcmp(&p, &v, sizeof p) == 0);
+    L->params_adapt(&p, FL_LOC_PRESET_VISION);
+    CHECK(memcmp(&p, &v, sizeof p) == 0);
+    L->params_adapt(&p, FL_LOC_PRESET_VISION_LOWRES);
+    CHECK(memcmp(&p, &d, sizeof p) == 0);
+    L->params_preset(&p, FL_LOC_PRESET_VISION);
+    p.sigma_pct = 12;                    /* the caller's own */
+    L->params_adapt(&p, FL_LOC_PRESET_VISION_LOWRES);
+    CHECK_EQ(p.sigma_pct, 12);
+    CHECK_EQ(p.err_cap_mm, v.err_cap_mm);
+    L->params_preset(&p, FL_LOC_PRESET_DEFAULT);
+    CHECK(memcmp(&p, &d, sizeof p) == 0);
+    fl_obs_list_clear(&obs);
+    for (i = 0; i < 4; i++) {
+        fl_obs_t o;
+        memset(&o, 0, sizeof o);
+        o.kind = seen[i].kind;
+        o.color = seen[i].kind == FL_LM_POST ? FL_COLOR_SKYBLUE : FL_COLOR_NONE;
+        o.range_mm = seen[i].range_mm;
+        o.bearing = fl_angle_from_mdeg(seen[i].bearing_mdeg);
+        o.confidence = 200;
+        fl_obs_list_push(&obs, &o);
+    }
+    for (k = 0; k < 2; k++) {
+        double err;
+        if (k == 0)
+            CHECK_EQ(fl_relmap_init(s, f, &d), FL_OK);
+        else
+            CHECK_EQ(fl_relmap_init(s, f, &v), FL_OK);
+        for (i = 0; i < 3; i++)
+            CHECK_EQ(fl_relmap_update(s, &obs), 4);
+        CHECK(fl_relmap_estimate(s, &e));
+        CHECK(fl_relmap_check(s));
+        err = dist(e.x_mm, e.y_mm, -428, -461);
+        t_info("%s: estimate (%d, %d, %.0f deg), %.0f mm from the pose", k ? "vision preset" : "defaults",
+               (int)e.x_mm, (int)e.y_mm, fl_angle_to_mdeg(e.heading) / 1000.0, err);
+        if (k == 1) {
+            CHECK(err < 150.0);
+            CHECK(abs(fl_angle_to_mdeg(fl_angle_sub(e.heading, fl_angle_from_mdeg(21000)))) < 6000);
+        }
+    }
+    free(s);
+}
+
 /* Bad input: refused or ignored, counted, the state valid; the work per
  * frame bounded by the candidates. */
 static void test_bad_input(void)
@@ -388,4 +461,5 @@ void suite_relmap(void)
     t_run("relmap.ties", test_ties);
     t_run("relmap.odometry", test_odometry);
     t_run("relmap.bad_input", test_bad_input);
+    t_run("relmap.vision_preset", test_vision_preset);
 }

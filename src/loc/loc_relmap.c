@@ -2,8 +2,9 @@
  * src/loc/loc_relmap.c - seed 002's particle grid with the relative
  * landmark map (relmap.h) behind the localizer interface (localizer.h) as
  * "relmap".  Deterministic: no random generator, so no "seed" parameter.
- * One parameter set for every vision path (the presets are the defaults:
- * its sigma grows with the range, which is what differs between paths).
+ * Presets: the defaults for feature-level observations, a tighter eq. 1
+ * sigma and eq. 2 cap for a camera (fl_relmap_params_vision), the
+ * defaults again for a low-resolution camera.
  */
 #include "fieldloc/localizer.h"
 #include "fieldloc/relmap.h"
@@ -19,14 +20,30 @@ static void rm_params_default(void *params)
 
 static void rm_params_preset(void *params, fl_loc_preset_t preset)
 {
-    (void)preset;
-    rm_params_default(params);
+    if (params == NULL)
+        return;
+    if (preset == FL_LOC_PRESET_VISION)
+        fl_relmap_params_vision((fl_relmap_params_t *)params);
+    else
+        fl_relmap_params_default((fl_relmap_params_t *)params);
 }
 
+/* A low-resolution camera (AIBO, 208 px) measures ranges several times
+ * less precisely: parameters still at the vision preset's values take the
+ * feature-level ones (unmeasured with relmap; the looser choice). */
 static void rm_params_adapt(void *params, fl_loc_preset_t preset)
 {
-    (void)params;
-    (void)preset;
+    fl_relmap_params_t *p = (fl_relmap_params_t *)params, v, d;
+    if (p == NULL || preset != FL_LOC_PRESET_VISION_LOWRES)
+        return;
+    fl_relmap_params_vision(&v);
+    fl_relmap_params_default(&d);
+    if (p->sigma_base_mm == v.sigma_base_mm && p->sigma_pct == v.sigma_pct &&
+        p->err_cap_mm == v.err_cap_mm) {
+        p->sigma_base_mm = d.sigma_base_mm;
+        p->sigma_pct = d.sigma_pct;
+        p->err_cap_mm = d.err_cap_mm;
+    }
 }
 
 static fl_status_t rm_params_check(const void *params)

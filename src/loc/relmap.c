@@ -39,6 +39,32 @@ void fl_relmap_params_default(fl_relmap_params_t *p)
     p->odo_max_mm = 1000;
 }
 
+/*
+ * Observations from a camera (a vision path, FL_LOC_PRESET_VISION) give
+ * ranges far better than the feature-level default assumes: on rendered
+ * hl3x2 frames seed 002's path measures post and pole ranges within about
+ * 1 % (`fieldloc eval-relmap --verbose`).  Eq. 1's sigma is then one cell
+ * diagonal on hl3x2 (68 x 75 mm cells: a particle stands up to half that
+ * from the robot, on each of two landmarks) plus 8 % of the range (MCL's
+ * vision preset takes 6 %).  Eq. 2's miss is capped at 500 mm, about half
+ * the spacing of two landmarks of one kind (posts 800 mm, T crossings
+ * 1100 mm apart on hl3x2): a superimposed landmark farther than that from
+ * every map landmark of its kind is no match (a false crossing, e.g. the
+ * centre mark's node on the halfway line), and with the feature-level
+ * 1500 mm one such landmark outweighed two posts at the mirrored pose.
+ * Measured with `fieldloc eval-relmap --seed 1 --poses 200` against the
+ * defaults: see docs/RESULTS.md, "Seed 002 on its own field".
+ */
+void fl_relmap_params_vision(fl_relmap_params_t *p)
+{
+    if (p == NULL)
+        return;
+    fl_relmap_params_default(p);
+    p->sigma_base_mm = 100;
+    p->sigma_pct = 8;
+    p->err_cap_mm = 500;
+}
+
 fl_status_t fl_relmap_params_check(const fl_relmap_params_t *p)
 {
     if (p == NULL)

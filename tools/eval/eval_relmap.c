@@ -38,6 +38,7 @@ typedef struct {
     double pos_mm, head_deg;
     int wrong_side;
     fl_loc_estimate_t est;
+    char seen[160];           /* the last frame's observations, short */
 } er_score_t;
 
 static uint64_t er_next(uint64_t *s)
@@ -112,10 +113,19 @@ static void er_ctx_free(er_ctx_t *c)
  * reproducible alone. */
 static int er_loc_reset(er_ctx_t *c, uint32_t pose_seed)
 {
-    c->loc->params_default(c->params);
+    int i;
+    c->loc->params_preset(c->params, FL_LOC_PRESET_VISION);   /* vision in the loop */
     c->loc->params_adapt(c->params, fl_loc_preset_for_width(640));
     if (fl_localizer_param_find(c->loc, "seed") != NULL)
         (void)fl_localizer_param_set(c->loc, c->params, "seed", (int32_t)(pose_seed & 0x7fffffff));
+    for (i = 0; i < c->o->n_param; i++)
+        if (fl_localizer_param_set(c->loc, c->params, c->o->param_name[i], c->o->param_value[i]) !=
+                FL_OK ||
+            c->loc->params_check(c->params) != FL_OK) {
+            fprintf(stderr, "eval-relmap: bad --param %s=%ld (not a parameter of %s, or out of range)\n",
+                    c->o->param_name[i], (long)c->o->param_value[i], c->loc->name);
+            return -1;
+        }
     if (fl_loc_init(c->loc, c->state, c->field, c->params) != FL_OK) {
         fprintf(stderr, "eval-relmap: %s refused hl3x2\n", c->loc->name);
         return -1;
@@ -135,6 +145,23 @@ static void er_tie(er_ctx_t *c, int32_t x, int32_t y, int32_t heading_deg)
     h = fabs(er_wrap_deg(er_angle_deg(s->best.heading) - heading_deg));
     if (d <= ER_TIE_RIGHT_MM && h <= ER_TIE_RIGHT_DEG)
         c->ties_right++;
+}
+
+/* The observations as kind letters (P pole, G post; lower case: the
+ * localizer ignores it, confidence 0) with their ranges in cm. */
+static void er_obs_names(const fl_obs_list_t *obs, char *buf, size_t len)
+{
+    static const char kinds[FL_LM_KIND_COUNT + 1] = "LTXMmGCP";
+    size_t n = 0;
+    uint16_t i;
+    buf[0] = '\0';
+    for (i = 0; i < obs->n && i < FL_OBS_MAX && n + 12 < len; i++) {
+        const fl_obs_t *o = &obs->obs[i];
+        char k = (int)o->kind >= 0 && o->kind < FL_LM_KIND_COUNT ? kinds[o->kind] : '?';
+        if (o->confidence == 0)
+            k = (char)(k | 0x20);
+        n += (size_t)snprintf(buf + n, len - n, "%s%c%d", n ? " " : "", k, (int)(o->range_mm / 10));
+    }
 }
 
 /* One pose: frames rendered, seen and localized; the score. */
@@ -172,6 +199,7 @@ static int er_pose(er_ctx_t *c, int32_t x, int32_t y, int32_t heading_deg, uint3
         er_tie(c, x, y, heading_deg);
     }
     memset(sc_out, 0, sizeof *sc_out);
+    er_obs_names(&c->obs, sc_out->seen, sizeof sc_out->seen);
     if (!fl_loc_estimate(c->loc, c->state, &sc_out->est))
         return -1;
     sc_out->pos_mm = hypot((double)sc_out->est.x_mm - x, (double)sc_out->est.y_mm - y);
@@ -244,7 +272,7 @@ static int er_random(er_ctx_t *c, FILE *out, er_result_t *res)
         drawn++;
         s002_scene(&sc, x, y, deg);
         if (s002_visible(&sc, &seen, names, (int)sizeof names) != 0 ||
-            seen.crossings + seen.posts + seen.poles < 2)
+            seen.tx + seen.posts + seen.poles < 2)
             continue;
         if (er_pose(c, x, y, deg, c->o->seed * 100003u + (uint32_t)drawn, &s) != 0) {
             rc = -1;
@@ -254,8 +282,8 @@ static int er_random(er_ctx_t *c, FILE *out, er_result_t *res)
         head[kept] = s.head_deg;
         wrong += s.wrong_side;
         if (c->o->verbose)
-            fprintf(out, "# pose %3d (%5d, %5d, %4d) sees %-48s est (%5d, %5d) err %6.0f mm %5.1f deg%s\n",
-                    kept, (int)x, (int)y, (int)deg, names, (int)s.est.x_mm, (int)s.est.y_mm,
+            fprintf(out, "# pose %3d (%5d, %5d, %4d) sees %-48s found %-24s est (%5d, %5d) err %6.0f mm %5.1f deg%s\n",
+                    kept, (int)x, (int)y, (int)deg, names, s.seen, (int)s.est.x_mm, (int)s.est.y_mm,
                     s.pos_mm, s.head_deg, s.wrong_side ? " WRONG SIDE" : "");
         kept++;
     }
@@ -288,7 +316,8 @@ int er_run(const er_opts_t *o, FILE *out, er_result_t *res)
     res->frame_ms_max = c.time_max_ms;
     res->ties = c.ties;
     res->ties_right = c.ties_right;
-    fprintf(out, "# random poses: %d kept of %d drawn (at least two landmarks in view); "
+    fprintf(out, "# random poses: %d kept of %d drawn (at least two landmarks in view: T or X "
+                 "crossings with their arms in the frame, posts, poles); "
                  "wrong side: estimate > %.0f mm off and nearer the pose turned about the centre\n",
             res->kept, res->drawn, ER_WRONG_SIDE_MM);
     if (strcmp(c.loc->name, "relmap") == 0)

@@ -13,8 +13,10 @@
  *     seed 002's own errors beside ours;
  *   - random poses: uniform over the field inside the lines, heading
  *     uniform, kept when the renderer's truth shows at least two landmarks
- *     the vision path can report (crossings, goal posts, poles:
- *     s002_visible), until `poses` are kept (at most 50 draws per pose).
+ *     the vision path can report (T and X crossings with their arms in
+ *     the frame, goal posts, poles: s002_visible; an L corner is no
+ *     landmark of seed 002's, whose skeleton marks nodes of degree 3 and
+ *     4 only), until `poses` are kept (at most 50 draws per pose).
  * Wrong side: the estimate is more than 500 mm from the true position and
  * nearer the true position turned 180 degrees about the field's centre.
  * Ties (relmap only, its fl_relmap_best_t): frames whose eq. 4 minimum was
@@ -37,6 +39,9 @@ typedef struct {
     int frames;               /* frames per pose (>= 1) */
     const char *localizer;    /* catalogue name */
     int verbose;              /* one line per random pose */
+    char param_name[16][48];  /* localizer parameters set by name */
+    int32_t param_value[16];
+    int n_param;
 } er_opts_t;
 
 typedef struct {

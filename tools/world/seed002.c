@@ -186,6 +186,9 @@ int s002_visible(const render_scene_t *sc, s002_seen_t *seen, char *buf, int buf
         switch (e->kind) {
         case TRUTH_L: case TRUTH_T: case TRUTH_X:
             seen->crossings++;
+            if (e->kind != TRUTH_L && e->u >= S002_EDGE_U_PX && e->u <= fr.width - S002_EDGE_U_PX &&
+                e->v >= S002_EDGE_V_PX && e->v <= fr.height - S002_EDGE_V_PX)
+                seen->tx++;
             snprintf(s, sizeof s, "%c(%ld,%ld)", "LTX"[e->kind - TRUTH_L], (long)lm->x_mm,
                      (long)lm->y_mm);
             break;

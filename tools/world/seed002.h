@@ -90,8 +90,20 @@ void s002_scene(render_scene_t *sc, int32_t x_mm, int32_t y_mm, int32_t heading_
  * crossings (L, T, X), goal posts (feet or tops, counted once per post),
  * landmark poles, and marks; names (e.g. "T(0,1000) pole(YBY) post(-x,L)")
  * into buf.  0 on success. */
+/* A crossing seed 002's vision can report: a T or an X (its skeleton
+ * marks nodes of degree 3 and 4; an L is no node) whose arms lie in the
+ * frame.  The skeleton (skeleton.h) wants every arm to reach arm_px (6)
+ * mask pixels beyond the node and rejects a cluster clipped by the mask
+ * edge; at acyut-640's mask grid of 4 x 2 pixels that is 24 columns and
+ * 12 rows of the image. */
+#define S002_EDGE_U_PX 24
+#define S002_EDGE_V_PX 12
+
 typedef struct {
     int crossings, posts, poles, marks;
+    int tx;                             /* T and X crossings whose arms the
+                                           skeleton can follow (S002_EDGE_*
+                                           inside the frame) */
     int pole_landmark;                  /* index of the last pole seen, -1 */
 } s002_seen_t;
 int s002_visible(const render_scene_t *sc, s002_seen_t *seen, char *buf, int buf_len);
