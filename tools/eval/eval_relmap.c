@@ -39,6 +39,10 @@ typedef struct {
     int wrong_side;
     fl_loc_estimate_t est;
     char seen[160];           /* the last frame's observations, short */
+    int white_n;              /* relmap: white points of the last frame; */
+    int white_true, white_est;   /* ... on lines at the true pose and at
+                                    the estimate; -1: not relmap */
+    int n_tied;               /* relmap: the last frame's tie set */
 } er_score_t;
 
 static uint64_t er_next(uint64_t *s)
@@ -202,6 +206,17 @@ static int er_pose(er_ctx_t *c, int32_t x, int32_t y, int32_t heading_deg, uint3
     er_obs_names(&c->obs, sc_out->seen, sizeof sc_out->seen);
     if (!fl_loc_estimate(c->loc, c->state, &sc_out->est))
         return -1;
+    sc_out->white_true = sc_out->white_est = -1;
+    if (strcmp(c->loc->name, "relmap") == 0) {
+        const fl_relmap_t *s = (const fl_relmap_t *)c->state;
+        sc_out->white_n = c->obs.n_points < FL_RELMAP_MAX_WHITE ? c->obs.n_points : FL_RELMAP_MAX_WHITE;
+        sc_out->white_true = fl_relmap_white_hits(c->field, &c->obs, x, y,
+                                                  fl_angle_from_mdeg(heading_deg * 1000),
+                                                  s->params.white_tol_mm);
+        sc_out->white_est = fl_relmap_white_hits(c->field, &c->obs, sc_out->est.x_mm, sc_out->est.y_mm,
+                                                 sc_out->est.heading, s->params.white_tol_mm);
+        sc_out->n_tied = s->best.valid ? s->best.n_tied : 0;
+    }
     sc_out->pos_mm = hypot((double)sc_out->est.x_mm - x, (double)sc_out->est.y_mm - y);
     sc_out->head_deg = fabs(er_wrap_deg(er_angle_deg(sc_out->est.heading) - heading_deg));
     mx = -(double)x;
@@ -282,9 +297,14 @@ static int er_random(er_ctx_t *c, FILE *out, er_result_t *res)
         head[kept] = s.head_deg;
         wrong += s.wrong_side;
         if (c->o->verbose)
-            fprintf(out, "# pose %3d (%5d, %5d, %4d) sees %-48s found %-24s est (%5d, %5d) err %6.0f mm %5.1f deg%s\n",
+            fprintf(out, "# pose %3d (%5d, %5d, %4d) sees %-48s found %-24s est (%5d, %5d) err %6.0f mm %5.1f deg%s",
                     kept, (int)x, (int)y, (int)deg, names, s.seen, (int)s.est.x_mm, (int)s.est.y_mm,
                     s.pos_mm, s.head_deg, s.wrong_side ? " WRONG SIDE" : "");
+        if (c->o->verbose && s.white_true >= 0)
+            fprintf(out, "; white points on lines %d of %d at the pose, %d at the estimate; tied %d",
+                    s.white_true, s.white_n, s.white_est, s.n_tied);
+        if (c->o->verbose)
+            fputc('\n', out);
         kept++;
     }
     res->kept = kept;
