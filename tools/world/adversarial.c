@@ -146,7 +146,14 @@ uint8_t *adv_fuzz_frame(const uint8_t *data, size_t size, size_t header_len, fl_
         return NULL;
     for (i = 0; i < bytes; i++)
         buf[i] = size > header_len ? data[header_len + i % (size - header_len)] : 0;
-    switch (data[0] & 3) {
+    adv_fuzz_view(img, data[0] & 3, buf, w, h, pad, data[5]);
+    return buf;
+}
+
+void adv_fuzz_view(fl_image_t *img, int fmt, uint8_t *buf, int32_t w, int32_t h, int32_t pad,
+                   uint8_t garbage)
+{
+    switch (fmt) {
     case 1:
         (void)fl_image_init_packed(img, FL_FMT_RGB888, buf, w, h, 3 * w + pad);
         break;
@@ -163,10 +170,9 @@ uint8_t *adv_fuzz_frame(const uint8_t *data, size_t size, size_t header_len, fl_
         memset(img, 0, sizeof *img);
         img->width = w;
         img->height = h;
-        img->format = (fl_pixel_format_t)(data[5] % 5);
+        img->format = (fl_pixel_format_t)(garbage % 5);
         img->plane[0] = buf;
         img->stride[0] = pad;
         break;
     }
-    return buf;
 }
