@@ -157,6 +157,22 @@ static const fl_obs_t *find_obs(const fl_obs_list_t *o, fl_landmark_kind_t kind,
     return NULL;
 }
 
+/* The observation of kind and colour c, which must be there, at the range
+ * of the object of diameter 100 mm painted with its foot at (u, v) within
+ * 2 % + 10 mm; NULL when it is missing. */
+static const fl_obs_t *check_found(const fl_obs_list_t *obs, const fl_camera_t *cam,
+                                   fl_landmark_kind_t kind, fl_color_t c, int u, int v)
+{
+    const fl_obs_t *o = find_obs(obs, kind, c);
+    int32_t r;
+    CHECK(o != NULL);
+    if (o) {
+        r = t_range(cam, u, v, 100);
+        CHECK_LE(abs(o->range_mm - r), r / 50 + 10);
+    }
+    return o;
+}
+
 /* Green from row 200 down; a yellow post, a YBY pole, a BYB pole, a
  * single-colour sky-blue column and a two-colour column (YB, no third
  * band) standing on it. */
@@ -166,7 +182,7 @@ static void test_posts_poles(void)
     fl_camera_t cam;
     fl_obs_list_t obs;
     const fl_obs_t *o;
-    int32_t n, r;
+    int32_t n;
     t_init();
     t_camera(&cam);
     paint(f, 0, HW - 1, 200, HH - 1, c_green);
@@ -177,28 +193,19 @@ static void test_posts_poles(void)
     CHECK_EQ(hv.status, FL_OK);
     CHECK_EQ(n, 3);
     CHECK_EQ(hv.n_objects, 3);
-    o = find_obs(&obs, FL_LM_POST, FL_COLOR_YELLOW);
-    CHECK(o != NULL);
+    o = check_found(&obs, &cam, FL_LM_POST, FL_COLOR_YELLOW, 310, 350);
     if (o) {
-        r = t_range(&cam, 310, 350, 100);
-        CHECK_LE(abs(o->range_mm - r), r / 50 + 10);
         CHECK_EQ(o->side, FL_SIDE_UNKNOWN);
         CHECK_LE(abs(o->u_q4 / 16 - 310), 4);
     }
-    o = find_obs(&obs, FL_LM_BEACON, FL_COLOR_YELLOW);
-    CHECK(o != NULL);
+    o = check_found(&obs, &cam, FL_LM_BEACON, FL_COLOR_YELLOW, 108, 360);
     if (o) {
         CHECK_EQ(o->color2, FL_COLOR_YELLOW);
-        r = t_range(&cam, 108, 360, 100);
-        CHECK_LE(abs(o->range_mm - r), r / 50 + 10);
         CHECK(o->bearing > 0);   /* left of the image centre */
     }
-    o = find_obs(&obs, FL_LM_BEACON, FL_COLOR_SKYBLUE);
-    CHECK(o != NULL);
+    o = check_found(&obs, &cam, FL_LM_BEACON, FL_COLOR_SKYBLUE, 508, 290);
     if (o) {
         CHECK_EQ(o->color2, FL_COLOR_SKYBLUE);
-        r = t_range(&cam, 508, 290, 100);
-        CHECK_LE(abs(o->range_mm - r), r / 50 + 10);
         CHECK(o->bearing < 0);
     }
     /* a single-colour column is never a pole, a two-band column nothing */

@@ -8,6 +8,7 @@
 #include "test.h"
 #include "world/seed002.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -109,6 +110,24 @@ static void test_readings(void)
     CHECK_EQ(agree[S002_CHOSEN], S002_TABLE1_N);
 }
 
+/* KEEP_DEG: the head angle as s002_scene gives it. */
+#define KEEP_DEG INT_MIN
+
+/* Whether what the renderer shows at (x, y, h), head yaw and pitch in
+ * degrees (KEEP_DEG: the scene's), agrees with 2(a)'s text. */
+static int agrees_2a(int32_t x, int32_t y, int32_t h, int yaw_deg, int pitch_deg)
+{
+    render_scene_t sc;
+    s002_seen_t seen;
+    s002_scene(&sc, x, y, h);
+    if (yaw_deg != KEEP_DEG)
+        sc.head.head_yaw = fl_angle_from_mdeg(yaw_deg * 1000);
+    if (pitch_deg != KEEP_DEG)
+        sc.head.head_pitch = fl_angle_from_mdeg(pitch_deg * 1000);
+    CHECK_EQ(s002_visible(&sc, &seen, NULL, 0), 0);
+    return s002_agrees(0, &seen);
+}
+
 /* 2(a) under the chosen reading: what it sees does not hinge on the exact
  * head pose (seed 002 gives the body's pose only): the text's view holds
  * for head yaws around 0 and head pitches of 15-25 deg; and the stated
@@ -120,47 +139,19 @@ static void test_2a_head(void)
     int yaw, pitch, lo = 999, hi = -999, n_stated = 0;
     CHECK_EQ(s002_to_field_pose(S002_CHOSEN, 0, 0, &x, &y, &h), 0);
     CHECK_EQ(s002_to_field_pose(S002_LINE_CORNER, 0, 0, &x0, &y0, &h0), 0);
-    for (yaw = -120; yaw <= 120; yaw += 5) {
-        render_scene_t sc;
-        s002_seen_t seen;
-        s002_scene(&sc, x0, y0, h0);
-        sc.head.head_yaw = fl_angle_from_mdeg(yaw * 1000);
-        CHECK_EQ(s002_visible(&sc, &seen, NULL, 0), 0);
-        n_stated += s002_agrees(0, &seen);
-    }
+    for (yaw = -120; yaw <= 120; yaw += 5)
+        n_stated += agrees_2a(x0, y0, h0, yaw, KEEP_DEG);
     /* the contiguous range of agreeing head yaws around 0 */
-    for (yaw = 0; yaw >= -120; yaw -= 5) {
-        render_scene_t sc;
-        s002_seen_t seen;
-        s002_scene(&sc, x, y, h);
-        sc.head.head_yaw = fl_angle_from_mdeg(yaw * 1000);
-        CHECK_EQ(s002_visible(&sc, &seen, NULL, 0), 0);
-        if (!s002_agrees(0, &seen))
-            break;
+    for (yaw = 0; yaw >= -120 && agrees_2a(x, y, h, yaw, KEEP_DEG); yaw -= 5)
         lo = yaw;
-    }
-    for (yaw = 0; yaw <= 120; yaw += 5) {
-        render_scene_t sc;
-        s002_seen_t seen;
-        s002_scene(&sc, x, y, h);
-        sc.head.head_yaw = fl_angle_from_mdeg(yaw * 1000);
-        CHECK_EQ(s002_visible(&sc, &seen, NULL, 0), 0);
-        if (!s002_agrees(0, &seen))
-            break;
+    for (yaw = 0; yaw <= 120 && agrees_2a(x, y, h, yaw, KEEP_DEG); yaw += 5)
         hi = yaw;
-    }
     t_info("2(a) (%ld, %ld, %ld deg) agrees with its text for head yaws %d..%d deg",
            (long)x, (long)y, (long)h, lo, hi);
     CHECK(lo <= -5 && hi >= 5);
     CHECK_EQ(n_stated, 0);
-    for (pitch = 15; pitch <= 25; pitch += 5) {
-        render_scene_t sc;
-        s002_seen_t seen;
-        s002_scene(&sc, x, y, h);
-        sc.head.head_pitch = fl_angle_from_mdeg(pitch * 1000);
-        CHECK_EQ(s002_visible(&sc, &seen, NULL, 0), 0);
-        CHECK(s002_agrees(0, &seen));
-    }
+    for (pitch = 15; pitch <= 25; pitch += 5)
+        CHECK(agrees_2a(x, y, h, KEEP_DEG, pitch));
 }
 
 void suite_seed002(void)

@@ -24,6 +24,7 @@
 #include "fieldloc/fieldloc.h"
 #include "fieldloc/coach.h"
 #include "fieldloc/homography.h"
+#include "world/adversarial.h"
 
 #include <stdint.h>
 #include <stdlib.h>
@@ -48,33 +49,6 @@ static uint8_t *fill(const uint8_t *data, size_t size, size_t bytes, size_t off)
     for (i = 0; i < bytes; i++)
         buf[i] = n ? data[HDR + (i + off) % n] : (uint8_t)(i * 37u);
     return buf;
-}
-
-static void view_of(fl_image_t *img, int fmt, uint8_t *buf, int32_t w, int32_t h, int32_t pad,
-                    uint8_t garbage)
-{
-    switch (fmt) {
-    case 1:
-        (void)fl_image_init_packed(img, FL_FMT_RGB888, buf, w, h, 3 * w + pad);
-        break;
-    case 2:
-        (void)fl_image_init_packed(img, FL_FMT_YUYV422, buf, w, h, 2 * w + pad);
-        break;
-    case 3: {
-        size_t plane = (size_t)(w + pad) * (size_t)h;
-        (void)fl_image_init_planar(img, buf, w + pad, buf + plane, w + pad, buf + 2 * plane, w + pad,
-                                   w, h);
-        break;
-    }
-    default:
-        memset(img, 0, sizeof *img);
-        img->width = w;
-        img->height = h;
-        img->format = (fl_pixel_format_t)(garbage % 5);
-        img->plane[0] = buf;
-        img->stride[0] = pad;
-        break;
-    }
 }
 
 static void check_result(const fl_coach_result_t *r, fl_status_t st, const fl_field_t *field)
@@ -180,11 +154,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         bh = h_px;
         bgbuf = fill(data, size, (size_t)(3 * bw + pad + 1) * (size_t)(bh + 1) * 3 + 16, 7);
         if (bgbuf) {
-            view_of(&bg, fmt, bgbuf, bw, bh, pad, data[5]);
+            adv_fuzz_view(&bg, fmt, bgbuf, bw, bh, pad, data[5]);
             (void)fl_coach_set_background(&coach, &bg);
         }
     }
-    view_of(&img, fmt, buf, w, h_px, pad, data[5]);
+    adv_fuzz_view(&img, fmt, buf, w, h_px, pad, data[5]);
     memset(&res, 0xA5, sizeof res);
     st = fl_coach_frame(&coach, &img, &res);
     check_result(&res, st, field);

@@ -8,7 +8,8 @@
  *   catalogue model as it is, usually of another size than the frame:
  *   the refusal path; clear: that model rescaled to the frame,
  *   adv_camera_model), [7..8] head pitch, [9..10] yaw, [11] field index
- * then pixel bytes (repeated to fill the frame).  The firmware must return
+ * then pixel bytes (repeated to fill the frame; adv_fuzz_frame reads
+ * [0..8] and the pixels).  The firmware must return
  * without touching memory outside the view and keep its output bounded.
  */
 #include "fieldloc/fieldloc.h"
@@ -26,13 +27,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     fl_image_t img;
     fl_camera_t cam;
-    fl_camera_pose_t pose;
     fl_obs_list_t obs;
-    const fl_camera_model_t *m;
-    fl_camera_model_t model;
     const fl_field_t *field;
-    int32_t w, h, pad, n, i;
-    size_t bytes;
+    int32_t n, i;
     uint8_t *buf;
     if (!ready) {
         fl_color_params_t cp;
@@ -45,50 +42,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     if (size < 12)
         return 0;
-    w = (data[1] | (data[2] << 8)) % 700;
-    h = (data[3] | (data[4] << 8)) % 700;
-    pad = data[5] & 15;
-    m = fl_camera_model_at((size_t)(data[6] & 127) % fl_camera_model_count());
-    if (!(data[6] & 128)) {
-        adv_camera_model(m, w, h, &model);
-        m = &model;
-    }
     field = fl_field_at((size_t)data[11] % fl_field_count());
-    memset(&pose, 0, sizeof pose);
-    pose.neck_height_mm = m->default_neck_height_mm;
-    pose.pitch_offset = m->default_pitch_offset;
-    pose.head_pitch = (fl_angle_t)(int16_t)(data[7] | (data[8] << 8));
-    pose.head_yaw = (fl_angle_t)(int16_t)(data[9] | (data[10] << 8));
-    if (fl_camera_init(&cam, m, &pose) != FL_OK)
-        memset(&cam, 0, sizeof cam);   /* a camera that projects nothing */
-    bytes = (size_t)(3 * w + pad + 1) * (size_t)(h + 1) * 3 + 16;
-    buf = malloc(bytes);
+    buf = adv_fuzz_frame(data, size, 12, (fl_angle_t)(int16_t)(data[9] | (data[10] << 8)), &img,
+                         &cam);
     if (!buf)
         return 0;
-    for (i = 0; (size_t)i < bytes; i++)
-        buf[i] = size > 12 ? data[12 + (size_t)i % (size - 12)] : 0;
-    switch (data[0] & 3) {
-    case 1:
-        (void)fl_image_init_packed(&img, FL_FMT_RGB888, buf, w, h, 3 * w + pad);
-        break;
-    case 2:
-        (void)fl_image_init_packed(&img, FL_FMT_YUYV422, buf, w, h, 2 * w + pad);
-        break;
-    case 3: {
-        size_t plane = (size_t)(w + pad) * (size_t)h;
-        (void)fl_image_init_planar(&img, buf, w + pad, buf + plane, w + pad, buf + 2 * plane,
-                                   w + pad, w, h);
-        break;
-    }
-    default:   /* a hand-made view: garbage geometry */
-        memset(&img, 0, sizeof img);
-        img.width = w;
-        img.height = h;
-        img.format = (fl_pixel_format_t)(data[5] % 5);
-        img.plane[0] = buf;
-        img.stride[0] = pad;
-        break;
-    }
     n = fl_vision_frame(&vis, &colors, &img, &cam, field, &obs);
     if (n < 0 || n > FL_OBS_MAX || obs.n != (uint16_t)n)
         abort();

@@ -5,6 +5,7 @@
  */
 #include "fieldloc/localizer.h"
 #include "fieldloc/fuzzy.h"
+#include "loc_adapter.h"
 
 #include <stddef.h>
 #include <string.h>
@@ -151,23 +152,11 @@ static uint32_t fz_possibility_q16(const void *state, int32_t x_mm, int32_t y_mm
 static void fz_stats(const void *state, fl_loc_stats_t *out)
 {
     const fl_fuzzy_t *g = (const fl_fuzzy_t *)state;
-    if (out == NULL)
+    if (!fl_loc_internal_stats_zero(state, out))
         return;
-    memset(out, 0, sizeof *out);
-    if (g == NULL)
-        return;
-    out->predicts = g->stats.predicts;
-    out->updates = g->stats.updates;
-    out->obs_used = g->stats.obs_used;
+    FL_LOC_STATS_COMMON(out, &g->stats);
     out->obs_gated = g->stats.obs_gated;
-    out->obs_ignored = g->stats.obs_ignored;
-    out->odo_rejected = g->stats.odo_rejected;
     out->empty_resets = g->stats.empty_resets;
-    out->kidnaps = g->stats.kidnaps;
-    out->mode_switches = g->stats.mode_switches;
-    out->resets = g->stats.resets;
-    out->reseeds = g->stats.reseeds;
-    out->reseeds_refused = g->stats.reseeds_refused;
 }
 
 static bool fz_belief_grid(const void *state, fl_loc_grid_t *out)

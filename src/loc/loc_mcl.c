@@ -163,24 +163,13 @@ static uint32_t mc_possibility_q16(const void *state, int32_t x_mm, int32_t y_mm
 static void mc_stats(const void *state, fl_loc_stats_t *out)
 {
     const fl_mcl_t *s = (const fl_mcl_t *)state;
-    if (out == NULL)
+    if (!fl_loc_internal_stats_zero(state, out))
         return;
-    memset(out, 0, sizeof *out);
-    if (s == NULL)
-        return;
-    out->predicts = s->stats.predicts;
-    out->updates = s->stats.updates;
-    out->obs_used = s->stats.obs_used;
-    out->obs_ignored = s->stats.obs_ignored;
-    out->odo_rejected = s->stats.odo_rejected;
-    out->kidnaps = s->stats.kidnaps;
-    out->mode_switches = s->stats.mode_switches;
-    out->resets = s->stats.resets;
-    out->reseeds = s->stats.reseeds;
-    out->reseeds_refused = s->stats.reseeds_refused;
+    FL_LOC_STATS_COMMON(out, &s->stats);
 }
 
-/* Particles are not a grid. */
+/* Particles are not a grid (loc_adapter.h; relmap's grid shows its
+ * particles too). */
 bool fl_loc_internal_no_grid(const void *state, fl_loc_grid_t *out)
 {
     (void)state;

@@ -8,6 +8,7 @@
  */
 #include "fieldloc/localizer.h"
 #include "fieldloc/relmap.h"
+#include "loc_adapter.h"
 
 #include <stddef.h>
 #include <string.h>
@@ -138,42 +139,10 @@ static uint32_t rm_possibility_q16(const void *state, int32_t x_mm, int32_t y_mm
 static void rm_stats(const void *state, fl_loc_stats_t *out)
 {
     const fl_relmap_t *s = (const fl_relmap_t *)state;
-    if (out == NULL)
+    if (!fl_loc_internal_stats_zero(state, out))
         return;
-    memset(out, 0, sizeof *out);
-    if (s == NULL)
-        return;
-    out->predicts = s->stats.predicts;
-    out->updates = s->stats.updates;
-    out->obs_used = s->stats.obs_used;
-    out->obs_ignored = s->stats.obs_ignored;
-    out->odo_rejected = s->stats.odo_rejected;
+    FL_LOC_STATS_COMMON(out, &s->stats);
     out->empty_resets = s->stats.empty_resets;
-    out->kidnaps = s->stats.kidnaps;
-    out->mode_switches = s->stats.mode_switches;
-    out->resets = s->stats.resets;
-    out->reseeds = s->stats.reseeds;
-    out->reseeds_refused = s->stats.reseeds_refused;
-}
-
-/* The grid's cells are not square on every field (the same count on any
- * carpet): the belief is shown as its particles instead. */
-static bool rm_belief_grid(const void *state, fl_loc_grid_t *out)
-{
-    (void)state;
-    if (out != NULL)
-        memset(out, 0, sizeof *out);
-    return false;
-}
-
-static bool rm_belief_cell(const void *state, int ix, int iy, fl_loc_cell_t *out)
-{
-    (void)state;
-    (void)ix;
-    (void)iy;
-    if (out != NULL)
-        memset(out, 0, sizeof *out);
-    return false;
 }
 
 static uint16_t rm_belief_samples(const void *state)
@@ -232,8 +201,10 @@ const fl_localizer_t fl_localizer_relmap = {
     rm_check,
     rm_possibility_q16,
     rm_stats,
-    rm_belief_grid,
-    rm_belief_cell,
+    /* the grid's cells are not square on every field (the same count on
+     * any carpet): the belief is shown as its particles instead */
+    fl_loc_internal_no_grid,
+    fl_loc_internal_no_cell,
     rm_belief_samples,
     rm_belief_sample,
     rm_reseed,

@@ -115,3 +115,64 @@ void adv_camera_model(const fl_camera_model_t *base, int w, int h, fl_camera_mod
     out->cx_q4 = (int32_t)((int64_t)base->cx_q4 * w / base->width_px);
     out->cy_q4 = (int32_t)((int64_t)base->cy_q4 * h / base->height_px);
 }
+
+uint8_t *adv_fuzz_frame(const uint8_t *data, size_t size, size_t header_len, fl_angle_t head_yaw,
+                        fl_image_t *img, fl_camera_t *cam)
+{
+    const fl_camera_model_t *m;
+    fl_camera_model_t model;
+    fl_camera_pose_t pose;
+    int32_t w, h, pad;
+    size_t bytes, i;
+    uint8_t *buf;
+    w = (data[1] | (data[2] << 8)) % 700;
+    h = (data[3] | (data[4] << 8)) % 700;
+    pad = data[5] & 15;
+    m = fl_camera_model_at((size_t)(data[6] & 127) % fl_camera_model_count());
+    if (!(data[6] & 128)) {
+        adv_camera_model(m, w, h, &model);
+        m = &model;
+    }
+    memset(&pose, 0, sizeof pose);
+    pose.neck_height_mm = m->default_neck_height_mm;
+    pose.pitch_offset = m->default_pitch_offset;
+    pose.head_pitch = (fl_angle_t)(int16_t)(data[7] | (data[8] << 8));
+    pose.head_yaw = head_yaw;
+    if (fl_camera_init(cam, m, &pose) != FL_OK)
+        memset(cam, 0, sizeof *cam);   /* a camera that projects nothing */
+    bytes = (size_t)(3 * w + pad + 1) * (size_t)(h + 1) * 3 + 16;
+    buf = malloc(bytes);
+    if (!buf)
+        return NULL;
+    for (i = 0; i < bytes; i++)
+        buf[i] = size > header_len ? data[header_len + i % (size - header_len)] : 0;
+    adv_fuzz_view(img, data[0] & 3, buf, w, h, pad, data[5]);
+    return buf;
+}
+
+void adv_fuzz_view(fl_image_t *img, int fmt, uint8_t *buf, int32_t w, int32_t h, int32_t pad,
+                   uint8_t garbage)
+{
+    switch (fmt) {
+    case 1:
+        (void)fl_image_init_packed(img, FL_FMT_RGB888, buf, w, h, 3 * w + pad);
+        break;
+    case 2:
+        (void)fl_image_init_packed(img, FL_FMT_YUYV422, buf, w, h, 2 * w + pad);
+        break;
+    case 3: {
+        size_t plane = (size_t)(w + pad) * (size_t)h;
+        (void)fl_image_init_planar(img, buf, w + pad, buf + plane, w + pad, buf + 2 * plane,
+                                   w + pad, w, h);
+        break;
+    }
+    default:   /* a hand-made view: garbage geometry */
+        memset(img, 0, sizeof *img);
+        img->width = w;
+        img->height = h;
+        img->format = (fl_pixel_format_t)(garbage % 5);
+        img->plane[0] = buf;
+        img->stride[0] = pad;
+        break;
+    }
+}

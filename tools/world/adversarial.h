@@ -29,4 +29,28 @@ uint8_t *adv_frame(adv_kind_t k, int w, int h, fl_pixel_format_t f, int pad,
  * own model.  w or h below 1: base unchanged. */
 void adv_camera_model(const fl_camera_model_t *base, int w, int h, fl_camera_model_t *out);
 
+/* The vision fuzz harnesses' frame from their input's first 9 bytes
+ *   [0] format (mod 4: 0 a hand-made view of garbage geometry, 1 RGB888,
+ *   2 YUYV422, 3 planar), [1..2] width, [3..4] height (little end first,
+ *   taken mod 700), [5] stride padding, [6] camera index (bits 0-6; bit 7
+ *   set: the catalogue model as it is, usually of another size than the
+ *   frame: the refusal path; clear: that model rescaled to the frame,
+ *   adv_camera_model), [7..8] head pitch
+ * and the bytes after the header_len header bytes as pixels, repeated to
+ * fill the frame (none: zeros); size >= header_len >= 9.  The head yaw is
+ * head_yaw; *cam is zeroed (a camera that projects nothing) when the
+ * camera refuses the model or the pose.  Returns the malloc'd buffer
+ * behind *img (free it), NULL when out of memory. */
+/* The fuzz harnesses' view of buf (at least (3 w + pad + 1) (h + 1) 3
+ * bytes): fmt 1 RGB888 (stride 3 w + pad), 2 YUYV422 (2 w + pad), 3
+ * planar (three planes of stride w + pad), else a hand-made view of
+ * garbage geometry (format garbage % 5, stride pad).  The packed and
+ * planar views are whatever fl_image_init_* makes of the sizes (a refused
+ * one stays refused). */
+void adv_fuzz_view(fl_image_t *img, int fmt, uint8_t *buf, int32_t w, int32_t h, int32_t pad,
+                   uint8_t garbage);
+
+uint8_t *adv_fuzz_frame(const uint8_t *data, size_t size, size_t header_len, fl_angle_t head_yaw,
+                        fl_image_t *img, fl_camera_t *cam);
+
 #endif
