@@ -20,6 +20,15 @@
         lines is not repeated (results.sh's fuzzy walks are reused).
         Any failing command: its output tail on stderr, exit status 1.
 
+    loc_table.py walks --cli build/fieldloc --work DIR [--jobs N] [--dry-run]
+                       [--localizers ...] [--fields ...] [--feature-seeds ...]
+                       [--frame-seeds ...] [--rng-seeds ...]
+        the walks of `run` only (no particle sweep, no UvA spots) and the
+        markdown of their table (median / worst per localizer, field and
+        mode; the targets only on the fields that have them): a field of
+        its own, e.g. seed 002's hl3x2, beside the others.  Frames mode
+        reads DIR/FIELD.SEED.obs as `run` does.
+
 Options (comma-separated lists):
     --localizers fuzzy,mcl   default: the catalogue
     --fields spl2013,uva2013,aibo2004,spl2020
@@ -348,7 +357,9 @@ def uva_table(runs):
                                 for c in cols)))
 
 
-def cmd_run(a):
+def prepare(a):
+    """The catalogue (or --localizers, in that order) after checking that
+    the frames walks' observation caches exist; the work folders made."""
     work = a.work
     os.makedirs(os.path.join(work, 'runs'), exist_ok=True)
     os.makedirs(os.path.join(work, 'uva'), exist_ok=True)
@@ -364,16 +375,41 @@ def cmd_run(a):
             p = os.path.join(work, '%s.%d.obs' % (field, s))
             if not os.path.isfile(p) and not a.dry_run:
                 sys.exit('loc_table: %s missing (results.sh renders it with the fuzzy walks)' % p)
+    return cat
 
+
+def walk_jobs(a, cat):
+    """Every localizer, mode, field and walk seed (a stochastic localizer
+    once per random-generator seed, a deterministic one once)."""
     jobs = []
     for loc, stochastic, _ in cat:
         for mode in ('features', 'frames'):
             for field in a.fields:
                 for s in (a.feature_seeds if mode == 'features' else a.frame_seeds):
                     for r in (a.rng_seeds if stochastic else [None]):
-                        jobs.append((walk_cmd(a.cli, work, loc, field, mode, s, r),
-                                     os.path.join(work, 'runs', run_name(loc, field, mode, s, r))))
-    swept = [c for c in cat if c[2]]
+                        jobs.append((walk_cmd(a.cli, a.work, loc, field, mode, s, r),
+                                     os.path.join(a.work, 'runs', run_name(loc, field, mode, s, r))))
+    return jobs
+
+
+def cmd_walks(a):
+    cat = prepare(a)
+    jobs = walk_jobs(a, cat)
+    print('loc_table: %d walks, %d at a time' % (len(jobs), a.jobs), file=sys.stderr)
+    execute(jobs, a.jobs, a.dry_run)
+    if a.dry_run:
+        return
+    missed = main_table(a, cat, a.work, a.rng_seeds)
+    if missed:
+        print()
+        print('Targets missed: %s.' % '; '.join(missed))
+
+
+def cmd_run(a):
+    work = a.work
+    cat = prepare(a)
+    jobs = walk_jobs(a, cat)
+    swept = [c for c in cat if c[2]] if a.counts else []
     cli_of = {}
     for loc, _, _ in swept:
         for n in a.counts:
@@ -420,7 +456,8 @@ def cmd_run(a):
           % (','.join(map(str, a.feature_seeds)), ','.join(map(str, a.frame_seeds))))
     print('and, for a stochastic localizer (one with the parameter "seed": %s), over random-generator'
           % (', '.join(c[0] for c in cat if c[1]) or 'none in the catalogue'))
-    print('seeds %s each (`--param seed=R`); a deterministic one runs once per walk seed. Command per run:' % rs)
+    print('seeds %s each (`--param seed=R`); a deterministic one (%s) runs once per walk seed. Command'
+          ' per run:' % (rs, ', '.join(c[0] for c in cat if not c[1]) or 'none in the catalogue'))
     print('`fieldloc simulate --field FIELD --localizer L --seed SEED --MODE --quiet [--obs-cache'
           ' FIELD.SEED.obs] [--param seed=R]`;')
     print('frames mode renders each walk once and every localizer and generator seed reads the same')
@@ -481,7 +518,7 @@ def cmd_run(a):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    ap.add_argument('what', choices=('catalogue', 'run'))
+    ap.add_argument('what', choices=('catalogue', 'run', 'walks'))
     ap.add_argument('--cli', required=True)
     ap.add_argument('--cli-big', default='')
     ap.add_argument('--work', default='')
@@ -500,8 +537,11 @@ def main():
             print('%s stochastic=%d particles=%d' % (name, stochastic, particles))
         return
     if not a.work:
-        sys.exit('loc_table run: --work DIR needed')
-    cmd_run(a)
+        sys.exit('loc_table %s: --work DIR needed' % a.what)
+    if a.what == 'walks':
+        cmd_walks(a)
+    else:
+        cmd_run(a)
 
 
 if __name__ == '__main__':

@@ -5,7 +5,8 @@
 # simulated walks, every localizer of the catalogue side by
 # side (tools/build/loc_table.py), the reliability diagram of each
 # (fieldloc reliability over the frames walks' observations, kept with
-# --obs-cache) and detection scoring.  Run through
+# --obs-cache), seed 002 on its own field (tools/build/results_seed002.sh:
+# eval-relmap and every localizer's walks on hl3x2) and detection scoring.  Run through
 # `make results` (which runs `make test` first, so BUILD/test.log is fresh);
 # the generated file is never edited by hand.
 # Usage: tools/build/results.sh BUILD OUT
@@ -36,8 +37,15 @@
 # with a second CLI built into BUILD/p512 with $BIG_DEFS (default
 # -DFL_MCL_MAX_PARTICLES=512 -DFL_UPF_MAX_PARTICLES=64; a count beyond a
 # localizer's largest capacity is not run); `localize --uva-spots` per
-# localizer.
+# localizer.  A deterministic localizer (fuzzy, relmap) runs once per walk;
+# one without "n_particles" (fuzzy, relmap) is not swept.
 # LOC_JOBS runs that many walks at a time (default: the online CPUs).
+#
+# Seed 002 on its own field (tools/build/results_seed002.sh, about 4
+# minutes on 2 idle cores): `fieldloc eval-relmap --seed 1 --poses 200` and
+# the hl3x2 walks of every localizer, seeds $HL_FEATURE_SEEDS (default 1-6)
+# in feature mode and $HL_FRAME_SEEDS (default 1-3) in frames mode (each
+# rendered once, about 80 s of CPU), RNG seeds $RNG_SEEDS.
 #
 # Other knobs, for trying the script on a subset:
 #   OBS_CACHE_DIR=DIR  copy DIR/FIELD.SEED.obs into the work folder before
@@ -48,12 +56,16 @@
 #                      document says so)
 #   DRY_RUN=1          print the commands, run none, write nothing
 #   LOCALIZERS="a b"   those localizers only (default: the catalogue)
+#   FIELDS="a b"       those fields only in the walks and the comparison
+#                      (default: spl2013 uva2013 aibo2004 spl2020)
+#   SKIP_SEED002=1     no section "Seed 002 on its own field" (the document
+#                      says so)
 set -u
 B=${1:-build}
 OUT=${2:-docs/RESULTS.md}
 CLI=$B/fieldloc
 RD=../shared/realdata
-FIELDS="spl2013 uva2013 aibo2004 spl2020"
+FIELDS=${FIELDS:-"spl2013 uva2013 aibo2004 spl2020"}
 FEATURE_SEEDS=${FEATURE_SEEDS:-"1 2 3 4 5 6"}
 FRAME_SEEDS=${FRAME_SEEDS:-"1 2 3 4 5 6"}
 RNG_SEEDS=${RNG_SEEDS:-"1 2 3 4 5"}
@@ -65,6 +77,7 @@ OBS_CACHE_DIR=${OBS_CACHE_DIR:-}
 SKIP_BENCH=${SKIP_BENCH:-0}
 DRY_RUN=${DRY_RUN:-0}
 LOCALIZERS=${LOCALIZERS:-}
+SKIP_SEED002=${SKIP_SEED002:-0}
 TMP=$OUT.tmp
 WORK=$B/results.work
 BIG=$B/p512
@@ -222,6 +235,19 @@ if [ -n "$rel_failed" ] && [ "${RELIABILITY_FAILS_OK:-0}" != 1 ]; then
 fi
 rel_s=$(( $(date +%s) - start - bench_s - walk_s - loc_s ))
 
+# seed 002 on its own field: eval-relmap and the hl3x2 walks, every
+# localizer (tools/build/results_seed002.sh; its own work folder)
+seed002_start=$(date +%s)
+if [ "$SKIP_SEED002" = 1 ]; then
+    echo "results: SKIP_SEED002=1: no seed 002 section" >&2
+else
+    # shellcheck disable=SC2086
+    DRY_RUN=$DRY_RUN LOC_JOBS=$LOC_JOBS RNG_SEEDS="$RNG_SEEDS" OBS_CACHE_DIR="$OBS_CACHE_DIR" \
+        sh tools/build/results_seed002.sh "$CLI" "$WORK/seed002" "$LOCALIZERS" ||
+        die "tools/build/results_seed002.sh failed (outputs in $WORK/seed002)"
+fi
+seed002_s=$(( $(date +%s) - seed002_start ))
+
 # the physar black1 points, every localizer side by side, per source of the
 # torso angles: the records' AngleX / AngleY, the accelerometer, none
 for imu in angles accel off; do
@@ -362,6 +388,13 @@ echo "## Localizers side by side"
 echo
 echo "Command: \`$loc_cmd\` (tools/build/loc_table.py; the runs' outputs stay in $WORK/runs/)."
 echo
+case " $LOCALIZERS " in *" relmap "*)
+echo "\`relmap\` is seed 002's grid with a relative landmark map, made for landmarks that name the field's"
+echo "side (its striped poles). On spl2013, uva2013 and spl2020 none does (both goals of one colour; every"
+echo "crossing, mark and post has a mirror image about the centre), so it keeps the side by tracking alone;"
+echo "aibo2004's coloured goals and beacons name it. Seed 002's own field: \"Seed 002 on its own field\" below."
+echo
+esac
 cat "$WORK/loc_table.md"
 echo "## Reliability"
 echo
@@ -370,7 +403,8 @@ echo
 echo "The contract of include/fieldloc/localizer.h: of the estimates reported with reliability >= r, at"
 echo "least the share r is within 500 mm and 20 degrees of the true pose (the plain truth: a pose on the"
 echo "wrong half is wrong), for every r. Records of the walks above (held-out seeds: the fuzzy grid's calibration in"
-echo "src/loc/fuzzy_estimate.c was fitted on seeds 11 and up), binned by reported reliability; the"
+echo "src/loc/fuzzy_estimate.c was fitted on seeds 11 and up; relmap's table, set by hand, on the walks"
+echo "docs/DESIGN.md names in 15j), binned by reported reliability; the"
 echo "command fails (and so does this script, unless RELIABILITY_FAILS_OK=1) when the contract fails."
 echo
 for l in $LOCALIZERS; do
@@ -386,6 +420,14 @@ for l in $LOCALIZERS; do
     echo '```'
     echo
 done
+if [ "$SKIP_SEED002" = 1 ]; then
+echo "## Seed 002 on its own field"
+echo
+echo "**Skipped** (SKIP_SEED002=1)."
+echo
+else
+cat "$WORK/seed002/seed002.md"
+fi
 echo "## Real frames: the physar black1 points"
 echo
 echo "Command per block: \`$CLI localize --physar --imu angles|accel|off\`"
@@ -466,8 +508,8 @@ else
     echo "Time of this script: (\`make test\` ran before it, not timed: run through \`make results\`)"
 fi
 echo "$(( now - start )) s (make bench $bench_s s, rendering and the fuzzy walks $walk_s s, the localizer"
-echo "comparison $loc_s s ($LOC_JOBS runs at a time), reliability $rel_s s, the coach experiments $coach_s s, detection"
-echo "scoring and the rest $(( now - start - bench_s - walk_s - loc_s - rel_s - coach_s )) s)."
+echo "comparison $loc_s s ($LOC_JOBS runs at a time), reliability $rel_s s, seed 002 on its own field $seed002_s s, the coach"
+echo "experiments $coach_s s, detection scoring and the rest $(( now - start - bench_s - walk_s - loc_s - rel_s - seed002_s - coach_s )) s)."
 } > "$TMP" || die "cannot write $TMP"
 mv "$TMP" "$OUT" || die "cannot move $TMP to $OUT"
 echo "results: wrote $OUT in $(( $(date +%s) - start )) s (make results: $(( $(date +%s) - make_start )) s)" >&2
