@@ -318,13 +318,14 @@ static void test_odometry(void)
 
 /* The vision preset (fl_relmap_params_vision) through the catalogue: its
  * values, a caller's change kept by params_adapt, the feature-level
- * values for a low-resolution camera.  Then the frame that motivated its
- * eq.-2 cap: seed 002's vision on a rendered hl3x2 frame of the robot at
+ * values for a low-resolution camera.  Then the frame that set eq. 2's
+ * cap: seed 002's vision on a rendered hl3x2 frame of the robot at
  * (-428, -461, 21 deg) reported both blue posts, the T at (1500, -550) and
  * a false T 628 mm away (the centre mark's node on the halfway line); the
  * numbers are that frame's (`fieldloc eval-relmap --verbose`, pose 164 of
- * seed 1).  With the feature-level 1500 mm cap the false T outweighed two
- * posts at the pose mirrored about the x axis. */
+ * seed 1).  The vision preset places the robot; with the feature-level
+ * defaults (1500 mm cap) the false T outweighs two posts at the pose
+ * mirrored about the x axis. */
 static void test_vision_preset(void)
 {
     const fl_field_t *f = fl_field_find("hl3x2");
@@ -368,18 +369,16 @@ static void test_vision_preset(void)
         fl_obs_list_push(&obs, &o);
     }
     for (k = 0; k < 2; k++) {
+        static const char *name[2] = {"feature-level defaults", "vision preset"};
         double err;
-        if (k == 0)
-            CHECK_EQ(fl_relmap_init(s, f, &d), FL_OK);
-        else
-            CHECK_EQ(fl_relmap_init(s, f, &v), FL_OK);
+        CHECK_EQ(fl_relmap_init(s, f, k == 0 ? &d : &v), FL_OK);
         for (i = 0; i < 3; i++)
             CHECK_EQ(fl_relmap_update(s, &obs), 4);
         CHECK(fl_relmap_estimate(s, &e));
         CHECK(fl_relmap_check(s));
         err = dist(e.x_mm, e.y_mm, -428, -461);
-        t_info("%s: estimate (%d, %d, %.0f deg), %.0f mm from the pose", k ? "vision preset" : "defaults",
-               (int)e.x_mm, (int)e.y_mm, fl_angle_to_mdeg(e.heading) / 1000.0, err);
+        t_info("%s: estimate (%d, %d, %.0f deg), %.0f mm from the pose", name[k], (int)e.x_mm,
+               (int)e.y_mm, fl_angle_to_mdeg(e.heading) / 1000.0, err);
         if (k == 1) {
             CHECK(err < 150.0);
             CHECK(abs(fl_angle_to_mdeg(fl_angle_sub(e.heading, fl_angle_from_mdeg(21000)))) < 6000);

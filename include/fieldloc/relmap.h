@@ -135,11 +135,12 @@ typedef struct {
     fl_relmap_stats_t stats;
 } fl_relmap_t;
 
-/* Defaults for feature-level observations (ranges within some 10 %). */
+/* Defaults for feature-level observations: eq. 1's sigma 200 mm + 15 % of
+ * the range, eq. 2's miss capped at 1500 mm. */
 void fl_relmap_params_default(fl_relmap_params_t *p);
-/* For observations from a camera image (FL_LOC_PRESET_VISION): eq. 1's
- * sigma 100 mm + 8 % of the range, eq. 2's miss capped at 500 mm
- * (src/loc/relmap.c says why). */
+/* For observations from a camera image (FL_LOC_PRESET_VISION): sigma
+ * 100 mm + 8 % of the range, the miss capped at 500 mm (src/loc/relmap.c
+ * says why, and why the defaults stay). */
 void fl_relmap_params_vision(fl_relmap_params_t *p);
 fl_status_t fl_relmap_params_check(const fl_relmap_params_t *p);
 

@@ -41,19 +41,27 @@ void fl_relmap_params_default(fl_relmap_params_t *p)
 
 /*
  * Observations from a camera (a vision path, FL_LOC_PRESET_VISION) give
- * ranges far better than the feature-level default assumes: on rendered
+ * ranges far better than the feature-level defaults assume: on rendered
  * hl3x2 frames seed 002's path measures post and pole ranges within about
- * 1 % (`fieldloc eval-relmap --verbose`).  Eq. 1's sigma is then one cell
- * diagonal on hl3x2 (68 x 75 mm cells: a particle stands up to half that
- * from the robot, on each of two landmarks) plus 8 % of the range (MCL's
- * vision preset takes 6 %).  Eq. 2's miss is capped at 500 mm, about half
- * the spacing of two landmarks of one kind (posts 800 mm, T crossings
- * 1100 mm apart on hl3x2): a superimposed landmark farther than that from
- * every map landmark of its kind is no match (a false crossing, e.g. the
- * centre mark's node on the halfway line), and with the feature-level
- * 1500 mm one such landmark outweighed two posts at the mirrored pose.
- * Measured with `fieldloc eval-relmap --seed 1 --poses 200` against the
- * defaults: see docs/RESULTS.md, "Seed 002 on its own field".
+ * 1 % (`fieldloc eval-relmap --verbose`).  Eq. 1's sigma is then 100 mm
+ * (about a cell diagonal on hl3x2, 68 x 75 mm cells: a particle stands up
+ * to half that from the robot) plus 8 % of the range (MCL's vision preset
+ * takes 6 %).  Eq. 2's miss is capped at 500 mm, about half the spacing
+ * of two landmarks of one kind (posts 800 mm, T crossings 1100 mm apart on
+ * hl3x2): a superimposed landmark farther than that from every map
+ * landmark of its kind is no match (a false crossing, e.g. the centre
+ * mark's node on the halfway line); with the feature-level 1500 mm one
+ * such landmark outweighed two posts at the mirrored pose (host test
+ * relmap.vision_preset).
+ *
+ * The feature-level defaults stay 200 mm + 15 % and 1500 mm.  The same
+ * 100 mm + 10 % and 500 mm improved the simulator's feature walks on
+ * average (`fieldloc simulate --localizer relmap --features`, hl3x2,
+ * spl2013, uva2013, aibo2004, spl2020, seeds 1-2: position RMSE 704 ->
+ * 325 mm), but on spl2013's walk from the own-half prior the 500 mm cap
+ * alone let the grid settle on the mirrored half (host tests
+ * reseed.correct, report.apply): on a field whose landmarks are all
+ * mirrored, a cheap miss makes the mirror as good as the truth.
  */
 void fl_relmap_params_vision(fl_relmap_params_t *p)
 {
