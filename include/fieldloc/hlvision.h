@@ -33,14 +33,26 @@
  * a pole's bottom colour beside a pole, whose runs overlap (within
  * foot_tol_px) form one object (at least min_cols columns); its foot is
  * the lowest foot of its columns, at the middle of the columns within a
- * row step of it (foot_u0..foot_u1).  An object touching the image's left
- * or right edge is dropped (its centre is unknown).  An
+ * row step of it (foot_u0..foot_u1).  An
  * object whose width does not fit its diameter at the range of its foot
- * (from half to three times, and a column step: src/vision/hlv.c) is dropped.  Two posts
+ * (from half to three times, and a column step: src/vision/hlv.c) is dropped.
+ * An object touching the image's left or right edge (its first or last
+ * grid column) whose foot the edge cuts (the edge column's foot within
+ * half the visible width, and two row steps, of the lowest foot) is
+ * clipped: it passes every test but the lower width bound, its centre is
+ * placed half the width its range gives inside from its inner edge (its
+ * visible middle is off by up to half its width), and it is reported with
+ * lower confidence (posts 160, poles 180; whole ones 200, 230); a clipped
+ * post with its other colour right above its top, between its columns and
+ * the edge, is a pole's bottom band left alone in the grid columns by the
+ * pole's lean, and dropped.  Other
+ * objects touching an edge (only the upper part of a leaning near post
+ * reaches it) and objects touching both are dropped.  Two posts
  * of one colour are a goal (the left one in the image is FL_SIDE_LEFT: the
  * left post facing the goal) when their feet on the ground are half to
  * one and a half goal_width_mm apart (else both FL_SIDE_UNKNOWN); one post takes its side from a crossbar of
- * its colour beside its top (bar to the right: the left post), else
+ * its colour beside its top (bar to the right: the left post; probed 6 to
+ * 10 post widths away, a clipped post's width from its range), else
  * FL_SIDE_UNKNOWN.
  *
  * Observations, in this order: posts (FL_LM_POST, color, side, range and
@@ -136,6 +148,10 @@ typedef struct {
     int32_t foot_u0, foot_u1; /* the columns whose feet are within a row
                                 step of the lowest: the foot lies between */
     fl_side_t side;          /* posts */
+    int32_t clip;            /* -1: its foot cut by the image's left edge
+                                (it has the first grid column), +1: by
+                                its right edge (the last), 0: whole */
+    int32_t edge_foot_v[2];  /* the feet of its first and last columns */
     uint16_t cols;           /* grid columns */
 } fl_hlv_object_t;
 
@@ -157,7 +173,8 @@ typedef struct {
     uint32_t frames;
     uint32_t runs_dropped;      /* runs beyond FL_HLV_MAX_RUNS in a column */
     uint32_t objects_dropped;   /* objects beyond FL_HLV_MAX_OBJECTS */
-    uint32_t objects_rejected;  /* objects too wide or narrow for their range */
+    uint32_t objects_rejected;  /* objects too wide or narrow for their range,
+                                   clipped posts under a pole's band */
     uint32_t obs_dropped;       /* observations beyond FL_OBS_MAX */
     uint32_t points_dropped;    /* white points beyond FL_OBS_MAX_POINTS */
     fl_status_t status;         /* of the last frame (FL_OK or why empty) */

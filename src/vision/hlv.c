@@ -151,25 +151,27 @@ void fl_hlv_mask_to_image(const fl_hlv_t *s, int32_t mx_q4, int32_t my_q4, int32
         *v_q4 = my_q4 * sv + (sv / 2) * 16;
 }
 
-/* Does the object's width in the image fit its diameter at that range?
- * Expected f * D / range px (the ground range: a little more than the
- * true one for near objects, where the camera's height adds to the
- * distance); measured (u1 - u0 + su) px, each end known to a grid
- * step su.  Kept within [expected / 2 - su, 3 * expected + 2 * su]: shading may eat the dark side of a cylinder and a near
- * post at the image's side leans (its columns span more than its
- * diameter), but a yellow box beside the field, whose foot seems to stand
- * on the carpet far away, is many times too wide. */
-static bool width_fits(const fl_hlv_t *s, const fl_hlv_object_t *o, const fl_camera_t *cam,
-                       int32_t range_mm, bool pole)
+/* The width in pixels (Q4) an object of diameter d shows at ground range
+ * range_mm: f * d / range (the ground range: a little more than the true
+ * one for near objects, where the camera's height adds to the distance). */
+static int64_t expect_width_q4(const fl_camera_t *cam, int32_t d, int32_t range_mm)
 {
-    const int32_t d = pole ? s->params.pole_diameter_mm : s->params.post_diameter_mm;
+    return (int64_t)cam->model.focal_q4 * d / (range_mm < 1 ? 1 : range_mm);   /* < 2^20 * 1000 */
+}
+
+/* Does the object's width in the image fit its diameter at that range?
+ * Measured (u1 - u0 + su) px, each end known to a grid step su.  Kept
+ * within [expected / 2 - su, 3 * expected + 2 * su]: shading may eat the
+ * dark side of a cylinder and a near post at the image's side leans (its
+ * columns span more than its diameter), but a yellow box beside the
+ * field, whose foot seems to stand on the carpet far away, is many times
+ * too wide.  A clipped object (cut: its foot cut by the image's side)
+ * shows only part of its width: the upper bound alone. */
+static bool width_fits(const fl_hlv_t *s, const fl_hlv_object_t *o, int64_t expect_q4, bool cut)
+{
     const int32_t step = s->step_u, width = o->u1 - o->u0 + step;
-    int64_t expect_q4;
-    if (range_mm < 1)
-        range_mm = 1;
-    expect_q4 = (int64_t)cam->model.focal_q4 * d / range_mm;   /* < 2^20 * 1000 */
     return (int64_t)width * 16 <= 3 * expect_q4 + 32 * step &&
-           (int64_t)width * 16 >= expect_q4 / 2 - 16 * step;
+           (cut || (int64_t)width * 16 >= expect_q4 / 2 - 16 * step);
 }
 
 /* Two posts of one colour whose feet are not about a goal width apart
@@ -194,24 +196,68 @@ static void check_pairs(const fl_hlv_t *s, fl_obs_list_t *out)
         }
 }
 
+/* The only object of its kind in the frame? */
+static bool lone_kind(const fl_hlv_t *s, const fl_hlv_object_t *o)
+{
+    int32_t i, n = 0;
+    for (i = 0; i < s->n_objects; i++)
+        n += s->objects[i].kind == o->kind;
+    return n == 1;
+}
+
 /* A post or pole as an observation: the foot pixel (the lower edge of the
  * lowest coloured sample, between the object's outer columns) to the
- * centre of its base on the ground. */
-static void push_object(fl_hlv_t *s, const fl_hlv_object_t *o, const fl_camera_t *cam,
-                        fl_obs_list_t *out)
+ * centre of its base on the ground.
+ *
+ * A clipped object (o->clip: its foot cut by the image's left or right
+ * edge, hlv_cols.c) has only part of its width in the frame, so the
+ * middle of its visible columns lies inside the true centre by up to half
+ * its width (a 50 mm post on acyut-640: 14 px, 1.4 deg of bearing, at
+ * 1 m; 2.9 deg at 0.5 m).  Its inner edge is whole (a post leans
+ * outwards towards the image's sides, so the inner edge of its columns is
+ * its foot's), so the centre is placed half the width its range gives
+ * (expect_width_q4) inside from that edge, and the foot projected again
+ * from there.  That beats the visible middle for any cut and needs no
+ * second look at the image.  The confidence is lowered still (posts 200
+ * -> 160, poles 230 -> 180): the range comes from the lowest visible foot,
+ * which is not the base's lowest point when the cut lies short of the
+ * axis (the range a little long), the centre rests on that range, and the
+ * lower-bound width test, which catches a partial coloured blob, cannot
+ * apply.  A lone clipped post takes its side from a crossbar probed at the
+ * width its range gives (its visible width may be far less and probe into
+ * a goal's top frame). */
+static void push_object(fl_hlv_t *s, const fl_image_t *img, const fl_hlv_object_t *o,
+                        const fl_camera_t *cam, fl_obs_list_t *out)
 {
     const bool pole = o->kind == FL_HLV_POLE_YBY || o->kind == FL_HLV_POLE_BYB;
+    const int32_t d = pole ? s->params.pole_diameter_mm : s->params.post_diameter_mm;
     fl_obs_t ob;
     fl_point_t c;
     int32_t u_q4 = (o->foot_u0 + o->foot_u1) * 8, v_q4 = o->foot_v * 16 + 8;
+    int64_t expect_q4;
+    fl_side_t side = o->side;
+    const bool cut = o->clip != 0;
     memset(&ob, 0, sizeof ob);
-    if (!fl_camera_foot_to_centre(cam, &u_q4, &v_q4,
-                                  pole ? s->params.pole_diameter_mm : s->params.post_diameter_mm, &c))
+    if (!fl_camera_foot_to_centre(cam, &u_q4, &v_q4, d, &c))
         return;
     fl_polar_from_point(c, &ob.range_mm, &ob.bearing);
+    expect_q4 = expect_width_q4(cam, d, ob.range_mm);
+    if (cut) {
+        /* the inner edge's last (first) coloured pixel lies within a
+         * grid step of the last (first) column: its middle, then half
+         * the width to the centre */
+        const int32_t half_step_q4 = s->step_u * 8;
+        const int32_t half_q4 = (int32_t)(expect_q4 / 2);
+        u_q4 = o->clip < 0 ? o->u1 * 16 + half_step_q4 - half_q4 : o->u0 * 16 - half_step_q4 + half_q4;
+        v_q4 = o->foot_v * 16 + 8;
+        if (!fl_camera_foot_to_centre(cam, &u_q4, &v_q4, d, &c))
+            return;
+        fl_polar_from_point(c, &ob.range_mm, &ob.bearing);
+        expect_q4 = expect_width_q4(cam, d, ob.range_mm);
+    }
     if (ob.range_mm > s->params.max_range_mm)
         return;
-    if (!width_fits(s, o, cam, ob.range_mm, pole)) {
+    if (!width_fits(s, o, expect_q4, cut)) {
         s->objects_rejected++;
         return;
     }
@@ -221,12 +267,14 @@ static void push_object(fl_hlv_t *s, const fl_hlv_object_t *o, const fl_camera_t
         ob.kind = FL_LM_BEACON;
         ob.color = o->kind == FL_HLV_POLE_YBY ? FL_COLOR_YELLOW : FL_COLOR_SKYBLUE;
         ob.color2 = ob.color;
-        ob.confidence = 230;
+        ob.confidence = cut ? 180 : 230;
     } else {
+        if (cut && side == FL_SIDE_UNKNOWN && lone_kind(s, o))
+            side = fl_hlv_int_bar_side(s, img, o, (int32_t)((expect_q4 + 8) / 16));
         ob.kind = FL_LM_POST;
         ob.color = o->kind == FL_HLV_POST_YELLOW ? FL_COLOR_YELLOW : FL_COLOR_SKYBLUE;
-        ob.side = o->side;
-        ob.confidence = 200;
+        ob.side = side;
+        ob.confidence = cut ? 160 : 200;
     }
     if (!fl_obs_list_push(out, &ob))
         s->obs_dropped++;
@@ -383,11 +431,11 @@ int32_t fl_hlv_frame(fl_hlv_t *s, const fl_image_t *img, const fl_camera_t *cam,
     fl_hlv_int_objects(s, img, v0);
     for (i = 0; i < s->n_objects; i++)
         if (s->objects[i].kind <= FL_HLV_POST_BLUE)
-            push_object(s, &s->objects[i], cam, out);
+            push_object(s, img, &s->objects[i], cam, out);
     check_pairs(s, out);
     for (i = 0; i < s->n_objects; i++)
         if (s->objects[i].kind >= FL_HLV_POLE_YBY)
-            push_object(s, &s->objects[i], cam, out);
+            push_object(s, img, &s->objects[i], cam, out);
     if (s->params.crossings) {
         fl_skel_mask_t m;
         fl_hlv_int_mask(s, (v0 + s->step_v - 1) / s->step_v);

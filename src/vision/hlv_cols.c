@@ -138,31 +138,78 @@ static void classify_column(const fl_hlv_t *s, const hlv_run_t *runs, int32_t n,
     }
 }
 
-/* Keep an object of at least min_cols columns that does not touch the
- * image's left or right edge (its centre column, hence its bearing, would
- * be off by up to half its width). */
-static void close_object(fl_hlv_t *s, fl_hlv_object_t *o, int32_t width)
+/* A post's other colour right above the top of clipped post o (rows
+ * top_v - 1 up to gap_px + 2 row steps above it), anywhere from its inner
+ * column to the cut edge, every pixel (2 hits): a pole's band.  The camera
+ * looks down, so upright objects lean outwards towards the image's sides:
+ * a pole cut by the side can leave its bottom band alone in the grid
+ * columns, its upper bands between the last grid column and the edge
+ * (hl3x2: a 100 mm band on green, 2 post widths tall, as tall as a post
+ * cut near its inner edge, whose upper part leans out of the frame).
+ * classify_column refuses a column with the other colour above its run;
+ * this is that test for the pixels the grid does not read.  A pole whose
+ * upper bands all lean beyond the edge stays a post.  At most
+ * (gap_px + 2 step_v) x (u1 - u0 + step_u) pixel reads. */
+static bool band_above(const fl_hlv_t *s, const fl_image_t *img, const fl_hlv_object_t *o, bool left)
+{
+    const uint8_t other = o->kind == FL_HLV_POST_YELLOW ? FL_HLV_BLUE : FL_HLV_YELLOW;
+    const int32_t u_lo = left ? 0 : o->u0, u_hi = left ? o->u1 : img->width - 1;
+    int32_t v, u, hits = 0;
+    for (v = o->top_v - 1; v >= 0 && v >= o->top_v - s->params.gap_px - 2 * s->step_v; v--)
+        for (u = u_lo; u <= u_hi; u++)
+            if ((hlv_pixel_class(s, img, u, v) & other) && ++hits >= 2)
+                return true;
+    return false;
+}
+
+/* Keep an object of at least min_cols columns.  One that touches the
+ * image's left or right edge (its first or last grid column) is kept when
+ * the edge cuts its foot, marked clipped (o->clip), and hlv.c places its
+ * centre from its inner edge and the width its range gives (its visible
+ * columns' middle is off by up to half its width).  The foot is cut when
+ * the edge column's foot lies within half the visible width (and two row
+ * steps) of the lowest foot: a base's outline rises from its lowest point
+ * by at most its half width (the ellipse's minor semi-axis), less the
+ * farther the cut lies from the axis, so that bound holds whether the
+ * axis is inside or outside the frame.  Else only the upper part of the
+ * object reaches the side (a near post leans outwards towards the image's
+ * sides), its edge column's foot far above the lowest, and the object is
+ * dropped: its foot may be whole, but its columns need not span it (the
+ * foot's outer columns may hold runs shorter than min_post_px), so
+ * neither its edges nor its foot's middle place it well.  One touching
+ * both edges is no post or pole. */
+static void close_object(fl_hlv_t *s, fl_hlv_object_t *o, const fl_image_t *img)
 {
     const int32_t step = s->step_u;
-    if (o->cols < s->params.min_cols || o->u0 - step < 0 || o->u1 + step >= width)
+    const bool left = o->u0 - step < 0, right = o->u1 + step >= img->width;
+    if (o->cols < s->params.min_cols || (left && right))
         return;
+    if (left || right) {
+        const int32_t rise = o->foot_v - o->edge_foot_v[left ? 0 : 1];
+        if (2 * rise > o->u1 - o->u0 + step + 4 * s->step_v)
+            return;
+        if (o->kind <= FL_HLV_POST_BLUE && band_above(s, img, o, left)) {
+            s->objects_rejected++;
+            return;
+        }
+    }
     if (s->n_objects == FL_HLV_MAX_OBJECTS) {
         s->objects_dropped++;
         return;
     }
+    o->clip = left ? -1 : right ? 1 : 0;
     s->objects[s->n_objects++] = *o;
 }
 
 /* A crossbar of colour cls beside the top of post o: -1 left, +1 right, 0
- * none or both.  Probes at 6, 8 and 10 post widths beside the top (on
+ * none or both.  Probes at 6, 8 and 10 post widths (w px) beside the top (on
  * hl3x2: 300..500 mm, inside the 800 mm goal but beyond its 250 mm deep
  * top frame, which a post seen from the side shows on the other side),
  * at the top row and 2 rows below it; at least 4 of the 6 on one side
  * and none on the other. */
 static int32_t crossbar_side(const fl_hlv_t *s, const fl_image_t *img, const fl_hlv_object_t *o,
-                             uint8_t cls)
+                             uint8_t cls, int32_t w)
 {
-    const int32_t w = o->u1 - o->u0 + s->step_u;
     int32_t side, k, dv, hits[2] = {0, 0};
     if (o->top_v <= 0)
         return 0;   /* the top is not in the image */
@@ -181,6 +228,21 @@ static int32_t crossbar_side(const fl_hlv_t *s, const fl_image_t *img, const fl_
     return 0;
 }
 
+fl_side_t fl_hlv_int_bar_side(const fl_hlv_t *s, const fl_image_t *img, const fl_hlv_object_t *o,
+                              int32_t width_px)
+{
+    int32_t bar;
+    /* a top in the first grid row may be cut by the image's top: no bar
+     * is looked for (crossbar_side's own test, top_v <= 0, never holds on
+     * a grid whose rows are sampled at step_v / 2 and below; whole posts
+     * keep it as it was) */
+    if (o->top_v < s->step_v)
+        return FL_SIDE_UNKNOWN;
+    bar = crossbar_side(s, img, o, o->kind == FL_HLV_POST_YELLOW ? FL_HLV_YELLOW : FL_HLV_BLUE,
+                        width_px > 0 ? width_px : 1);
+    return bar > 0 ? FL_SIDE_LEFT : bar < 0 ? FL_SIDE_RIGHT : FL_SIDE_UNKNOWN;
+}
+
 /* Sides: two posts of one colour by their order; one post by its bar. */
 static void post_sides(fl_hlv_t *s, const fl_image_t *img)
 {
@@ -196,9 +258,15 @@ static void post_sides(fl_hlv_t *s, const fl_image_t *img)
         if (count == 2) {
             s->objects[idx[0]].side = FL_SIDE_LEFT;   /* objects are in column order */
             s->objects[idx[1]].side = FL_SIDE_RIGHT;
+        } else if (count == 1 && s->objects[idx[0]].clip != 0) {
+            /* clipped: its visible width is not its width, which sets
+             * how far the bar is probed for; hlv.c probes with the
+             * width its range gives */
+            s->objects[idx[0]].side = FL_SIDE_UNKNOWN;
         } else if (count == 1) {
-            const int32_t bar = crossbar_side(s, img, &s->objects[idx[0]],
-                                              kind == FL_HLV_POST_YELLOW ? FL_HLV_YELLOW : FL_HLV_BLUE);
+            const fl_hlv_object_t *o = &s->objects[idx[0]];
+            const int32_t bar = crossbar_side(s, img, o, kind == FL_HLV_POST_YELLOW ? FL_HLV_YELLOW : FL_HLV_BLUE,
+                                              o->u1 - o->u0 + s->step_u);
             s->objects[idx[0]].side = bar > 0 ? FL_SIDE_LEFT : bar < 0 ? FL_SIDE_RIGHT : FL_SIDE_UNKNOWN;
         }
     }
@@ -232,7 +300,9 @@ static void add_column(fl_hlv_object_t *o, const hlv_col_t *col, int32_t u, int3
         o->band_v[0] = col->band_lo;
         o->band_v[1] = col->band_hi;
         o->foot_u0 = o->foot_u1 = u;
+        o->edge_foot_v[0] = col->foot;
     }
+    o->edge_foot_v[1] = col->foot;
     o->kind = (fl_hlv_kind_t)join_kind((int32_t)o->kind, col->kind);
     o->u1 = u;
     /* a cylinder's lowest foot is below its axis: the columns within a
@@ -284,11 +354,11 @@ void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start)
             (join_kind(col.kind, (int32_t)cur.kind) == 0 || last_u < u - 2 * step ||
              col.top > last.foot + s->params.foot_tol_px ||
              last.top > col.foot + s->params.foot_tol_px)) {
-            close_object(s, &cur, img->width);
+            close_object(s, &cur, img);
             cur.cols = 0;
         }
         if (cur.cols > 0 && col.kind == 0 && last_u < u - step) {
-            close_object(s, &cur, img->width);
+            close_object(s, &cur, img);
             cur.cols = 0;
         }
         if (col.kind == 0)
@@ -298,6 +368,6 @@ void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start)
         last = col;
     }
     if (cur.cols > 0)
-        close_object(s, &cur, img->width);
+        close_object(s, &cur, img);
     post_sides(s, img);
 }

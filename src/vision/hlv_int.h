@@ -22,9 +22,17 @@ void fl_hlv_int_classify(fl_hlv_t *s, const fl_image_t *img);
 
 /* Posts and poles of the frame from the class grid into s->objects
  * (cleared first); sides of posts from their pairing or a crossbar (a few
- * pixel probes).  v_start: the first image row that can see the ground,
- * so feet above it are not looked for.  Work: one pass over the grid. */
+ * pixel probes; a lone clipped post's is left UNKNOWN).  v_start: the
+ * first image row that can see the ground, so feet above it are not
+ * looked for.  Work: one pass over the grid. */
 void fl_hlv_int_objects(fl_hlv_t *s, const fl_image_t *img, int32_t v_start);
+
+/* The side of a lone post o from a crossbar of its colour beside its
+ * top, probed 6, 8 and 10 times width_px beside it (its columns' width,
+ * or for a clipped post the width its range gives); UNKNOWN when its top
+ * is in the first grid row (maybe cut).  At most 12 pixel reads. */
+fl_side_t fl_hlv_int_bar_side(const fl_hlv_t *s, const fl_image_t *img, const fl_hlv_object_t *o,
+                              int32_t width_px);
 
 /* The mask of white cells surrounded by green into s->mask from the
  * class grid, from grid row j0 down (above it: 0).  Work: two passes
