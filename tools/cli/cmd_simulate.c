@@ -10,7 +10,7 @@
  *                     [--colors default|auto|FILE]
  *                     [--export-stream FILE]
  *
- *   fieldloc simulate --coach [--localizer upf|mcl|fuzzy] [--seed N] [--runs N]
+ *   fieldloc simulate --coach [--localizer upf|mcl|fuzzy|relmap] [--seed N] [--runs N]
  *                     [--features | --frames] [--every N] [--quiet]
  *                     [--reseed once|spread] [--assign coach|player]
  *                     [--coach-feet coach|truth]
@@ -198,7 +198,7 @@ static void usage(void)
             "  --export-stream FILE: the localizer's inputs and the truth (docs/STREAM.md;\n"
             "            fieldloc replay --stream FILE runs any localizer on them)\n"
             "  --colors: frames mode colour classes (default: auto on white-goal fields)\n"
-            "       fieldloc simulate --coach [--localizer upf|mcl|fuzzy] [--seed N] [--runs N]\n"
+            "       fieldloc simulate --coach [--localizer upf|mcl|fuzzy|relmap] [--seed N] [--runs N]\n"
             "                         [--features | --frames] [--every N] [--quiet]\n"
             "                         [--reseed once|spread] [--assign coach|player]\n"
             "                         [--coach-feet coach|truth] [--odocal on|off]\n"
