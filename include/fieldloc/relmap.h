@@ -67,7 +67,9 @@ typedef struct {
     uint16_t heading_gate_deg; /* a particle keeps its tracked heading when
                                    the relative map's is within this */
     uint16_t jump_q8;         /* a particle whose heading jumps: this much
-                                 added to its exponent (Q8) */
+                                 added to its exponent (Q8), a third of
+                                 it on the first frames of tracking,
+                                 all of it after RM_JUMP_RAMP frames */
     uint16_t frame_cap_q8;    /* one frame lowers a particle against the
                                  best by at most exp(-cap) per factor (eq.
                                  1, the map): the grid's discretisation and
@@ -130,6 +132,12 @@ typedef struct {
     int32_t prior_x_mm, prior_y_mm, prior_r_mm;
     uint16_t since_obs;
     uint16_t bad_frames;                /* consecutive poor fits */
+    uint16_t track_frames;              /* frames with landmarks since the
+                                           grid started tracking (from
+                                           ignorance or a mode switch; a
+                                           told pose counts as long
+                                           tracked): a heading jump's
+                                           cost ramps up over them */
     uint16_t fit_q16;                   /* last frame's mean eq.-1 fit */
     fl_relmap_best_t best;
     fl_relmap_stats_t stats;

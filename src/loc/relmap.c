@@ -29,7 +29,12 @@ void fl_relmap_params_default(fl_relmap_params_t *p)
     p->tie_mm = 60;
     p->white_tol_mm = 40;
     p->heading_gate_deg = 30;
-    p->jump_q8 = 2048;
+    /* 24 in the exponent once tracking: at 8, frames of two landmarks of
+     * repeated kinds (crossings, two posts of a colour) flipped tracked
+     * headings by up to 180 deg at full reliability (aibo2004 and hl3x2
+     * feature walks); a third of it while tracking starts, so that an
+     * early wrong heading is not locked in (src/loc/relmap_update.c) */
+    p->jump_q8 = 6144;
     p->frame_cap_q8 = 384;
     p->spread_q16 = 16384;
     p->floor_q16 = 1;
@@ -144,6 +149,7 @@ static void uniform(fl_relmap_t *s)
     s->pend_x_mm = s->pend_y_mm = 0;
     s->best.valid = false;
     s->bad_frames = 0;
+    s->track_frames = 0;
 }
 
 fl_status_t fl_relmap_init(fl_relmap_t *s, const fl_field_t *field,
@@ -246,6 +252,7 @@ static void told(fl_relmap_t *s)
     s->pend_x_mm = s->pend_y_mm = 0;
     s->best.valid = false;
     s->bad_frames = 0;
+    s->track_frames = UINT16_MAX;   /* the heading was told */
     s->stats.resets++;
 }
 

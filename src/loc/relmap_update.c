@@ -18,6 +18,8 @@
 #include <string.h>
 
 #define RM_TRACK_FLOOR 4u   /* a particle at most this many floors is untracked */
+#define RM_JUMP_RAMP 60u    /* frames over which a heading jump's cost grows
+                               from a third of jump_q8 to all of it */
 
 /* Eq. 1 for every particle: tmp_head holds L1 (Q16, bits of a uint16),
  * tmp_bel the posterior bel * L1; the maxima returned. */
@@ -191,7 +193,9 @@ static void search(fl_relmap_t *s, const fl_relmap_frame_t *f, rm_cand_t *k, uin
             int32_t od = fl_angle_to_mdeg(own);
             int32_t odeg = ((od + (od < 0 ? -500 : 500)) / 1000 + 360) % 360;
             uint32_t eo = fl_relmap_error(s->field, f, x, y, odeg);
-            uint32_t xo = fit_x(s, f, eo), xj = x2 + p->jump_q8;
+            uint32_t t = s->track_frames < RM_JUMP_RAMP ? s->track_frames : RM_JUMP_RAMP;
+            uint32_t jump = p->jump_q8 / 3u + (p->jump_q8 - p->jump_q8 / 3u) * t / RM_JUMP_RAMP;
+            uint32_t xo = fit_x(s, f, eo), xj = x2 + jump;
             if (xo <= xj || f->n < 2) {
                 k->head = own;
                 k->x = xo;
@@ -335,6 +339,7 @@ static void note_switch(fl_relmap_t *s)
     dy = (int64_t)y - s->last_y_mm;
     if (s->have_last && dx * dx + dy * dy > (int64_t)1000 * 1000) {
         s->stats.mode_switches++;
+        s->track_frames = 0;
         if (s->field->symmetric)
             s->half_known = false;
     }
@@ -386,6 +391,8 @@ uint16_t fl_relmap_update(fl_relmap_t *s, const fl_obs_list_t *obs)
     s->ignorance = false;
     s->heading_known = true;
     s->since_obs = 0;
+    if (s->track_frames < UINT16_MAX)
+        s->track_frames++;
     note_switch(s);
     s->stats.obs_used += f.n;
     if (s->fit_q16 < s->params.kidnap_q16) {
