@@ -113,14 +113,23 @@ static void test_boxes(void)
     CHECK_EQ(fl_hlv_init_cfg(&hv, &p, FL_CONFIG_FINGERPRINT ^ 1u), FL_ERR_CONFIG);
 }
 
+/* Range and bearing of the centre of a round object of diameter diam
+ * whose foot is at the lower edge of image row v, column u. */
+static void t_foot_polar(const fl_camera_t *cam, int u, int v, int32_t diam, int32_t *r,
+                         fl_angle_t *b)
+{
+    fl_point_t g;
+    int32_t uq = u * 16, vq = v * 16 + 8;
+    CHECK(fl_camera_foot_to_centre(cam, &uq, &vq, diam, &g));
+    fl_polar_from_point(g, r, b);
+}
+
 /* The ground under image row v (foot at its lower edge), column u. */
 static int32_t t_range(const fl_camera_t *cam, int u, int v, int32_t diam)
 {
-    fl_point_t g;
-    int32_t uq = u * 16, vq = v * 16 + 8, r;
+    int32_t r;
     fl_angle_t b;
-    CHECK(fl_camera_foot_to_centre(cam, &uq, &vq, diam, &g));
-    fl_polar_from_point(g, &r, &b);
+    t_foot_polar(cam, u, v, diam, &r, &b);
     return r;
 }
 
@@ -386,11 +395,9 @@ static void test_bad_input(void)
  * foot is at row v below column u (Q0). */
 static double t_bearing(const fl_camera_t *cam, int u, int v, int32_t diam)
 {
-    fl_point_t g;
-    int32_t uq = u * 16, vq = v * 16 + 8, r;
+    int32_t r;
     fl_angle_t b;
-    CHECK(fl_camera_foot_to_centre(cam, &uq, &vq, diam, &g));
-    fl_polar_from_point(g, &r, &b);
+    t_foot_polar(cam, u, v, diam, &r, &b);
     return fl_angle_to_mdeg(b) / 1000.0;
 }
 
@@ -494,6 +501,24 @@ static void test_clipped(void)
     free(f);
 }
 
+/* Seed 002's vision with its defaults on hl3x2 and the acyut-640 camera
+ * (allocated; the caller frees it), or NULL after a failed check. */
+static fl_hlv_t *hl3x2_vision(const fl_field_t **field, const fl_camera_model_t **m)
+{
+    fl_hlv_t *st = malloc(sizeof *st);
+    fl_hlv_params_t p;
+    *field = fl_field_find("hl3x2");
+    *m = fl_camera_model_find("acyut-640");
+    CHECK(*field != NULL && *m != NULL && st != NULL);
+    if (*field == NULL || *m == NULL || st == NULL) {
+        free(st);
+        return NULL;
+    }
+    fl_hlv_params_default(&p, *field);
+    CHECK_EQ(fl_hlv_init(st, &p), FL_OK);
+    return st;
+}
+
 /* Rendered hl3x2 frames (acyut-640, head 20 deg down, the room behind
  * the carpet) where a yellow goal post's foot is cut by the image's left
  * edge (robot at (12, 660) facing 159 deg: half the post's 18 px in the
@@ -504,18 +529,12 @@ static void test_clipped(void)
  * less than half its width from the edge). */
 static void test_clipped_rendered(void)
 {
-    const fl_field_t *field = fl_field_find("hl3x2");
-    const fl_camera_model_t *m = fl_camera_model_find("acyut-640");
-    fl_hlv_t *st = malloc(sizeof *st);
-    fl_hlv_params_t p;
+    const fl_field_t *field;
+    const fl_camera_model_t *m;
+    fl_hlv_t *st = hl3x2_vision(&field, &m);
     int side;
-    CHECK(field != NULL && m != NULL && st != NULL);
-    if (!field || !m || !st) {
-        free(st);
+    if (st == NULL)
         return;
-    }
-    fl_hlv_params_default(&p, field);
-    CHECK_EQ(fl_hlv_init(st, &p), FL_OK);
     for (side = 0; side < 2; side++) {
         render_scene_t sc;
         render_frame_t fr;
@@ -748,22 +767,16 @@ static void score_frame(const render_scene_t *sc, const fl_camera_t *cam, const 
  * up to 40 deg to the side; detections against the field's landmarks. */
 static void test_rendered(void)
 {
-    const fl_field_t *field = fl_field_find("hl3x2");
-    const fl_camera_model_t *m = fl_camera_model_find("acyut-640");
+    const fl_field_t *field;
+    const fl_camera_model_t *m;
     const int frames = t_quick ? 12 : 48;
     t_score_t s;
     t_rng_t rng;
-    fl_hlv_t *st = malloc(sizeof *st);
-    fl_hlv_params_t p;
+    fl_hlv_t *st = hl3x2_vision(&field, &m);
     const int verbose = getenv("HLV_VERBOSE") != NULL;
     int n;
-    CHECK(field != NULL && m != NULL && st != NULL);
-    if (!field || !m || !st) {
-        free(st);
+    if (st == NULL)
         return;
-    }
-    fl_hlv_params_default(&p, field);
-    CHECK_EQ(fl_hlv_init(st, &p), FL_OK);
     memset(&s, 0, sizeof s);
     t_rng_seed(&rng, 2002);
     for (n = 0; n < frames; n++) {

@@ -95,15 +95,8 @@ die() {
     rm -f "$TMP"
     exit 1
 }
-# run LOG CMD...: run CMD (stdout + stderr to LOG), die when it fails
-run() {
-    log=$1; shift
-    echo "results: $*" >&2
-    [ "$DRY_RUN" = 1 ] && return 0
-    "$@" > "$log" 2>&1
-    rc=$?
-    [ $rc -eq 0 ] || { tail -n 20 "$log" >&2; die "\`$*\` exited with status $rc (output in $log)"; }
-}
+RESULTS_NAME=results
+. "$(dirname "$0")/results_lib.sh"   # run LOG CMD...
 
 [ -x "$CLI" ] || die "$CLI not built (run through \`make results\`)"
 [ -f "$B/test.log" ] || die "$B/test.log missing (run through \`make results\`, which runs \`make test\`)"

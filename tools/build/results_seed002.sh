@@ -48,15 +48,8 @@ die() {
     echo "results_seed002: FAILED: $*" >&2
     exit 1
 }
-# run LOG CMD...: run CMD (stdout + stderr to LOG), die when it fails
-run() {
-    log=$1; shift
-    echo "results_seed002: $*" >&2
-    [ "$DRY_RUN" = 1 ] && return 0
-    "$@" > "$log" 2>&1
-    rc=$?
-    [ $rc -eq 0 ] || { tail -n 20 "$log" >&2; die "\`$*\` exited with status $rc (output in $log)"; }
-}
+RESULTS_NAME=results_seed002
+. "$(dirname "$0")/results_lib.sh"   # run LOG CMD...
 
 mkdir -p "$WORK/runs" || die "cannot create $WORK/runs"
 rm -f "$WORK/seed002.md"
