@@ -436,6 +436,22 @@ static void test_bad_input(void)
     CHECK(fl_relmap_check(s));
     CHECK(fl_relmap_estimate(s, &e1));
     CHECK(abs(e1.x_mm - e0.x_mm) < 50 && abs(e1.y_mm - e0.y_mm) < 50);
+    /* a pose prior off the carpet (a libFuzzer find: it left no cell in
+     * the region, an empty belief) is clamped to the carpet's edge */
+    fl_relmap_reset_ignorance(s);
+    fl_relmap_set_prior_pose(s, 724249387, 724249387, 724249387);
+    CHECK(fl_relmap_check(s));
+    CHECK(fl_relmap_estimate(s, &e1));
+    CHECK_EQ(s->prior_x_mm, fl_field_carpet_half_x_mm(f));
+    CHECK_EQ(s->prior_y_mm, fl_field_carpet_half_y_mm(f));
+    CHECK_LE(s->prior_r_mm, 20000);
+    fl_relmap_set_prior_pose(s, INT32_MIN, INT32_MAX, 0);
+    CHECK(fl_relmap_check(s));
+    CHECK(fl_relmap_estimate(s, &e1));
+    CHECK(e1.x_mm < -fl_field_carpet_half_x_mm(f) + 500 &&
+          e1.y_mm > fl_field_carpet_half_y_mm(f) - 500);
+    fl_relmap_clear_prior(s);
+    CHECK(fl_relmap_check(s));
     /* bounded: at most max_cand relative maps a frame, however many
      * landmarks the list holds */
     fl_obs_list_clear(&obs);

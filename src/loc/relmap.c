@@ -313,10 +313,13 @@ void fl_relmap_set_prior_pose(fl_relmap_t *s, int32_t x_mm, int32_t y_mm, int32_
 {
     if (s == NULL || s->field == NULL)
         return;
+    /* The centre is clamped to the carpet, so the region always holds the
+     * cell under it (a centre off the carpet would leave no cell, an empty
+     * belief) and in_prior's squares stay within int64. */
     s->prior_pose = true;
-    s->prior_x_mm = x_mm;
-    s->prior_y_mm = y_mm;
-    s->prior_r_mm = radius_mm > 0 ? radius_mm : 0;
+    s->prior_x_mm = x_mm < -s->hx ? -s->hx : x_mm > s->hx ? s->hx : x_mm;
+    s->prior_y_mm = y_mm < -s->hy ? -s->hy : y_mm > s->hy ? s->hy : y_mm;
+    s->prior_r_mm = radius_mm < 0 ? 0 : radius_mm > 20000 ? 20000 : radius_mm;
     if (s->ignorance)
         uniform(s);
 }
