@@ -181,10 +181,16 @@ check: $(LIB)
 # runs i386 binaries: the compiled code is the same, only faster), compared
 # with the host's --quick output (lines starting with '#' carry host doubles
 # and are not compared).  The runs go side by side (each is one process; the
-# slowest of them sets the time).
+# slowest of them sets the time).  The host run renders the tests' synthetic
+# frames into RENDER_CACHE and the emulated runs read them
+# (tools/world/render_cache.c): every target's firmware gets the same input
+# bytes, and qemu skips the double-precision ray tracing that was most of its
+# time.  The cache is emptied first, so no older renderer's frame survives.
 CROSS_ARCHS ?= i686 mipsel mips
+RENDER_CACHE = $(abspath $(BUILD))/render_cache
 cross-test: $(RUNNER)
-	@$(RUNNER) --quick -j $(TEST_JOBS) | grep -v '^#' > $(BUILD)/quick-host.txt; \
+	@rm -rf $(RENDER_CACHE) && mkdir -p $(RENDER_CACHE)
+	@FIELDLOC_RENDER_CACHE=$(RENDER_CACHE) $(RUNNER) --quick -j $(TEST_JOBS) | grep -v '^#' > $(BUILD)/quick-host.txt; \
 	 for a in $(CROSS_ARCHS); do \
 	   case $$a in i686) q=qemu-i386;; *) q=qemu-$$a;; esac; \
 	   $(MAKE) --no-print-directory -s -j $(TEST_JOBS) BUILD=$(BUILD)/cross/$$a CC=$$a-linux-gnu-gcc \
@@ -195,7 +201,7 @@ cross-test: $(RUNNER)
 	   if [ $$a = i686 ] && $(BUILD)/cross/i686/run_tests -k fixed.angle_wrap >/dev/null 2>&1; then \
 	     q=; echo "cross-test i686: runs natively (this x86-64 kernel executes i386 binaries)"; \
 	   fi; \
-	   ( $$q $(BUILD)/cross/$$a/run_tests --quick | grep -v '^#' > $(BUILD)/quick-$$a.txt ) & \
+	   ( FIELDLOC_RENDER_CACHE=$(RENDER_CACHE) $$q $(BUILD)/cross/$$a/run_tests --quick | grep -v '^#' > $(BUILD)/quick-$$a.txt ) & \
 	 done; wait; \
 	 status=0; \
 	 for a in $(CROSS_ARCHS); do \
@@ -267,8 +273,15 @@ stack:
 	@python3 tools/build/stack_report.py --limit 4096 --indirect fl_loc_=src/loc/loc_ $(BUILD)/stack/*.ci
 
 # The test suite under valgrind memcheck (quick mode: the sweeps are long).
+# A plain host run renders the frames into RENDER_CACHE first and the run
+# under valgrind reads them (as cross-test does): memcheck then spends its
+# time on the firmware and the tests rather than on the ray tracer, which
+# `make sanitize` checks (ASan + UBSan, the full suite, rendering included).
 valgrind: $(RUNNER)
-	valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite -q $(RUNNER) --quick -j $(TEST_JOBS)
+	@rm -rf $(RENDER_CACHE) && mkdir -p $(RENDER_CACHE)
+	@FIELDLOC_RENDER_CACHE=$(RENDER_CACHE) $(RUNNER) --quick -j $(TEST_JOBS) > $(BUILD)/valgrind-host.txt || \
+	  { tail -n 20 $(BUILD)/valgrind-host.txt; echo "valgrind: the host run that fills the frame cache failed"; exit 1; }
+	FIELDLOC_RENDER_CACHE=$(RENDER_CACHE) valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite -q $(RUNNER) --quick -j $(TEST_JOBS)
 
 # Fuzzing with libFuzzer (clang): one binary per host_tests/fuzz/fuzz_NAME.c,
 # linked with the firmware and the host tools, ASan + UBSan.  fuzz-smoke runs

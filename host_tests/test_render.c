@@ -51,7 +51,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #define FIX_DIR "fixtures/frames"
 
@@ -223,10 +225,161 @@ static int check_truth_vs_camera(const truth_t *t, double *max_err, double *max_
 
 /* ---- cases ------------------------------------------------------------------------ */
 
+/* The frame cache (tools/world/render_cache.c) off for one test and back
+ * on: this test checks the renderer itself, on every target. */
+static char *cache_off(void)
+{
+    const char *c = getenv("FIELDLOC_RENDER_CACHE");
+    char *saved = c ? strdup(c) : NULL;
+    unsetenv("FIELDLOC_RENDER_CACHE");
+    return saved;
+}
+
+static void cache_restore(char *saved)
+{
+    if (saved) {
+        setenv("FIELDLOC_RENDER_CACHE", saved, 1);
+        free(saved);
+    }
+}
+
+static int frames_equal(const render_frame_t *a, const render_frame_t *b)
+{
+    size_t npx = (size_t)a->width * (size_t)a->height;
+    return a->width == b->width && a->height == b->height && a->format == b->format &&
+           a->size == b->size && memcmp(a->data, b->data, a->size) == 0 &&
+           memcmp(a->rgb, b->rgb, npx * 3) == 0 && memcmp(a->mask, b->mask, npx) == 0 &&
+           memcmp(a->border_v, b->border_v, (size_t)a->width * sizeof(int16_t)) == 0 &&
+           memcmp(a->border_end_v, b->border_end_v, (size_t)a->width * sizeof(int16_t)) == 0 &&
+           memcmp(a->border_visible_v, b->border_visible_v, (size_t)a->width * sizeof(int16_t)) == 0 &&
+           fl_image_validate(&b->view) == FL_OK && b->view.width == a->width;
+}
+
+/* The *.frame files in dir: how many, and the first one's path. */
+static int cache_files(const char *dir, char *first, size_t cap)
+{
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    int n = 0;
+    if (d == NULL)
+        return -1;
+    while ((e = readdir(d)) != NULL) {
+        size_t l = strlen(e->d_name);
+        if (l > 6 && strcmp(e->d_name + l - 6, ".frame") == 0) {
+            if (n == 0)
+                snprintf(first, cap, "%s/%s", dir, e->d_name);
+            n++;
+        }
+    }
+    closedir(d);
+    return n;
+}
+
+/* FIELDLOC_RENDER_CACHE: a stored frame comes back byte for byte; a
+ * truncated file or another scene's file under this scene's name is not
+ * used (the frame is rendered afresh). */
+static void test_cache(void)
+{
+    char dir[] = "/tmp/fl_render_cache_XXXXXX", path[1200], other[1200], cmd[1300];
+    char *saved = cache_off();
+    render_scene_t sc, sc2;
+    render_frame_t fresh, a, b, c;
+    FILE *f;
+    long len;
+    busy_scene(&sc);
+    sc.format = FL_FMT_YUYV422;
+    sc2 = sc;
+    sc2.seed++;
+    CHECK_EQ(render_frame(&sc, &fresh), 0);      /* cache off */
+    if (mkdtemp(dir) == NULL) {
+        CHECK(0);
+        render_frame_free(&fresh);
+        cache_restore(saved);
+        return;
+    }
+    CHECK_EQ(cache_files(dir, path, sizeof path), 0);
+    setenv("FIELDLOC_RENDER_CACHE", dir, 1);
+    CHECK_EQ(render_frame(&sc, &a), 0);          /* renders and stores */
+    CHECK_EQ(cache_files(dir, path, sizeof path), 1);
+    CHECK(frames_equal(&fresh, &a));
+    CHECK_EQ(render_frame(&sc, &b), 0);          /* loads */
+    CHECK(frames_equal(&fresh, &b));
+    CHECK(b.data != NULL && b.data != b.rgb);    /* YUYV: its own buffer */
+    render_frame_free(&b);
+    /* the frame really comes from the file: one byte changed there (the
+     * high byte of the last border_visible_v) shows in the loaded frame */
+    f = fopen(path, "rb+");
+    CHECK(f != NULL);
+    if (f) {
+        CHECK(fseek(f, -1, SEEK_END) == 0);
+        fputc(0x40, f);
+        fclose(f);
+        CHECK_EQ(render_frame(&sc, &b), 0);
+        CHECK_EQ(b.border_visible_v[b.width - 1], (int16_t)(0x4000 | (fresh.border_visible_v[b.width - 1] & 0xff)));
+        render_frame_free(&b);
+        CHECK(remove(path) == 0);
+        CHECK_EQ(render_frame(&sc, &b), 0);   /* rendered and stored again */
+        CHECK(frames_equal(&fresh, &b));
+        render_frame_free(&b);
+    }
+    /* truncated: refused, rendered again and stored whole */
+    f = fopen(path, "rb+");
+    CHECK(f != NULL);
+    if (f) {
+        fseek(f, 0, SEEK_END);
+        len = ftell(f);
+        fclose(f);
+        CHECK(truncate(path, len - 1) == 0);
+        CHECK_EQ(render_frame(&sc, &b), 0);
+        CHECK(frames_equal(&fresh, &b));
+        render_frame_free(&b);
+        f = fopen(path, "rb");
+        CHECK(f != NULL);
+        if (f) {
+            fseek(f, 0, SEEK_END);
+            CHECK_EQ(ftell(f), len);
+            fclose(f);
+        }
+    }
+    /* scene 1's file under scene 2's name: scene 2 is rendered */
+    CHECK_EQ(render_frame(&sc2, &c), 0);
+    CHECK_EQ(cache_files(dir, other, sizeof other), 2);
+    CHECK(!frames_equal(&fresh, &c));
+    render_frame_free(&c);
+    {
+        /* the file that is not scene 1's */
+        DIR *d = opendir(dir);
+        struct dirent *e;
+        other[0] = '\0';
+        while (d && (e = readdir(d)) != NULL) {
+            char p2[1200];
+            snprintf(p2, sizeof p2, "%s/%s", dir, e->d_name);
+            if (e->d_name[0] != '.' && strcmp(p2, path) != 0)
+                snprintf(other, sizeof other, "%s", p2);
+        }
+        if (d)
+            closedir(d);
+    }
+    CHECK(other[0] != '\0');
+    snprintf(cmd, sizeof cmd, "cp '%s' '%s'", path, other);
+    CHECK(system(cmd) == 0);
+    CHECK_EQ(render_frame(&sc2, &c), 0);
+    CHECK(!frames_equal(&fresh, &c));
+    CHECK(c.size == fresh.size && memcmp(c.data, fresh.data, c.size) != 0);
+    render_frame_free(&c);
+    render_frame_free(&a);
+    render_frame_free(&fresh);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    CHECK(system(cmd) == 0);
+    unsetenv("FIELDLOC_RENDER_CACHE");
+    cache_restore(saved);
+}
+
 static void test_determinism(void)
 {
     render_scene_t sc;
     render_frame_t a, b;
+    char *saved = cache_off();
     busy_scene(&sc);
     CHECK_EQ(render_frame(&sc, &a), 0);
     CHECK_EQ(render_frame(&sc, &b), 0);
@@ -244,6 +397,7 @@ static void test_determinism(void)
     }
     render_frame_free(&a);
     render_frame_free(&b);
+    cache_restore(saved);
 }
 
 static void test_bad_input(void)
@@ -864,6 +1018,7 @@ static void test_fixtures_rerender(void)
 void suite_render(void)
 {
     t_run("render.determinism", test_determinism);
+    t_run("render.cache", test_cache);
     t_run("render.bad_input", test_bad_input);
     t_run("render.scene_roundtrip", test_scene_roundtrip);
     t_run("render.truth_roundtrip", test_truth_roundtrip);
