@@ -54,7 +54,8 @@
 #                      never written.  The document names DIR.
 #   SKIP_BENCH=1       no `make bench` and no callgrind_vision.sh (the
 #                      document says so)
-#   DRY_RUN=1          print the commands, run none, write nothing
+#   DRY_RUN=1          print the commands, run none; OUT and BUILD/results.work
+#                      are left alone (the command files go to BUILD/results.dry)
 #   LOCALIZERS="a b"   those localizers only (default: the catalogue)
 #   FIELDS="a b"       those fields only in the walks and the comparison
 #                      (default: spl2013 uva2013 aibo2004 spl2020)
@@ -80,6 +81,7 @@ LOCALIZERS=${LOCALIZERS:-}
 SKIP_SEED002=${SKIP_SEED002:-0}
 TMP=$OUT.tmp
 WORK=$B/results.work
+[ "${DRY_RUN:-0}" = 1 ] && WORK=$B/results.dry
 BIG=$B/p512
 start=$(date +%s)
 # the whole `make results` (make test included) when the Makefile says when
