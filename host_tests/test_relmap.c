@@ -450,6 +450,19 @@ static void test_bad_input(void)
     CHECK(fl_relmap_estimate(s, &e1));
     CHECK(e1.x_mm < -fl_field_carpet_half_x_mm(f) + 500 &&
           e1.y_mm > fl_field_carpet_half_y_mm(f) - 500);
+    /* a pose prior on one half, then the other half (libFuzzer: the two
+     * together left no cell): the half replaces the pose, and back */
+    fl_relmap_set_prior_pose(s, 3000, 1000, 300);
+    fl_relmap_set_prior_half(s, -1);
+    CHECK(fl_relmap_check(s));
+    CHECK(fl_relmap_estimate(s, &e1));
+    CHECK(e1.x_mm <= 0);
+    CHECK(!s->prior_pose);
+    fl_relmap_set_prior_pose(s, 3000, 1000, 300);
+    CHECK_EQ(s->prior_half, 0);
+    CHECK(fl_relmap_check(s));
+    CHECK(fl_relmap_estimate(s, &e1));
+    CHECK(abs(e1.x_mm - 3000) < 400 && abs(e1.y_mm - 1000) < 400);
     fl_relmap_clear_prior(s);
     CHECK(fl_relmap_check(s));
     /* bounded: at most max_cand relative maps a frame, however many

@@ -168,7 +168,8 @@ void fl_relmap_reset_pose(fl_relmap_t *s, int32_t x_mm, int32_t y_mm, fl_angle_t
                           int32_t pos_unc_mm);
 void fl_relmap_reset_penalty(fl_relmap_t *s, int32_t x_mm, int32_t pos_unc_mm);
 void fl_relmap_set_prior_half(fl_relmap_t *s, int half);
-/* The centre is clamped to the carpet, the radius to 0 .. 20000 mm. */
+/* One prior at a time: each of these replaces the other.  The pose's centre
+ * is clamped to the carpet, the radius to 0 .. 20000 mm. */
 void fl_relmap_set_prior_pose(fl_relmap_t *s, int32_t x_mm, int32_t y_mm, int32_t radius_mm);
 void fl_relmap_clear_prior(fl_relmap_t *s);
 /* FL_OK, FL_ERR_STATE, FL_ERR_NULL / RANGE / STALE (obs.h checks). */

@@ -285,7 +285,10 @@ void fl_relmap_set_prior_half(fl_relmap_t *s, int half)
     int c;
     if (s == NULL || s->field == NULL)
         return;
+    /* one prior at a time, the latest (as mcl and fuzzy): a half and a pose
+     * disc on the other half would leave no cell (libFuzzer) */
     s->prior_half = (int8_t)(half < 0 ? -1 : half > 0 ? 1 : 0);
+    s->prior_pose = false;
     if (s->prior_half != 0)
         s->half_known = true;
     if (s->ignorance) {
@@ -317,6 +320,7 @@ void fl_relmap_set_prior_pose(fl_relmap_t *s, int32_t x_mm, int32_t y_mm, int32_
      * cell under it (a centre off the carpet would leave no cell, an empty
      * belief) and in_prior's squares stay within int64. */
     s->prior_pose = true;
+    s->prior_half = 0;   /* replaces a half prior (see set_prior_half) */
     s->prior_x_mm = x_mm < -s->hx ? -s->hx : x_mm > s->hx ? s->hx : x_mm;
     s->prior_y_mm = y_mm < -s->hy ? -s->hy : y_mm > s->hy ? s->hy : y_mm;
     s->prior_r_mm = radius_mm < 0 ? 0 : radius_mm > 20000 ? 20000 : radius_mm;
