@@ -13,6 +13,13 @@
 void *t_loc_walk(const char *loc_name, const char *walk, int32_t seed, uint32_t steps,
                  bool (*valid)(const void *state), t_loc_walk_t *out)
 {
+    return t_loc_walk_vision(loc_name, walk, seed, steps, SIM_VISION_LTX, valid, out, NULL);
+}
+
+void *t_loc_walk_vision(const char *loc_name, const char *walk, int32_t seed, uint32_t steps,
+                        int vision, bool (*valid)(const void *state), t_loc_walk_t *out,
+                        uint32_t *kinds_seen)
+{
     char path[256], err[256];
     static sim_scenario_t sc;
     static sim_t sim;
@@ -46,6 +53,7 @@ void *t_loc_walk(const char *loc_name, const char *walk, int32_t seed, uint32_t 
     }
     free(pp);
     sim.sc.white_points = loc->reads_points;   /* costly; only relmap reads them */
+    sim.sc.vision = vision;
     loc->set_prior_half(s, sc.start_x_mm < 0 ? -1 : 1);
     while (out->steps < steps && sim_step(&sim, &st)) {
         fl_loc_estimate_t e;
@@ -53,6 +61,12 @@ void *t_loc_walk(const char *loc_name, const char *walk, int32_t seed, uint32_t 
         if (st.events & SIM_EV_PENALIZED)
             loc->reset_penalty(s, (int32_t)sc.penalty_x_mm, 300, 2730);
         out->obs_used += fl_loc_update(loc, s, &st.obs, NULL);
+        if (kinds_seen != NULL) {
+            uint16_t k;
+            for (k = 0; k < st.obs.n; k++)
+                if ((int)st.obs.obs[k].kind >= 0 && st.obs.obs[k].kind < FL_LM_KIND_COUNT)
+                    kinds_seen[st.obs.obs[k].kind]++;
+        }
         CHECK(fl_loc_estimate(loc, s, &e));
         out->hash = t_hash_i32(out->hash, e.x_mm);
         out->hash = t_hash_i32(out->hash, e.y_mm);

@@ -24,5 +24,12 @@ typedef struct {
  * after a failure (recorded). */
 void *t_loc_walk(const char *loc_name, const char *walk, int32_t seed, uint32_t steps,
                  bool (*valid)(const void *state), t_loc_walk_t *out);
+/* The same with the simulator's vision set (tools/world/sim.h
+ * sim_scenario_t.vision: SIM_VISION_LTX as t_loc_walk, _CORNERS seed
+ * 004's corner features, _BOTH); kinds_seen (may be NULL; FL_LM_KIND_COUNT
+ * entries) counts the observations given to the localizer by kind. */
+void *t_loc_walk_vision(const char *loc_name, const char *walk, int32_t seed, uint32_t steps,
+                        int vision, bool (*valid)(const void *state), t_loc_walk_t *out,
+                        uint32_t *kinds_seen);
 
 #endif

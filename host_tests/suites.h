@@ -13,6 +13,7 @@ T_SUITE(coach_scene);
 T_SUITE(coach_cli);
 T_SUITE(sim);
 T_SUITE(seed002);
+T_SUITE(seed004);
 T_SUITE(eval_relmap);
 T_SUITE(realdata);
 T_SUITE(color);

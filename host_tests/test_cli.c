@@ -585,6 +585,65 @@ static void t_stream(void)
     expect_error_at(__LINE__, args, msg);
 }
 
+/* simulate --vision (seed 004's corner features, feature mode): refused on
+ * a field without them, in frames mode (no corner image stage yet) and
+ * for an unknown value; a corners walk exported as a stream (kinds c f n
+ * N) replays to the same step lines. */
+static void t_vision(void)
+{
+    static char out[1 << 16], out2[1 << 16];
+    char err[1024], args[2600];
+    const char *a, *b, *ea, *eb;
+    if (cli_find() != 0) {
+        t_info("cli.vision: %s not built, skipped", t_cli);
+        return;
+    }
+    expect_error("simulate --field spl2013 --features --vision corners",
+                 "simulate: --vision corners: field spl2013 has no corner features (seed 004's, "
+                 "fl_field_t.features; aibo2004 has them)");
+    expect_error("simulate --field aibo2004 --frames --vision both",
+                 "simulate: --vision both with --frames: not yet (no corner image stage; feature "
+                 "mode only)");
+    expect_error("simulate --field aibo2004 --vision lines", "simulate: --vision ltx|corners|both");
+    snprintf(args, sizeof args, "simulate --field aibo2004 --seed 2 --steps 90 --vision corners "
+                                "--export-stream %s/corners.stream", t_dir);
+    CHECK_EQ(cli_run(args, out, sizeof out, err, sizeof err), 0);
+    CHECK(strstr(out, "# vision corners: ") != NULL);
+    snprintf(args, sizeof args, "replay --stream %s/corners.stream --localizer fuzzy", t_dir);
+    CHECK_EQ(cli_run(args, out2, sizeof out2, err, sizeof err), 0);
+    CHECK_EQ(err[0], '\0');
+    a = strstr(out, "\nstep 0 ");
+    b = strstr(out2, "\nstep 0 ");
+    CHECK(a != NULL && b != NULL);
+    if (a == NULL || b == NULL)
+        return;
+    ea = strstr(a, "\n# steps ");
+    eb = strstr(b, "\n# records ");
+    CHECK(ea != NULL && eb != NULL);
+    if (ea == NULL || eb == NULL)
+        return;
+    CHECK_EQ(ea - a, eb - b);
+    CHECK(strncmp(a, b, (size_t)(ea - a)) == 0);
+    /* the stream holds every feature kind's letter */
+    {
+        static char st[1 << 20];
+        char path[1200];
+        FILE *f;
+        size_t got = 0;
+        snprintf(path, sizeof path, "%s/corners.stream", t_dir);
+        f = fopen(path, "r");
+        CHECK(f != NULL);
+        if (f != NULL) {
+            got = fread(st, 1, sizeof st - 1, f);
+            fclose(f);
+        }
+        st[got] = '\0';
+        CHECK(strstr(st, "\nobs c ") != NULL && strstr(st, "\nobs f ") != NULL &&
+              strstr(st, "\nobs n ") != NULL && strstr(st, "\nobs N ") != NULL);
+        CHECK(strstr(st, "\nobs L ") == NULL && strstr(st, "\nobs G ") == NULL);
+    }
+}
+
 /* calibrate --frames: frames rendered by `fieldloc render` with a neck of
  * 480 mm and a pitch offset of 0.04 rad (2.29 deg) against the camera's
  * 445 mm / 0, fitted, written, read back by detect --calib and localize
@@ -819,6 +878,7 @@ void suite_cli(void)
     t_run("cli.demo_compare", t_demo_compare);
     t_run("cli.calib_files", t_calib_files);
     t_run("cli.stream", t_stream);
+    t_run("cli.vision", t_vision);
     t_run("cli.physar", t_physar_cli);
     t_run("cli.spl2020", t_spl2020);
     t_run("cli.coach", t_coach);

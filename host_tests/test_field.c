@@ -10,12 +10,14 @@
  * arm does not.  Then: landmark counts against each field's rules, the
  * parameters against DESIGN.md, 180-degree and mirror symmetry, posts
  * (2 per goal, sides, colors, inside the carpet), marks, beacons, and the
- * lookup helpers with bad input.  The digest covers every number in every
+ * lookup helpers with bad input.  Seed 004's corner features of aibo2004
+ * are recomputed the same way (field.features_from_lines).  The digest covers every number in every
  * table.  Geometry here uses double (host only); nothing double is printed
  * outside "# " lines.
  */
 #include "test.h"
 #include "fieldloc/field.h"
+#include "fieldloc/obs.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -215,7 +217,8 @@ typedef struct {
     int32_t pm_x, mark, goal_w, post_d, post_h;
     fl_color_t c_neg, c_pos;
     int symmetric;
-    int count[FL_LM_KIND_COUNT];  /* L T X PM CM POST CC BEACON */
+    int count[FL_LM_KIND_COUNT];  /* L T X PM CM POST CC BEACON, then seed
+                                     004's features: C T-field T-net net */
 } spec_t;
 
 static const spec_t specs[] = {
@@ -228,7 +231,7 @@ static const spec_t specs[] = {
      FL_COLOR_WHITE, FL_COLOR_WHITE, 1, {12, 10, 2, 2, 1, 4, 1, 0}},
     /* numbers of src/model/field.c (uncertain, see there); 4 corner beacons */
     {"aibo2004", 4200, 2700, 25, 150, 150, 650, 1000, 0, 0, 0, 0, 600, 50, 300,
-     FL_COLOR_SKYBLUE, FL_COLOR_YELLOW, 0, {8, 6, 2, 0, 0, 4, 1, 4}},
+     FL_COLOR_SKYBLUE, FL_COLOR_YELLOW, 0, {8, 6, 2, 0, 0, 4, 1, 4, 8, 4, 4, 2}},
     /* seed 003's field: spl2013's lines, white goals, marks at 3200 */
     {"spl2016", 9000, 6000, 50, 700, 750, 600, 2200, 0, 0, 3200, 100, 1600, 100, 800,
      FL_COLOR_WHITE, FL_COLOR_WHITE, 1, {8, 6, 2, 2, 1, 4, 1, 0}},
@@ -366,7 +369,7 @@ static void test_counts(void)
             CHECK_EQ(fl_field_count_kind(f, (fl_landmark_kind_t)k), specs[s].count[k]);
             total += fl_field_count_kind(f, (fl_landmark_kind_t)k);
         }
-        CHECK_EQ(total, f->n_landmarks);
+        CHECK_EQ(total, f->n_landmarks + (f->features != NULL ? f->n_features : 0));
         CHECK_EQ(fl_field_count_kind(f, FL_LM_L), 4 + 4 * boxes);
         CHECK_EQ(fl_field_count_kind(f, FL_LM_T), 2 + 4 * boxes);
         CHECK_EQ(fl_field_count_kind(f, FL_LM_X), f->circle_radius_mm > 0 ? 2 : 0);
@@ -535,6 +538,146 @@ static void test_crossings_from_lines(void)
         for (i = 0; i < f->n_landmarks; i++)
             n_lm += is_crossing(f->landmarks[i].kind);
         CHECK_EQ(n_cross, n_lm);   /* no L/T/X away from the lines */
+    }
+}
+
+/* Seed 004's corner features (field.h, src/model/field.c) recomputed from
+ * the lines, the circle and the posts: every L of paint is a C; a T within
+ * 300 mm of a goal post a T-net, any other T a T-field; every X a
+ * T-field; each goal's net at the middle of its posts (the goal line),
+ * with the goal's colour.  Arms as the crossing's; orientation and its
+ * period as the L / T / X at the same point.  Fields without features have
+ * none (NULL, 0); the features are never in landmarks nor landmarks in
+ * features; fl_field_all_at lists landmarks, then features. */
+static fl_landmark_kind_t feature_of(const fl_field_t *f, double x, double y, int nd)
+{
+    uint16_t i;
+    double near = 1e30;
+    if (nd == 2)
+        return FL_LM_CORNER_C;
+    if (nd == 4)
+        return FL_LM_CORNER_TFIELD;
+    for (i = 0; i < f->n_landmarks; i++)
+        if (f->landmarks[i].kind == FL_LM_POST) {
+            double d = hypot(f->landmarks[i].x_mm - x, f->landmarks[i].y_mm - y);
+            near = d < near ? d : near;
+        }
+    return near <= 300.0 ? FL_LM_CORNER_TNET : FL_LM_CORNER_TFIELD;
+}
+
+static void check_feature_orientation(const fl_field_t *f, const fl_landmark_t *ft)
+{
+    uint16_t i;
+    for (i = 0; i < f->n_landmarks; i++) {
+        const fl_landmark_t *lm = &f->landmarks[i];
+        fl_angle_t a, b;
+        if (!is_crossing(lm->kind) || lm->x_mm != ft->x_mm || lm->y_mm != ft->y_mm)
+            continue;
+        CHECK(fl_landmark_orientation(lm, &a));
+        CHECK(fl_landmark_orientation(ft, &b));
+        CHECK_EQ(a, b);
+        CHECK_EQ(fl_landmark_orientation_period(lm), fl_landmark_orientation_period(ft));
+        return;
+    }
+    t_fail_msg(__FILE__, __LINE__, "%s: feature (%d,%d) on no L/T/X", f->name, (int)ft->x_mm,
+               (int)ft->y_mm);
+}
+
+static void test_features_from_lines(void)
+{
+    size_t s;
+    for (s = 0; s < fl_field_count(); s++) {
+        const fl_field_t *f = fl_field_at(s);
+        pt_t cand[MAX_CAND];
+        int nc, c, g, n_want = 0;
+        uint16_t i, nf;
+        if (!f) {
+            CHECK(f != NULL);
+            continue;
+        }
+        nf = f->features != NULL ? f->n_features : 0;
+        CHECK_EQ(fl_field_n_all(f), f->n_landmarks + nf);
+        for (i = 0; i < f->n_landmarks; i++) {
+            CHECK(!fl_landmark_kind_is_feature(f->landmarks[i].kind));
+            CHECK(fl_field_all_at(f, i) == &f->landmarks[i]);
+        }
+        for (i = 0; i < nf; i++) {
+            CHECK(fl_landmark_kind_is_feature(f->features[i].kind));
+            CHECK(fl_field_all_at(f, (uint16_t)(f->n_landmarks + i)) == &f->features[i]);
+        }
+        CHECK(fl_field_all_at(f, (uint16_t)(f->n_landmarks + nf)) == NULL);
+        if (strcmp(f->name, "aibo2004") != 0) {
+            /* seed 004's features are mapped on its own field only */
+            CHECK_EQ(nf, 0);
+            CHECK(f->features == NULL);
+            CHECK_EQ(fl_field_count_kind(f, FL_LM_CORNER_C), 0);
+            CHECK(fl_field_nth_kind(f, FL_LM_NET, 0) == NULL);
+            continue;
+        }
+        CHECK(nf > 0);
+        nc = candidate_points(f, cand);
+        for (c = 0; c < nc; c++) {
+            int dirs[MAX_DIRS], nd = leaving_dirs(f, cand[c].x, cand[c].y, dirs), found = 0;
+            fl_landmark_kind_t want;
+            if (nd < 2 || (nd == 2 && ang_diff(dirs[0], dirs[1]) >= 32766))
+                continue;
+            want = feature_of(f, cand[c].x, cand[c].y, nd);
+            n_want++;
+            for (i = 0; i < nf; i++) {
+                const fl_landmark_t *ft = &f->features[i];
+                int arms[FL_FIELD_MAX_ARMS];
+                if (ft->kind == FL_LM_NET || fabs(ft->x_mm - cand[c].x) > 0.5 ||
+                    fabs(ft->y_mm - cand[c].y) > 0.5)
+                    continue;
+                found++;
+                if (ft->kind != want)
+                    t_fail_msg(__FILE__, __LINE__, "%s (%d,%d): feature kind %d, lines make %d",
+                               f->name, (int)ft->x_mm, (int)ft->y_mm, (int)ft->kind, (int)want);
+                lm_arms(ft, arms);
+                if (!arms_equal(arms, ft->n_arms, dirs, nd, 1))
+                    t_fail_msg(__FILE__, __LINE__, "%s (%d,%d): feature arms differ from the lines",
+                               f->name, (int)ft->x_mm, (int)ft->y_mm);
+                check_feature_orientation(f, ft);
+                CHECK_EQ(ft->color, FL_COLOR_NONE);
+                CHECK_EQ(ft->goal, 0);
+            }
+            if (found != 1)
+                t_fail_msg(__FILE__, __LINE__, "%s: feature at (%.0f,%.0f) listed %d times", f->name,
+                           cand[c].x, cand[c].y, found);
+        }
+        /* nets: one per goal, between its posts, the goal's colour */
+        for (g = -1; g <= 1; g += 2) {
+            double sx = 0, sy = 0;
+            int np = 0, found = 0;
+            for (i = 0; i < f->n_landmarks; i++)
+                if (f->landmarks[i].kind == FL_LM_POST && f->landmarks[i].goal == g) {
+                    sx += f->landmarks[i].x_mm;
+                    sy += f->landmarks[i].y_mm;
+                    np++;
+                }
+            CHECK_EQ(np, 2);
+            n_want++;
+            for (i = 0; i < nf; i++) {
+                const fl_landmark_t *ft = &f->features[i];
+                fl_angle_t o;
+                if (ft->kind != FL_LM_NET || ft->goal != g)
+                    continue;
+                found++;
+                CHECK(np > 0 && fabs(ft->x_mm - sx / np) <= 0.5 && fabs(ft->y_mm - sy / np) <= 0.5);
+                CHECK_EQ(ft->color, f->goal_color[g > 0]);
+                CHECK_EQ(ft->n_arms, 0);
+                CHECK(!fl_landmark_orientation(ft, &o));
+                CHECK_EQ(fl_landmark_orientation_period(ft), 0);
+            }
+            CHECK_EQ(found, 1);
+        }
+        CHECK_EQ(n_want, nf);   /* nothing listed away from the lines and goals */
+        t_info("%s: %u features (C %u T-field %u T-net %u net %u), recomputed from %d line "
+               "crossings and 2 goals", f->name, (unsigned)nf,
+               (unsigned)fl_field_count_kind(f, FL_LM_CORNER_C),
+               (unsigned)fl_field_count_kind(f, FL_LM_CORNER_TFIELD),
+               (unsigned)fl_field_count_kind(f, FL_LM_CORNER_TNET),
+               (unsigned)fl_field_count_kind(f, FL_LM_NET), n_want - 2);
     }
 }
 
@@ -870,6 +1013,17 @@ static void test_digest(void)
             h = t_hash_i32(h, (int32_t)lm->color2);
             h = t_hash_i32(h, lm->goal);
         }
+        for (i = 0; i < (f->features != NULL ? f->n_features : 0); i++) {
+            const fl_landmark_t *lm = &f->features[i];
+            h = t_hash_i32(h, (int32_t)lm->kind);
+            h = t_hash_i32(h, lm->x_mm);
+            h = t_hash_i32(h, lm->y_mm);
+            h = t_hash_i32(h, lm->n_arms);
+            for (a = 0; a < FL_FIELD_MAX_ARMS; a++)
+                h = t_hash_i32(h, lm->arm[a]);
+            h = t_hash_i32(h, (int32_t)lm->color);
+            h = t_hash_i32(h, lm->goal);
+        }
         for (i = 0; i < f->n_lines; i++) {
             h = t_hash_i32(h, f->lines[i].x0_mm);
             h = t_hash_i32(h, f->lines[i].y0_mm);
@@ -900,6 +1054,7 @@ void suite_field(void)
     t_run("field.landmark_fields", test_landmark_fields);
     t_run("field.lines", test_lines);
     t_run("field.crossings_from_lines", test_crossings_from_lines);
+    t_run("field.features_from_lines", test_features_from_lines);
     t_run("field.arm_probes", test_arm_probes);
     t_run("field.marks", test_marks);
     t_run("field.posts", test_posts);

@@ -28,7 +28,20 @@ typedef enum {
     FL_LM_CENTRE_CIRCLE = 6,/* centre of the centre circle */
     FL_LM_BEACON = 7,       /* colored beacon (AIBO corners) or striped
                                landmark pole (hl3x2; color == color2) */
-    FL_LM_KIND_COUNT = 8
+    /* Seed 004's corner features (its section 2): pairs of labelled
+     * corners of white on carpet.  They live in fl_field_t.features, not
+     * in landmarks (see there). */
+    FL_LM_CORNER_C = 8,     /* C: an open corner next to a closed one (an L
+                               of painted lines; arms and orientation as L) */
+    FL_LM_CORNER_TFIELD = 9,/* T-field: two closed corners (a T of field
+                               lines away from the nets, or an X: arms as
+                               the T or X it is) */
+    FL_LM_CORNER_TNET = 10, /* T-net: a closed corner next to a net-closed
+                               one (a box side meeting the goal line beside
+                               the net; arms as T) */
+    FL_LM_NET = 11,         /* a goal net: goal centre on the goal line,
+                               color = goal colour, goal = +1 / -1 */
+    FL_LM_KIND_COUNT = 12
 } fl_landmark_kind_t;
 
 /* Goal post side, as seen by a robot on the field facing that goal. */
@@ -104,6 +117,15 @@ typedef struct {
     /* added: colored beacons (AIBO fields) or landmark poles (hl3x2),
      * 0 when the field has none */
     int32_t beacon_diameter_mm, beacon_height_mm;
+    /* added: seed 004's corner features (FL_LM_CORNER_C, _TFIELD, _TNET,
+     * FL_LM_NET), NULL / 0 for a field without them.  A list of their own,
+     * not part of landmarks: the L/T/X vision path, negative information
+     * (which iterates landmarks) and simulate's L/T/X feature mode see the
+     * field as before; fl_field_count_kind / fl_field_nth_kind look here
+     * for these kinds, so a localizer that enumerates candidates through
+     * them gets the features with no table of its own. */
+    const fl_landmark_t *features;
+    uint16_t n_features;
 } fl_field_t;
 
 /* Carpet extent, derived: |x| <= length/2 + border, |y| <= width/2 + border
@@ -118,10 +140,23 @@ size_t fl_field_count(void);
 const fl_field_t *fl_field_at(size_t i);            /* NULL if out of range */
 
 /* Number of landmarks of a kind, and the i-th of them (NULL if none), in
- * table order.  NULL field or an unknown kind gives 0 / NULL. */
+ * table order: landmarks for kinds up to FL_LM_BEACON, features for
+ * FL_LM_CORNER_C ... FL_LM_NET.  NULL field or an unknown kind gives 0 /
+ * NULL. */
 uint16_t fl_field_count_kind(const fl_field_t *f, fl_landmark_kind_t kind);
 const fl_landmark_t *fl_field_nth_kind(const fl_field_t *f,
                                        fl_landmark_kind_t kind, uint16_t i);
+
+/* True for seed 004's feature kinds (FL_LM_CORNER_C ... FL_LM_NET), the
+ * kinds listed in fl_field_t.features. */
+bool fl_landmark_kind_is_feature(fl_landmark_kind_t kind);
+
+/* Landmarks and features as one list: index i < n_landmarks is
+ * landmarks[i], i - n_landmarks is features[i - n_landmarks] (for
+ * localizers that keep landmark ids).  NULL field gives 0 / NULL; an
+ * index out of range gives NULL. */
+uint16_t fl_field_n_all(const fl_field_t *f);
+const fl_landmark_t *fl_field_all_at(const fl_field_t *f, uint16_t i);
 
 #ifdef __cplusplus
 }

@@ -166,7 +166,8 @@ typedef struct {
     uint8_t lm_index[FL_MCL_MAX_LANDMARKS];   /* landmark ids by kind */
     uint8_t kind_start[FL_LM_KIND_COUNT + 1]; /* kind k: lm_index[start[k]
                                                  .. start[k+1]) */
-    fl_angle_t lm_orient[FL_MCL_MAX_LANDMARKS]; /* by field index */
+    fl_angle_t lm_orient[FL_MCL_MAX_LANDMARKS]; /* by field index
+                                                   (fl_field_all_at) */
     uint8_t lm_orient_mod[FL_MCL_MAX_LANDMARKS];/* 0: none; 1: mod 360,
                                                    2: mod 180, 4: mod 90 */
     int32_t half_x_mm, half_y_mm;        /* carpet */
@@ -290,7 +291,8 @@ bool fl_mcl_lowvar_pick(const fl_mcl_particle_t *p, uint16_t n_in, uint16_t *out
                         uint16_t n_out, uint32_t *rng);
 /* The nearest map landmark of the observation's kind (and colour and side
  * when the observation has them) to the field point (fx, fy): its field
- * index, -1 when none matches; *d1 / *d2 the squared distances to it and
+ * index (fl_field_all_at: landmarks, then seed 004's features), -1 when
+ * none matches; *d1 / *d2 the squared distances to it and
  * to the second nearest (UINT32_MAX when none). */
 int fl_mcl_associate(const fl_mcl_t *s, const fl_obs_t *o, int32_t fx, int32_t fy,
                      uint32_t *d1, uint32_t *d2);

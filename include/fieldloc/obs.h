@@ -29,10 +29,12 @@ extern "C" {
  *   X, penalty mark, centre mark   direction of any arm (meaningful mod 90 deg)
  *   centre circle   direction of the halfway line through it (mod 180 deg)
  *   post, beacon    no orientation
+ *   seed 004's features (field.h): C as L; T-net as T; T-field as the T
+ *   (stem) or X (any arm, mod 90 deg) it is; net no orientation
  * The same conventions give a map landmark's orientation from its arms
  * (fl_landmark_orientation). */
 typedef struct {
-    fl_landmark_kind_t kind;   /* FL_LM_L ... FL_LM_BEACON */
+    fl_landmark_kind_t kind;   /* FL_LM_L ... FL_LM_NET */
     fl_side_t side;            /* posts: left/right when the crossbar says so */
     fl_color_t color;        /* posts and beacons; FL_COLOR_NONE if unknown */
     int32_t range_mm;          /* ground distance from the robot origin, >= 0 */
@@ -147,6 +149,9 @@ bool fl_obs_list_push_point(fl_obs_list_t *list, int32_t x_mm, int32_t y_mm);
 /* Orientation of a map landmark by the conventions above (field frame);
  * false for kinds without one. */
 bool fl_landmark_orientation(const fl_landmark_t *lm, fl_angle_t *orientation);
+/* The period of that orientation (binary angle: 65536 one direction, 32768
+ * mod 180, 16384 mod 90); 0 when the landmark has none (NULL too). */
+int32_t fl_landmark_orientation_period(const fl_landmark_t *lm);
 
 #ifdef __cplusplus
 }

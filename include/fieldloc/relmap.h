@@ -197,7 +197,7 @@ typedef struct {
     int32_t ox, oy;                     /* robot frame, mm */
     int32_t range_mm;
     uint8_t n_cand;
-    uint8_t cand[16];                   /* indices into field->landmarks */
+    uint8_t cand[16];                   /* fl_field_all_at ids (landmarks, then features) */
 } fl_relmap_lm_t;
 
 typedef struct {

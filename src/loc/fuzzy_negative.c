@@ -30,11 +30,12 @@ typedef struct {
                                     x d: r_lo^2 <= d^2 <= r_hi^2 */
 } negctx_t;
 
-/* Posts and beacons are told apart from line features; within each group
- * any kind explains any (vision confuses L, T and X). */
+/* Posts, beacons and nets are told apart from line features (seed 004's
+ * corner features among them); within each group any kind explains any
+ * (vision confuses L, T and X). */
 static bool neg_line_kind(fl_landmark_kind_t k)
 {
-    return k != FL_LM_POST && k != FL_LM_BEACON;
+    return k != FL_LM_POST && k != FL_LM_BEACON && k != FL_LM_NET;
 }
 
 /* At most this many expected landmarks of one pose are matched against

@@ -88,23 +88,6 @@
  * results are those of the full evaluation, bit for bit). */
 #define SECTOR_MARGIN 182
 
-static int32_t orientation_period(fl_landmark_kind_t k)
-{
-    switch (k) {
-    case FL_LM_L:
-    case FL_LM_T:
-        return 65536;
-    case FL_LM_X:
-    case FL_LM_PENALTY_MARK:
-    case FL_LM_CENTRE_MARK:
-        return 16384;
-    case FL_LM_CENTRE_CIRCLE:
-        return 32768;
-    default:
-        return 0;
-    }
-}
-
 /* Trapezoid t(delta) in Q16 (65536 = 1), delta = |angle| in [0, 32768]. */
 static uint32_t tpos(int32_t delta, int32_t core, int32_t slope)
 {
@@ -161,7 +144,7 @@ static bool post_matches(const fl_landmark_t *lm, const fl_obs_t *o)
     if ((lm->kind == FL_LM_POST) && o->side != FL_SIDE_UNKNOWN &&
         lm->side != o->side)
         return false;
-    if ((lm->kind == FL_LM_POST || lm->kind == FL_LM_BEACON) &&
+    if ((lm->kind == FL_LM_POST || lm->kind == FL_LM_BEACON || lm->kind == FL_LM_NET) &&
         o->color != FL_COLOR_NONE && lm->color != FL_COLOR_NONE &&
         lm->color != o->color)
         return false;
@@ -335,16 +318,18 @@ static int build_regions(fl_fuzzy_t *g, const fl_obs_t *o, const obsp_t *q)
 {
     const fl_field_t *f = g->field;
     uint16_t i, nk = fl_field_count_kind(f, o->kind);
-    int32_t period = orientation_period(o->kind);
     uint8_t cq = g->params.confuse_q8;
     regspec_t sp;
     sp.n = 0;
     for (i = 0; i < nk; i++) {
         const fl_landmark_t *lm = fl_field_nth_kind(f, o->kind, i);
         fl_angle_t om = 0;
+        int32_t period;
         bool oriented;
         if (lm == NULL || !post_matches(lm, o))
             continue;
+        /* per landmark: seed 004's T-fields are Ts and Xs */
+        period = fl_landmark_orientation_period(lm);
         oriented = o->has_orientation && period > 0 && fl_landmark_orientation(lm, &om);
         sp.oriented = oriented;
         sp.om = om;
@@ -723,7 +708,7 @@ bool fl_fuzzy_update_one(fl_fuzzy_t *g, const fl_obs_t *o)
     if (o == NULL || o->confidence == 0 || (unsigned)o->kind >= (unsigned)FL_LM_KIND_COUNT ||
         o->range_mm < 0 || o->range_mm > fz_clamp32(p->max_range_mm, 100, 30000) ||
         (p->cross_max_mm > 0 && o->range_mm > p->cross_max_mm && o->kind != FL_LM_POST &&
-         o->kind != FL_LM_BEACON && o->kind != FL_LM_CENTRE_CIRCLE) ||
+         o->kind != FL_LM_BEACON && o->kind != FL_LM_CENTRE_CIRCLE && o->kind != FL_LM_NET) ||
         fl_field_count_kind(g->field, o->kind) == 0) {
         g->stats.obs_ignored = fz_sat_inc(g->stats.obs_ignored);
         return false;

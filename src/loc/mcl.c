@@ -206,26 +206,27 @@ void fl_mcl_clear(fl_mcl_t *s)
         memset(s, 0, sizeof *s);
 }
 
-/* Landmark ids by kind, and the orientations of those that have one. */
+/* Landmark ids by kind, and the orientations of those that have one.  Ids
+ * are fl_field_all_at's: the landmarks, then seed 004's features. */
 static void index_landmarks(fl_mcl_core_t *c, const fl_field_t *f)
 {
-    uint16_t i, n = 0;
+    uint16_t i, n = 0, na = fl_field_n_all(f);
     int k;
     for (k = 0; k < FL_LM_KIND_COUNT; k++) {
         c->kind_start[k] = (uint8_t)n;
-        for (i = 0; i < f->n_landmarks; i++)
-            if ((int)f->landmarks[i].kind == k)
+        for (i = 0; i < na; i++)
+            if ((int)fl_field_all_at(f, i)->kind == k)
                 c->lm_index[n++] = (uint8_t)i;
     }
     c->kind_start[FL_LM_KIND_COUNT] = (uint8_t)n;
-    for (i = 0; i < f->n_landmarks; i++) {
-        const fl_landmark_t *lm = &f->landmarks[i];
+    for (i = 0; i < na; i++) {
+        const fl_landmark_t *lm = fl_field_all_at(f, i);
         fl_angle_t o;
-        if (!fl_landmark_orientation(lm, &o))
+        int32_t period = fl_landmark_orientation_period(lm);
+        if (period == 0 || !fl_landmark_orientation(lm, &o))
             continue;
         c->lm_orient[i] = o;
-        c->lm_orient_mod[i] = lm->kind == FL_LM_L || lm->kind == FL_LM_T        ? 1
-                              : lm->kind == FL_LM_CENTRE_CIRCLE ? 2 : 4;
+        c->lm_orient_mod[i] = (uint8_t)(65536 / period);
     }
 }
 
@@ -233,7 +234,7 @@ fl_status_t fl_mcl_internal_core_init(fl_mcl_core_t *c, const fl_field_t *field,
                                       int32_t margin_mm, int32_t seed)
 {
     memset(c, 0, sizeof *c);
-    if (field->n_landmarks > FL_MCL_MAX_LANDMARKS)
+    if (fl_field_n_all(field) > FL_MCL_MAX_LANDMARKS)
         return FL_ERR_SIZE;
     if (fl_field_carpet_half_x_mm(field) + margin_mm > 30000 ||
         fl_field_carpet_half_y_mm(field) + margin_mm > 30000 ||

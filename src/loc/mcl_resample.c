@@ -155,7 +155,7 @@ static bool sensor_reset(fl_mcl_core_t *c, const fl_mcl_params_t *p, fl_mcl_part
         if (nk == 0u)
             return false;
         a = c->kind_start[k] + (int)mcl_below(&c->rng, nk);
-        lm = &c->field->landmarks[c->lm_index[a]];
+        lm = fl_field_all_at(c->field, c->lm_index[a]);
         if ((ro->side != FL_SIDE_UNKNOWN && lm->side != FL_SIDE_UNKNOWN && lm->side != ro->side) ||
             (ro->color != FL_COLOR_NONE && lm->color != FL_COLOR_NONE && lm->color != ro->color) ||
             (ro->pad != FL_COLOR_NONE && lm->color2 != FL_COLOR_NONE && lm->color2 != ro->pad))

@@ -145,7 +145,7 @@ int fl_mcl_core_associate(const fl_mcl_core_t *c, const fl_obs_t *o, int32_t fx,
     fx = mcl_clamp(fx, -40000, 40000);
     fy = mcl_clamp(fy, -40000, 40000);
     for (a = c->kind_start[k], e = c->kind_start[k + 1]; a < e; a++) {
-        const fl_landmark_t *lm = &c->field->landmarks[c->lm_index[a]];
+        const fl_landmark_t *lm = fl_field_all_at(c->field, c->lm_index[a]);
         int32_t dx = lm->x_mm - fx, dy = lm->y_mm - fy;
         uint32_t d;
         if (!lm_matches(lm, o))
@@ -181,12 +181,14 @@ bool fl_mcl_internal_prepare(const fl_mcl_core_t *pc, const fl_mcl_params_t *p,
     if (o->confidence == 0 || (int)o->kind < 0 || o->kind >= FL_LM_KIND_COUNT || r < 0 ||
         r > p->max_range_mm || r > FL_OBS_MAX_RANGE_MM)
         return false;
-    if (p->cross_max_mm > 0 && o->kind <= FL_LM_X && r > p->cross_max_mm)
+    /* crossings: L, T, X and seed 004's corner features (not its nets) */
+    if (p->cross_max_mm > 0 && r > p->cross_max_mm &&
+        (o->kind <= FL_LM_X || (fl_landmark_kind_is_feature(o->kind) && o->kind != FL_LM_NET)))
         return false;
     k = (int)o->kind;
     c->n_cand = 0;
     for (a = pc->kind_start[k]; a < pc->kind_start[k + 1]; a++) {
-        const fl_landmark_t *lm = &pc->field->landmarks[pc->lm_index[a]];
+        const fl_landmark_t *lm = fl_field_all_at(pc->field, pc->lm_index[a]);
         if (!lm_matches(lm, o))
             continue;
         c->cx[c->n_cand] = (int16_t)mcl_clamp(lm->x_mm, -20000, 20000);
@@ -244,8 +246,8 @@ uint32_t fl_mcl_internal_obs_nll(const fl_mcl_core_t *pc, const fl_mcl_params_t 
             b2 = d;
         }
     }
-    ex = mcl_clamp(pc->field->landmarks[best].x_mm - fx, -16000, 16000);
-    ey = mcl_clamp(pc->field->landmarks[best].y_mm - fy, -16000, 16000);
+    ex = mcl_clamp(fl_field_all_at(pc->field, (uint16_t)best)->x_mm - fx, -16000, 16000);
+    ey = mcl_clamp(fl_field_all_at(pc->field, (uint16_t)best)->y_mm - fy, -16000, 16000);
     along = mcl_asr(ex * ux + ey * uy, 15);
     across = mcl_asr(ey * ux - ex * uy, 15);
     q = gauss_nll(along, c->sd_r, c->k_r) + gauss_nll(across, c->sd_a, c->k_a);

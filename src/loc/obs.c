@@ -54,34 +54,48 @@ static fl_angle_t bisector(fl_angle_t a, fl_angle_t b)
     return fl_angle_add(a, fl_angle_wrap(d / 2));
 }
 
-bool fl_landmark_orientation(const fl_landmark_t *lm, fl_angle_t *orientation)
+/* Stem of a T: the arm with no arm about 180 degrees from it. */
+static bool t_stem(const fl_landmark_t *lm, fl_angle_t *orientation)
 {
     int i, j;
+    if (lm->n_arms != 3)
+        return false;
+    for (i = 0; i < 3; i++) {
+        bool opposite = false;
+        for (j = 0; j < 3; j++) {
+            int32_t d = fl_angle_sub(lm->arm[j], lm->arm[i]);
+            if (j != i && (d > 32768 - 2048 || d < -32768 + 2048))
+                opposite = true;
+        }
+        if (!opposite) {
+            *orientation = lm->arm[i];
+            return true;
+        }
+    }
+    return false;
+}
+
+bool fl_landmark_orientation(const fl_landmark_t *lm, fl_angle_t *orientation)
+{
     if (lm == NULL || orientation == NULL)
         return false;
     switch (lm->kind) {
     case FL_LM_L:
+    case FL_LM_CORNER_C:
         if (lm->n_arms != 2)
             return false;
         *orientation = bisector(lm->arm[0], lm->arm[1]);
         return true;
     case FL_LM_T:
-        if (lm->n_arms != 3)
-            return false;
-        /* the stem is the arm with no arm about 180 degrees from it */
-        for (i = 0; i < 3; i++) {
-            bool opposite = false;
-            for (j = 0; j < 3; j++) {
-                int32_t d = fl_angle_sub(lm->arm[j], lm->arm[i]);
-                if (j != i && (d > 32768 - 2048 || d < -32768 + 2048))
-                    opposite = true;
-            }
-            if (!opposite) {
-                *orientation = lm->arm[i];
-                return true;
-            }
+    case FL_LM_CORNER_TNET:
+        return t_stem(lm, orientation);
+    case FL_LM_CORNER_TFIELD:
+        /* a T's stem, or an X's arm (mod 90 deg: fl_landmark_orientation_period) */
+        if (lm->n_arms == 4) {
+            *orientation = lm->arm[0];
+            return true;
         }
-        return false;
+        return t_stem(lm, orientation);
     case FL_LM_X:
     case FL_LM_PENALTY_MARK:
     case FL_LM_CENTRE_MARK:
@@ -94,6 +108,29 @@ bool fl_landmark_orientation(const fl_landmark_t *lm, fl_angle_t *orientation)
         return true;
     default:
         return false;
+    }
+}
+
+int32_t fl_landmark_orientation_period(const fl_landmark_t *lm)
+{
+    if (lm == NULL)
+        return 0;
+    switch (lm->kind) {
+    case FL_LM_L:
+    case FL_LM_T:
+    case FL_LM_CORNER_C:
+    case FL_LM_CORNER_TNET:
+        return 65536;
+    case FL_LM_CORNER_TFIELD:
+        return lm->n_arms == 4 ? 16384 : 65536;
+    case FL_LM_X:
+    case FL_LM_PENALTY_MARK:
+    case FL_LM_CENTRE_MARK:
+        return 16384;
+    case FL_LM_CENTRE_CIRCLE:
+        return 32768;
+    default:
+        return 0;
     }
 }
 

@@ -29,7 +29,10 @@ static bool compatible(const fl_landmark_t *m, const fl_obs_t *o)
 {
     if (m->kind != o->kind)
         return false;
-    if (o->kind == FL_LM_POST) {
+    if (o->kind == FL_LM_NET) {
+        if (o->color != FL_COLOR_NONE && m->color != o->color)
+            return false;
+    } else if (o->kind == FL_LM_POST) {
         if (o->color != FL_COLOR_NONE && m->color != o->color)
             return false;
         if (o->side != FL_SIDE_UNKNOWN && m->side != o->side)
@@ -71,8 +74,10 @@ uint16_t fl_relmap_frame(const fl_relmap_t *s, const fl_obs_list_t *obs, fl_relm
         if (!usable(o, s->params.max_range_mm))
             continue;
         memset(&lm, 0, sizeof lm);
-        for (j = 0; j < field->n_landmarks && lm.n_cand < 16u; j++)
-            if (compatible(&field->landmarks[j], o))
+        /* candidates by fl_field_all_at id: landmarks, then seed 004's
+         * features (at most 255 ids: the maps have under 50) */
+        for (j = 0; j < fl_field_n_all(field) && j < 256u && lm.n_cand < 16u; j++)
+            if (compatible(fl_field_all_at(field, j), o))
                 lm.cand[lm.n_cand++] = (uint8_t)j;
         if (lm.n_cand == 0)
             continue;
@@ -101,7 +106,7 @@ static uint32_t term(const fl_field_t *field, const fl_relmap_lm_t *lm, int32_t 
     uint32_t best = cap;
     uint8_t c;
     for (c = 0; c < lm->n_cand; c++) {
-        const fl_landmark_t *m = &field->landmarks[lm->cand[c]];
+        const fl_landmark_t *m = fl_field_all_at(field, lm->cand[c]);
         int64_t dx = (int64_t)m->x_mm - qx, dy = (int64_t)m->y_mm - qy;
         int64_t d2 = dx * dx + dy * dy;
         if (d2 < (int64_t)best)

@@ -52,7 +52,7 @@ static void eq1(fl_relmap_t *s, const fl_relmap_frame_t *f, uint32_t *max_post, 
                 uint32_t z2;
                 uint8_t k;
                 for (k = 0; k < lm->n_cand; k++) {
-                    const fl_landmark_t *m = &s->field->landmarks[lm->cand[k]];
+                    const fl_landmark_t *m = fl_field_all_at(s->field, lm->cand[k]);
                     int64_t dx = (int64_t)m->x_mm - x, dy = (int64_t)m->y_mm - y;
                     int64_t dd = dx * dx + dy * dy - r2[i];
                     if (dd < 0)

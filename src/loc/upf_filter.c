@@ -232,7 +232,7 @@ static void ukf_obs(fl_upf_t *s, const fl_mcl_obs_c_t *c, upf_frame_t *f)
             s->stats.gated = upf_sat_inc(s->stats.gated);
             continue;
         }
-        lm = &s->core.field->landmarks[at.best];
+        lm = fl_field_all_at(s->core.field, (uint16_t)at.best);
         u.lx_mm = lm->x_mm;
         u.ly_mm = lm->y_mm;
         if (fl_ukf_update_obs(&g->mean, &g->cov, &u, &f->lim, &s->stats.repairs, NULL) == FL_OK) {

@@ -10,10 +10,11 @@
  * Invariant: every L/T/X lies where the listed lines (and the circle) meet,
  * and its arms are exactly the directions of the painted lines leaving it
  * (proved by host_tests/test_field.c, which recomputes the crossings from
- * the line list).  Frames and units: see include/fieldloc/field.h.
+ * the line list); so do seed 004's corner features of aibo2004 (a list of
+ * their own, fl_field_t.features; field.features_from_lines).  Frames and units: see include/fieldloc/field.h.
  * Memory: about 4 kB of read-only tables, no mutable state, no stack use
  * beyond a few words.  Cost: find O(fields * name length); count_kind and
- * nth_kind O(landmarks) (at most 33 per field).
+ * nth_kind O(landmarks) (at most 33 per field) or O(features) (18).
  *
  * Sources of the numbers (mm, line centres):
  *  spl2013  DESIGN.md "Fields" (SPL 2013 rules as used by seed 000):
@@ -278,6 +279,58 @@ static const fl_field_line_t aibo2004_lines[] = {
     BOX_LINES(2100, 1450, 500)
 };
 
+/* Seed 004's corner features on this model (its section 2; the list is
+ * recomputed from the lines, the circle and the posts by
+ * host_tests/test_field.c).  Seed 004 names where each type occurs (C "in
+ * the goal keeper area", T-field "the intersection of the walls and the
+ * inner field lines", T-net "goal field lines and the net") but gives no
+ * map; which crossing is which type below is inferred from its corner
+ * labels, seen from the field:
+ *   C        every L of painted lines: the 4 goalie-box corners (+-1450,
+ *            +-500) and the 4 field corners (+-2100, +-1350).  An L shows
+ *            a closed corner (white on both sides of the pixel, inside
+ *            the bend) next to an open one (carpet around it, outside).
+ *            On seed 004's walled field the field corners were wall
+ *            corners (white wall, no carpet beyond); in this model the
+ *            boundary is a painted line with 150 mm of carpet beyond it
+ *            (file top), so they look like the box corners.  Inferred.
+ *   T-net    every T within 300 mm of a goal post: the box sides meeting
+ *            the goal lines (+-2100, +-500), 200 mm beside the posts (+-300):
+ *            the net fills the window of the corner on the goal side.
+ *            Inferred (the box width is itself +-150 mm uncertain).
+ *   T-field  every other T (the halfway line meeting the touchlines, (0,
+ *            +-1350): seed 004's halfway line meeting the wall) and every
+ *            X (the halfway line crossing the circle, (0, +-150): an X's
+ *            four concave corners are closed corners, which pair up as
+ *            T-fields).  The X's are inferred: seed 004 does not say.
+ *   nets     the goal centres on the goal lines (+-2100, 0), colour of the
+ *            goal, goal +1 / -1 (as posts).
+ * Arms (and so orientations, obs.h) as the L, T or X each feature is. */
+#define FT_L(k, x, y, a, b) \
+    LM_(k, x, y, 2, a, b, 0, 0, FL_SIDE_UNKNOWN, FL_COLOR_NONE, 0, FL_COLOR_NONE)
+#define FT_T(k, x, y, a, b, c) \
+    LM_(k, x, y, 3, a, b, c, 0, FL_SIDE_UNKNOWN, FL_COLOR_NONE, 0, FL_COLOR_NONE)
+
+static const fl_landmark_t aibo2004_features[] = {
+    /* C: box front corners, then field corners */
+    FT_L(FL_LM_CORNER_C, 1450, 500, A_E, A_S), FT_L(FL_LM_CORNER_C, 1450, -500, A_E, A_N),
+    FT_L(FL_LM_CORNER_C, -1450, 500, A_W, A_S), FT_L(FL_LM_CORNER_C, -1450, -500, A_W, A_N),
+    FT_L(FL_LM_CORNER_C, -2100, -1350, A_E, A_N), FT_L(FL_LM_CORNER_C, -2100, 1350, A_E, A_S),
+    FT_L(FL_LM_CORNER_C, 2100, -1350, A_W, A_N), FT_L(FL_LM_CORNER_C, 2100, 1350, A_W, A_S),
+    /* T-field: halfway line x touchlines, halfway line x circle */
+    FT_T(FL_LM_CORNER_TFIELD, 0, 1350, A_E, A_W, A_S),
+    FT_T(FL_LM_CORNER_TFIELD, 0, -1350, A_E, A_W, A_N),
+    LM_CROSS4(FL_LM_CORNER_TFIELD, 0, 150), LM_CROSS4(FL_LM_CORNER_TFIELD, 0, -150),
+    /* T-net: box sides x goal lines */
+    FT_T(FL_LM_CORNER_TNET, 2100, 500, A_N, A_S, A_W),
+    FT_T(FL_LM_CORNER_TNET, 2100, -500, A_N, A_S, A_W),
+    FT_T(FL_LM_CORNER_TNET, -2100, 500, A_N, A_S, A_E),
+    FT_T(FL_LM_CORNER_TNET, -2100, -500, A_N, A_S, A_E),
+    /* nets */
+    LM_POINT(FL_LM_NET, 2100, 0, FL_SIDE_UNKNOWN, FL_COLOR_YELLOW, 1, FL_COLOR_NONE),
+    LM_POINT(FL_LM_NET, -2100, 0, FL_SIDE_UNKNOWN, FL_COLOR_SKYBLUE, -1, FL_COLOR_NONE)
+};
+
 /* ---- hl3x2 (numbers and their basis: file top) ---------------------- */
 
 static const fl_landmark_t hl3x2_lm[] = {
@@ -307,37 +360,37 @@ static const fl_field_t fields[] = {
         "spl2013", 9000, 6000, 50, 700, 750, 600, 2200, 0, 0, 2700, 100,
         1600, 100, 800, { FL_COLOR_YELLOW, FL_COLOR_YELLOW }, true,
         spl2013_lm, COUNT_OF(spl2013_lm), spl2013_lines, COUNT_OF(spl2013_lines),
-        0, 0
+        0, 0, NULL, 0
     },
     {
         "uva2013", 6000, 4000, 50, 700, 600, 600, 2200, 0, 0, 1200, 100,
         1400, 100, 800, { FL_COLOR_YELLOW, FL_COLOR_YELLOW }, true,
         uva2013_lm, COUNT_OF(uva2013_lm), uva2013_lines, COUNT_OF(uva2013_lines),
-        0, 0
+        0, 0, NULL, 0
     },
     {
         "spl2020", 9000, 6000, 50, 700, 750, 1650, 4000, 600, 2200, 3200, 100,
         1600, 100, 800, { FL_COLOR_WHITE, FL_COLOR_WHITE }, true,
         spl2020_lm, COUNT_OF(spl2020_lm), spl2020_lines, COUNT_OF(spl2020_lines),
-        0, 0
+        0, 0, NULL, 0
     },
     {
         "aibo2004", 4200, 2700, 25, 150, 150, 650, 1000, 0, 0, 0, 0,
         600, 50, 300, { FL_COLOR_SKYBLUE, FL_COLOR_YELLOW }, false,
         aibo2004_lm, COUNT_OF(aibo2004_lm), aibo2004_lines, COUNT_OF(aibo2004_lines),
-        100, 400
+        100, 400, aibo2004_features, COUNT_OF(aibo2004_features)
     },
     {
         "spl2016", 9000, 6000, 50, 700, 750, 600, 2200, 0, 0, 3200, 100,
         1600, 100, 800, { FL_COLOR_WHITE, FL_COLOR_WHITE }, true,
         spl2016_lm, COUNT_OF(spl2016_lm), spl2013_lines, COUNT_OF(spl2013_lines),
-        0, 0
+        0, 0, NULL, 0
     },
     {
         "hl3x2", 3000, 2000, 25, 350, 300, 300, 1100, 0, 0, 600, 50,
         800, 50, 450, { FL_COLOR_YELLOW, FL_COLOR_SKYBLUE }, false,
         hl3x2_lm, COUNT_OF(hl3x2_lm), hl3x2_lines, COUNT_OF(hl3x2_lines),
-        100, 300
+        100, 300, NULL, 0
     }
 };
 
@@ -396,13 +449,33 @@ const fl_field_t *fl_field_at(size_t i)
     return i < N_FIELDS ? &fields[i] : NULL;
 }
 
+bool fl_landmark_kind_is_feature(fl_landmark_kind_t kind)
+{
+    return (int)kind >= (int)FL_LM_CORNER_C && (int)kind <= (int)FL_LM_NET;
+}
+
+/* The table a kind lives in: features for seed 004's kinds. */
+static void kind_table(const fl_field_t *f, fl_landmark_kind_t kind,
+                       const fl_landmark_t **t, uint16_t *n)
+{
+    if (fl_landmark_kind_is_feature(kind)) {
+        *t = f->features;
+        *n = f->features == NULL ? 0 : f->n_features;
+    } else {
+        *t = f->landmarks;
+        *n = f->landmarks == NULL ? 0 : f->n_landmarks;
+    }
+}
+
 uint16_t fl_field_count_kind(const fl_field_t *f, fl_landmark_kind_t kind)
 {
-    uint16_t i, n = 0;
-    if (f == NULL || f->landmarks == NULL)
+    const fl_landmark_t *t;
+    uint16_t i, nt, n = 0;
+    if (f == NULL)
         return 0;
-    for (i = 0; i < f->n_landmarks; i++)
-        if (f->landmarks[i].kind == kind)
+    kind_table(f, kind, &t, &nt);
+    for (i = 0; i < nt; i++)
+        if (t[i].kind == kind)
             n++;
     return n;
 }
@@ -410,15 +483,40 @@ uint16_t fl_field_count_kind(const fl_field_t *f, fl_landmark_kind_t kind)
 const fl_landmark_t *fl_field_nth_kind(const fl_field_t *f,
                                        fl_landmark_kind_t kind, uint16_t i)
 {
-    uint16_t j, n = 0;
-    if (f == NULL || f->landmarks == NULL)
+    const fl_landmark_t *t;
+    uint16_t j, nt, n = 0;
+    if (f == NULL)
         return NULL;
-    for (j = 0; j < f->n_landmarks; j++) {
-        if (f->landmarks[j].kind != kind)
+    kind_table(f, kind, &t, &nt);
+    for (j = 0; j < nt; j++) {
+        if (t[j].kind != kind)
             continue;
         if (n == i)
-            return &f->landmarks[j];
+            return &t[j];
         n++;
     }
+    return NULL;
+}
+
+uint16_t fl_field_n_all(const fl_field_t *f)
+{
+    uint32_t n;
+    if (f == NULL)
+        return 0;
+    n = (f->landmarks == NULL ? 0u : f->n_landmarks) +
+        (f->features == NULL ? 0u : f->n_features);
+    return n > UINT16_MAX ? (uint16_t)UINT16_MAX : (uint16_t)n;
+}
+
+const fl_landmark_t *fl_field_all_at(const fl_field_t *f, uint16_t i)
+{
+    uint16_t nl;
+    if (f == NULL)
+        return NULL;
+    nl = f->landmarks == NULL ? 0 : f->n_landmarks;
+    if (i < nl)
+        return &f->landmarks[i];
+    if (f->features != NULL && (uint32_t)i - nl < f->n_features)
+        return &f->features[i - nl];
     return NULL;
 }

@@ -10,7 +10,8 @@
 #include <time.h>
 
 static const char *kind_name[FL_LM_KIND_COUNT] = {
-    "L", "T", "X", "penalty-mark", "centre-mark", "post", "centre-circle", "beacon"};
+    "L", "T", "X", "penalty-mark", "centre-mark", "post", "centre-circle", "beacon",
+    "C-corner", "T-field", "T-net", "net"};
 
 static int list_fields(void);
 
@@ -51,8 +52,19 @@ static int list_fields(void)
                2 * (int)fl_field_carpet_half_y_mm(f), (unsigned)f->n_landmarks);
         for (k = 0; k < FL_LM_KIND_COUNT; k++) {
             unsigned n = fl_field_count_kind(f, (fl_landmark_kind_t)k);
+            if (fl_landmark_kind_is_feature((fl_landmark_kind_t)k))
+                continue;
             if (n)
                 printf(" %u %s", n, kind_name[k]);
+        }
+        if (f->features != NULL && f->n_features > 0) {
+            /* seed 004's corner features, a list of their own (field.h) */
+            printf("; %u seed-004 features:", (unsigned)f->n_features);
+            for (k = 0; k < FL_LM_KIND_COUNT; k++) {
+                unsigned n = fl_field_count_kind(f, (fl_landmark_kind_t)k);
+                if (fl_landmark_kind_is_feature((fl_landmark_kind_t)k) && n)
+                    printf(" %u %s", n, kind_name[k]);
+            }
         }
         printf("%s\n", f->symmetric ? " (180-degree symmetric)" : "");
     }

@@ -155,7 +155,7 @@ static void er_tie(er_ctx_t *c, int32_t x, int32_t y, int32_t heading_deg)
  * localizer ignores it, confidence 0) with their ranges in cm. */
 static void er_obs_names(const fl_obs_list_t *obs, char *buf, size_t len)
 {
-    static const char kinds[FL_LM_KIND_COUNT + 1] = "LTXMmGCP";
+    static const char kinds[FL_LM_KIND_COUNT + 1] = "LTXMmGCPcfnN";
     size_t n = 0;
     uint16_t i;
     buf[0] = '\0';

@@ -947,7 +947,7 @@ void lr_print_step(FILE *f, uint32_t step, double t_s, const fl_loc_estimate_t *
 
 void lr_print_obs(FILE *f, const fl_obs_list_t *ol)
 {
-    static const char kc[] = "LTXPCGOB";
+    static const char kc[] = "LTXPCGOBcfnN";
     int q;
     for (q = 0; q < ol->n; q++) {
         const fl_obs_t *ob = &ol->obs[q];
@@ -1373,7 +1373,8 @@ void lr_walk_print_summary(FILE *f, const lr_walk_result_t *res)
 void lr_walk_print_vdiag(FILE *f, const lr_walk_result_t *res)
 {
     static const char *const names[FL_LM_KIND_COUNT] = {
-        "L", "T", "X", "penalty_mark", "centre_mark", "post", "circle", "beacon"};
+        "L", "T", "X", "penalty_mark", "centre_mark", "post", "circle", "beacon",
+        "corner_c", "corner_tfield", "corner_tnet", "net"};
     int k;
     fprintf(f, "# vision vs map at the true pose (per kind): obs matched wrong_kind false | "
                "visible found | mean |range err| %% mean |bearing err| deg\n");

@@ -20,7 +20,8 @@
 #define PH_PI 3.14159265358979323846
 #define PH_EDGE_PX 4
 
-static const char ph_kind_letter[FL_LM_KIND_COUNT] = {'L', 'T', 'X', 'P', 'M', 'G', 'C', 'B'};
+static const char ph_kind_letter[FL_LM_KIND_COUNT] = {'L', 'T', 'X', 'P', 'M', 'G', 'C',
+                                                          'B', 'c', 'f', 'n', 'N'};
 
 void ph_kinds(const int *count, char *buf, size_t n)
 {

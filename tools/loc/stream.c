@@ -71,7 +71,7 @@ void ls_write_reset_penalty(FILE *f, int32_t x_mm, int32_t pos_unc_mm, fl_angle_
 
 void ls_write_update(FILE *f, const fl_obs_list_t *obs, const fl_obs_view_t *view)
 {
-    static const char kc[] = "LTXPCGOB";
+    static const char kc[] = "LTXPCGOBcfnN";
     int i;
     fprintf(f, "update %d %d", (int)obs->n, (int)obs->dropped);
     if (view == NULL)
@@ -379,7 +379,7 @@ static int ls_body_line(ls_parser_t *p, char **tok, int nt)
 
 static int ls_obs_line(ls_parser_t *p, char **tok, int nt)
 {
-    static const char kc[] = "LTXPCGOB";
+    static const char kc[] = "LTXPCGOBcfnN";
     static const long lo[10] = {0, 0, 0, 0, LS_A_MIN, LS_A_MIN, 0, 0, LS_I_MIN, LS_I_MIN};
     static const long hi[10] = {4, 4, 2, LS_I_MAX, LS_A_MAX, LS_A_MAX, 1, 255, LS_I_MAX, LS_I_MAX};
     ls_stream_t *s = p->s;
@@ -392,7 +392,7 @@ static int ls_obs_line(ls_parser_t *p, char **tok, int nt)
         return ls_bad(p, "%sobs KIND COLOR COLOR2 SIDE RANGE BEARING ORIENTATION HAS_ORIENTATION "
                          "CONFIDENCE U_Q4 V_Q4", "");
     if (strlen(tok[1]) != 1 || (k = strchr(kc, tok[1][0])) == NULL)
-        return ls_bad(p, "unknown observation kind '%s' (L T X P C G O B)", tok[1]);
+        return ls_bad(p, "unknown observation kind '%s' (L T X P C G O B c f n N)", tok[1]);
     if (ls_ints(p, tok, 2, 10, lo, hi, v))
         return -1;
     if (ls_grow((void **)&s->obs, &s->cap_obs, s->n_obs, sizeof *s->obs))

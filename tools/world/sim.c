@@ -1145,13 +1145,19 @@ int sim_occluded(const sim_scenario_t *sc, const fl_camera_t *cam, int32_t x_mm,
     return sim_occ_test(&o, fx, fy, fz);
 }
 
-static fl_landmark_kind_t sim_kind_present(const fl_field_t *f, uint64_t *rng)
+/* A kind the field has among those the vision mode observes (landmark
+ * kinds for ltx, seed 004's feature kinds for corners, both for both). */
+static fl_landmark_kind_t sim_kind_present(const fl_field_t *f, int vision, uint64_t *rng)
 {
     fl_landmark_kind_t kinds[FL_LM_KIND_COUNT];
     int n = 0, k;
-    for (k = 0; k < FL_LM_KIND_COUNT; k++)
+    for (k = 0; k < FL_LM_KIND_COUNT; k++) {
+        int feat = fl_landmark_kind_is_feature((fl_landmark_kind_t)k);
+        if ((feat && vision == SIM_VISION_LTX) || (!feat && vision == SIM_VISION_CORNERS))
+            continue;
         if (fl_field_count_kind(f, (fl_landmark_kind_t)k) > 0)
             kinds[n++] = (fl_landmark_kind_t)k;
+    }
     if (n == 0)
         return FL_LM_L;
     k = (int)(sim_u01(rng) * n);
@@ -1301,8 +1307,11 @@ void sim_observe(const sim_scenario_t *sc, const fl_camera_t *cam,
     if (sc->white_points)
         sim_observe_points(sc, cam, &occ, x_mm, y_mm, heading, rng, out);
 
-    for (i = 0; i < f->n_landmarks; i++) {
-        const fl_landmark_t *lm = &f->landmarks[i];
+    /* ids of fl_field_all_at: the landmarks (ltx, both), then seed 004's
+     * features (corners, both) */
+    for (i = sc->vision == SIM_VISION_CORNERS ? f->n_landmarks : 0;
+         i < (sc->vision == SIM_VISION_LTX ? f->n_landmarks : fl_field_n_all(f)); i++) {
+        const fl_landmark_t *lm = fl_field_all_at(f, (uint16_t)i);
         double dx = (double)lm->x_mm - x_mm, dy = (double)lm->y_mm - y_mm;
         double rx = dx * ch + dy * sh, ry = -dx * sh + dy * ch;
         double range = sqrt(dx * dx + dy * dy), bearing;
@@ -1355,7 +1364,7 @@ void sim_observe(const sim_scenario_t *sc, const fl_camera_t *cam,
     }
     /* goal-post sides: known only when both posts of that goal are seen */
     for (i = 0; i < out->obs.n; i++) {
-        const fl_landmark_t *lm = &f->landmarks[out->obs_landmark[i]];
+        const fl_landmark_t *lm = fl_field_all_at(f, (uint16_t)out->obs_landmark[i]);
         if (lm->kind == FL_LM_POST && lm->goal != 0 && seen_goal[lm->goal > 0] >= 2)
             out->obs.obs[i].side = lm->side;
     }
@@ -1369,7 +1378,7 @@ void sim_observe(const sim_scenario_t *sc, const fl_camera_t *cam,
         for (tries = 0; tries < 8; tries++) {
             int32_t u = umin + (int32_t)(sim_u01(rng) * (double)(umax - umin + 1));
             int32_t v = vmin + (int32_t)(sim_u01(rng) * (double)(vmax - vmin + 1));
-            fl_landmark_kind_t kind = sim_kind_present(f, rng);
+            fl_landmark_kind_t kind = sim_kind_present(f, sc->vision, rng);
             double u_c = sim_u01(rng), u_o = sim_u01(rng);
             fl_point_t gp;
             fl_obs_t o;
@@ -1383,10 +1392,10 @@ void sim_observe(const sim_scenario_t *sc, const fl_camera_t *cam,
             o.range_mm = sim_iround(sqrt((double)gp.x_mm * gp.x_mm +
                                          (double)gp.y_mm * gp.y_mm));
             o.bearing = sim_angle(sim_atan2(gp.y_mm, gp.x_mm));
-            o.has_orientation = kind != FL_LM_POST && kind != FL_LM_BEACON;
+            o.has_orientation = kind != FL_LM_POST && kind != FL_LM_BEACON && kind != FL_LM_NET;
             o.orientation = o.has_orientation ? sim_angle((u_o - 0.5) * SIM_TWO_PI) : 0;
             o.side = FL_SIDE_UNKNOWN;
-            o.color = kind == FL_LM_POST ? f->goal_color[u_o < 0.5 ? 0 : 1]
+            o.color = kind == FL_LM_POST || kind == FL_LM_NET ? f->goal_color[u_o < 0.5 ? 0 : 1]
                        : kind == FL_LM_BEACON ? FL_COLOR_PINK : FL_COLOR_NONE;
             o.confidence = (uint8_t)(160 + (int)(u_c * 96));
             o.u_q4 = u;
@@ -1586,7 +1595,7 @@ int sim_step(sim_t *s, sim_step_t *out)
 
 static char sim_kind_char(fl_landmark_kind_t k)
 {
-    static const char c[FL_LM_KIND_COUNT + 1] = "LTXPCGOB";
+    static const char c[FL_LM_KIND_COUNT + 1] = "LTXPCGOBcfnN";
     return (int)k >= 0 && k < FL_LM_KIND_COUNT ? c[k] : '?';
 }
 

@@ -222,7 +222,21 @@ typedef struct {
      * observations, the walk and every random draw are the same either
      * way (the points have their own stream). */
     int white_points;
+
+    /* not part of the text form: which features feature mode observes
+     * (`fieldloc simulate --vision`).  SIM_VISION_LTX (0, the default) the
+     * field's landmarks (L/T/X crossings, marks, posts, circle, beacons)
+     * exactly as before; SIM_VISION_CORNERS seed 004's corner features and
+     * nets (fl_field_t.features: a field without them sees nothing);
+     * SIM_VISION_BOTH the landmarks, then the features.  The same noise,
+     * miss, false-positive and visibility model for every kind; false
+     * positives take a kind of the observed set(s). */
+    int vision;
 } sim_scenario_t;
+
+#define SIM_VISION_LTX 0
+#define SIM_VISION_CORNERS 1
+#define SIM_VISION_BOTH 2
 
 /* Robot-typical defaults (speeds, rates, noise; values and sources in
  * sim.c and fixtures/walks/README.md).  field/camera are left NULL and
@@ -299,8 +313,8 @@ typedef struct {
 
     /* observations of this frame (robot frame) */
     fl_obs_list_t obs;
-    /* truth per observation: index into field->landmarks, -1 for a false
-     * positive; confused[i] = 1 when the kind was swapped (L<->T) */
+    /* truth per observation: fl_field_all_at id (field->landmarks, then
+     * seed 004's features), -1 for a false positive; confused[i] = 1 when the kind was swapped (L<->T) */
     int16_t obs_landmark[FL_OBS_MAX];
     uint8_t obs_confused[FL_OBS_MAX];
 } sim_step_t;
