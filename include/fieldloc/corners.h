@@ -61,16 +61,20 @@
  *    64-bit integer square root per candidate, no angle at all.
  * Thresholds (defaults, rendered AIBO frames: carpet luma ~ 100, lines ~
  * 200 over 1-3 px, noise sigma 1.5 levels): min_grad 12 (a smoothed line
- * edge gives 40..120, the smoothed noise < 6); min_var 40 (two equal edges
- * at 33 degrees; perspective shows the field's right angles at 40..140
- * degrees); min_app 4096 (about 4 pixels of gradient 16 on the candidate's
- * isolines).
+ * edge gives 40..120, the smoothed noise < 6); min_var 24 (two equal edges
+ * at 25 degrees: the AIBO camera, 150..250 mm above the carpet, sees the
+ * field's right angles at 20..160 degrees; 40 lost the obtuse outer
+ * corners of near L's, host test corners.rendered: recall 0.19 at 40,
+ * 0.25 at 24); min_app 4096 (about 4 pixels of gradient 16 on the
+ * candidate's isolines).  With a camera, corners without a ground point
+ * within max_range_mm are dropped (room clutter above the horizon).
  *
  * Non-maximum suppression: a candidate is a corner when its response is
  * the largest in the (2 nms_r + 1)^2 square around it (ties: the first in
  * raster order).  Default nms_r 1: on a thin line the outer and inner
  * corner of an L are 2-3 px apart and both are needed (the pair is the
- * feature).
+ * feature).  A weak second maximum beside a strong corner can survive
+ * it; the pairing order (strongest pairs first) leaves it unpaired.
  *
  * Colour filter and labels, in the (2 label_r + 1)^2 window around the
  * corner pixel (default 5 x 5): white and carpet counted by the caller's
@@ -83,24 +87,43 @@
  *   open    otherwise (carpet the larger part, white above min_white);
  *   net-closed  closed, and at least min_net net pixels (the goals'
  *           yellow or sky-blue by beacon.h's boxes, fl_beacon_pixel_color)
- *           among the samples every 3rd pixel of the rows above the corner
- *           within net_r pixels (the net stands behind the goal line, so
- *           above the corner in the image, and at the AIBO's ranges it is
- *           20..40 px away from the T: seed 004's "small window" could not
- *           see it).
+ *           among about 20 x 10 samples of the rows above the corner within
+ *           net_r pixels, or with a camera net_mm at the corner's range
+ *           (4..64 px): the net stands behind the goal line, so above the
+ *           corner in the image, and at the AIBO's ranges it is 20..40 px
+ *           beside the T; seed 004's "small window" could not see it.
  * For a line t px wide, the 5 x 5 window of the outer corner of an L
  * holds about 2 * 2t white pixels and that of the inner corner 2 * 2t +
  * t^2 (+ the corner's own square): 40 % separates them for t >= 2 px; at
  * t = 1 px (lines beyond ~ 2.5 m) both are open and no C forms.
  *
- * Pairing: corners closer than pair_px (Euclidean, default 8 px) are
- * paired greedily, nearest first, each corner in one feature at most:
- * open + closed -> C, closed + closed -> T-field, closed + net-closed ->
- * T-net (net-closed + net-closed: T-net too).  Position: the midpoint of
- * the two corners (Q4 px); with a camera, range and bearing of that
- * pixel's ground point (fl_camera_pixel_to_ground); none (range 0) when it
- * has no ground point.  Confidence Q0.8: the smaller of the two corners'
- * V, halved when the pair is more than pair_px / 2 apart.
+ * Those absolute labels fail on the AIBO's views: its camera sees the
+ * 25 mm lines 1..10 px wide (thin across the view, wide along it), so a
+ * fixed window calls both corners of a thin L open and both of a thick
+ * one closed.  The default therefore types a pair relative to itself
+ * (rel_pct 60): the convex corner of an L has about half the white of
+ * its concave partner (2 t r - t^2 against 2 t r + t^2 for a line t px
+ * wide in a window of radius r), the two concave corners of a T about the
+ * same.  rel_pct 0 gives seed 004's rule on the labels above.
+ *
+ * Pairing: two corners closer than their pair distance (pair_px, or with
+ * a camera pair_mm at the first corner's range when more, at most 64 px)
+ * whose midpoint has at least min_mid_white white pixels in its 3 x 3
+ * square (an L's joint, a T's stem end: two corners of different lines
+ * have carpet between them) are paired greedily, the pair with the
+ * strongest weaker response first (t_first: all T pairs before the C
+ * pairs), each corner in one feature at most:
+ *   rel_pct 0:  open + closed -> C, closed + closed -> T-field, closed +
+ *               net-closed (or two net-closed) -> T-net;
+ *   rel_pct > 0: C when one corner has less than rel_pct % of the other's
+ *               white pixels (it is relabelled open, the other closed),
+ *               else T-net when either saw the net (both relabelled
+ *               net-closed / closed by their net samples), else T-field.
+ * Position: the midpoint of the two corners (Q4 px); with a camera, range
+ * and bearing of that pixel's ground point (fl_camera_pixel_to_ground);
+ * none (range 0) when it has no ground point.  Confidence Q0.8: the
+ * smaller of the two corners' V, halved when the pair is more than half
+ * its pair distance apart.
  *
  * Nets: not found again here.  fl_beacon_find (beacon.h) already finds
  * the AIBO goals' posts (sky-blue, and yellow with yellow_goals); the
@@ -118,8 +141,9 @@
  * most FL_CORNERS_MAX_CAND candidates (more are counted, not evaluated) x
  * (2 window_r + 1)^2 neighbours; suppression (2 nms_r + 1)^2 per evaluated
  * candidate; per kept corner (at most FL_CORNERS_MAX_CORNERS, more
- * counted) one label window and (2 net_r / 3 + 1) x (net_r / 3 + 1) net
- * samples; pairing O(corners^2).  No heap, no floating point.
+ * counted) one label window and at most 33 x 17 net samples (HSV
+ * each); pairing at most corners / 2 rounds of O(corners^2) pairs, each
+ * with one 3 x 3 colour probe.  No heap, no floating point.
  */
 #ifndef FIELDLOC_CORNERS_H
 #define FIELDLOC_CORNERS_H
