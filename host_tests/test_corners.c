@@ -46,9 +46,12 @@ static int ct_init(void)
     fl_color_params_default(&cp);
     fl_vision_params_default(&vp);
     fl_corners_params_default(&p);
-    if (getenv("CORNERS_TUNE")) {   /* min_var closed_white_pct t_first label_r pair_mm mid rel */
-        int a[7];
-        if (sscanf(getenv("CORNERS_TUNE"), "%d %d %d %d %d %d %d", &a[0], &a[1], &a[2], &a[3], &a[4], &a[5], &a[6]) == 7) {
+    /* CORNERS_TUNE="min_var closed_white_pct t_first label_r pair_mm
+     * min_mid_white rel_pct label_mode": other params, for tuning runs */
+    if (getenv("CORNERS_TUNE")) {
+        int a[8];
+        if (sscanf(getenv("CORNERS_TUNE"), "%d %d %d %d %d %d %d %d", &a[0], &a[1], &a[2], &a[3], &a[4], &a[5], &a[6], &a[7]) == 8) {
+            p.label_mode = a[7];
             p.rel_pct = a[6];
             p.min_mid_white = a[5];
             p.min_var = a[0];
@@ -335,8 +338,10 @@ static void test_labels(void)
     CHECK_EQ(ct_run(NULL), FL_OK);
     i = ct_near(59.5, 85.5, 2.0);
     CHECK(i >= 0 && S->cn.corner[i].label == FL_CORNER_OPEN);
+    CHECK(i >= 0 && S->cn.corner[i].convex == 1);    /* Sojka: convex */
     i = ct_near(65.5, 79.5, 2.0);
     CHECK(i >= 0 && S->cn.corner[i].label == FL_CORNER_CLOSED);
+    CHECK(i >= 0 && S->cn.corner[i].convex == -1);   /* concave */
     CHECK_EQ(S->cn.n_features, 1);
     CHECK_EQ(ct_count(FL_CFEAT_C), 1);
     if (S->cn.n_features == 1) {
@@ -354,6 +359,8 @@ static void test_labels(void)
         CHECK_EQ(S->cn.corner[i].label, FL_CORNER_CLOSED);
     CHECK_EQ(S->cn.n_features, 1);
     CHECK_EQ(ct_count(FL_CFEAT_T_FIELD), 1);
+    for (i = 0; i < S->cn.n_corners; i++)
+        CHECK_EQ(S->cn.corner[i].convex, -1);
     /* T under a yellow block (the net behind the goal line): T-net */
     ct_draw_t();
     ct_rect(110, 20, 180, 50, CT_YELLOW);
@@ -625,11 +632,11 @@ static void test_rendered(void)
     CHECK_EQ(n, frames);
     ct_print("rendered aibo2004", &s);
     CHECK(s.truth >= frames);
-    /* floors as measured (36 frames: recall 16/64 = 0.25, precision 17/46
-     * = 0.37; --quick, 12 frames: 5/22 = 0.23, 5/12 = 0.42), far under
-     * issue 21's targets (0.8, 0.9): see docs/DESIGN.md */
-    CHECK(s.found * 100 >= 18 * s.truth);
-    CHECK(s.correct * 100 >= 30 * s.det);
+    /* floors as measured (36 frames: recall 19/64 = 0.30, precision 20/54
+     * = 0.37; --quick, 12 frames: 8/22 = 0.36, 8/17 = 0.47), far under
+     * issue 21's targets (0.8, 0.9): see docs/DESIGN.md 14c */
+    CHECK(s.found * 100 >= 25 * s.truth);
+    CHECK(s.correct * 100 >= 33 * s.det);
     CHECK_LE(s.err_max, 300);
 }
 

@@ -77,9 +77,11 @@
  * it; the pairing order (strongest pairs first) leaves it unpaired.
  *
  * Colour filter and labels, in the (2 label_r + 1)^2 window around the
- * corner pixel (default 5 x 5): white and carpet counted by the caller's
- * colour table (color.h: FL_CLASS_WHITE and FL_CLASS_GREEN, the scanner's
- * classes); a corner with fewer than min_white white or min_green carpet
+ * corner pixel (default 5 x 5; with a camera, radius label_mm = 40 mm
+ * at the corner's range when that is more: 9 x 9 within about 2.2 m on
+ * the AIBO): white and carpet counted by the caller's colour table
+ * (color.h: FL_CLASS_WHITE and FL_CLASS_GREEN, the scanner's classes); a
+ * corner with fewer than min_white white or min_green carpet
  * pixels does not come from a field line and is dropped (seed 004: "the
  * detected corners are filtered depending on whether they come from a
  * white line segment").  Then
@@ -104,7 +106,11 @@
  * (rel_pct 60): the convex corner of an L has about half the white of
  * its concave partner (2 t r - t^2 against 2 t r + t^2 for a line t px
  * wide in a window of radius r), the two concave corners of a T about the
- * same.  rel_pct 0 gives seed 004's rule on the labels above.
+ * same (label_mode 1).  label_mode 0 (or rel_pct 0) gives seed 004's
+ * rule on the labels above; label_mode 2 types pairs by Sojka's convex /
+ * concave corner instead (fl_corner_t.convex: the weighted gradient sum
+ * and the edge pixels' centroid on the same side of Q: convex), which
+ * measured worse on the rendered frames (docs/DESIGN.md 14c).
  *
  * Pairing: two corners closer than their pair distance (pair_px, or with
  * a camera pair_mm at the first corner's range when more, at most 64 px)
@@ -177,6 +183,13 @@ typedef struct {
                                  0..2^24; 4096 */
     int32_t nms_r;            /* suppression radius, 1..8; 1 */
     int32_t label_r;          /* label window radius, 1..4; 2 (5 x 5) */
+    int32_t label_mm;         /* with a camera: radius this at the
+                                 corner's range when more than label_r
+                                 (at most 4), 0..500, 0 = off; 40 (1.6
+                                 line widths: the window then sees the
+                                 line's joint, not only its edge; host
+                                 test corners.rendered: recall 0.25 off,
+                                 0.28 at 25, 0.30 at 40 and 60) */
     int32_t min_white;        /* colour filter, pixels of the window; 2 */
     int32_t min_green;        /* 3 */
     int32_t closed_white_pct; /* closed when white >= this % of the
@@ -199,6 +212,10 @@ typedef struct {
     int32_t min_mid_white;    /* a pair needs this many white pixels in
                                  the 3 x 3 square at its midpoint (an L's
                                  joint, a T's stem end), 0..9; 4 */
+    int32_t label_mode;       /* how a pair is typed: 0 seed 004's labels;
+                                 1 white counts relative to each other
+                                 (rel_pct); 2 Sojka's convex / concave
+                                 (fl_corner_t.convex); default 1 */
     int32_t rel_pct;          /* 0: a pair's type from its labels; 1..100:
                                  from the two corners' white counts
                                  relative to each other (see file top);
@@ -236,9 +253,13 @@ typedef struct {
     uint8_t label;            /* fl_corner_label_t */
     uint8_t var;              /* V, Q8 (saturated at 255) */
     uint8_t n_white, n_green; /* label window counts */
+    uint8_t n_area;           /* label window pixels inside the image */
     uint8_t n_net;            /* net samples */
     uint8_t paired;           /* 1: used by a feature */
     uint8_t pair_lim;         /* pair distance at its range, px */
+    int8_t convex;            /* 1: the bright side is convex at the
+                                 corner (Sojka's convex corner), -1
+                                 concave, 0 undecided */
     uint32_t response;        /* V * A / 256 */
 } fl_corner_t;
 

@@ -38,6 +38,7 @@ void fl_corners_params_default(fl_corners_params_t *p)
     p->min_app = 4096;
     p->nms_r = 1;
     p->label_r = 2;
+    p->label_mm = 40;
     p->min_white = 2;
     p->min_green = 3;
     p->closed_white_pct = 40;
@@ -51,6 +52,7 @@ void fl_corners_params_default(fl_corners_params_t *p)
     p->t_first = 0;
     p->min_mid_white = 4;
     p->rel_pct = 60;
+    p->label_mode = 1;
     fl_beacon_params_default(&p->net);
 }
 
@@ -64,12 +66,12 @@ static bool cn_params_ok(const fl_corners_params_t *p)
     return p->smooth >= 0 && p->smooth <= 1 && p->min_grad >= 1 && p->min_grad <= 255 &&
            p->window_r >= 1 && p->window_r <= 4 && p->min_var >= 1 && p->min_var <= 256 &&
            p->min_app >= 0 && p->min_app <= (1 << 24) && p->nms_r >= 1 && p->nms_r <= 8 &&
-           p->label_r >= 1 && p->label_r <= 4 && p->min_white >= 0 && p->min_white <= 81 &&
+           p->label_r >= 1 && p->label_r <= 4 && p->label_mm >= 0 && p->label_mm <= 500 && p->min_white >= 0 && p->min_white <= 81 &&
            p->min_green >= 0 && p->min_green <= 81 && p->closed_white_pct >= 1 &&
            p->closed_white_pct <= 100 && p->net_r >= 0 && p->net_r <= 64 && p->net_mm >= 0 &&
            p->net_mm <= 2000 && p->pair_mm >= 0 && p->pair_mm <= 500 && p->min_net >= 1 &&
            p->min_net <= 255 && p->pair_px >= 1 && p->pair_px <= 32 && p->min_confidence >= 0 &&
-           p->min_confidence <= 255 && p->max_range_mm >= 0 && p->t_first >= 0 && p->t_first <= 1 && p->min_mid_white >= 0 && p->rel_pct >= 0 && p->rel_pct <= 100 &&
+           p->min_confidence <= 255 && p->max_range_mm >= 0 && p->t_first >= 0 && p->t_first <= 1 && p->min_mid_white >= 0 && p->rel_pct >= 0 && p->rel_pct <= 100 && p->label_mode >= 0 && p->label_mode <= 2 &&
            p->min_mid_white <= 9 && p->max_range_mm <= 20000 && cn_box_ok(&p->net.skyblue) && cn_box_ok(&p->net.yellow) &&
            cn_box_ok(&p->net.pink);
 }
@@ -168,10 +170,11 @@ static int32_t cn_gradient(fl_corners_t *c)
 
 /* Sojka's measure at (x, y) (an edge pixel window_r inside the image):
  * *var_q8 = V, *app = A. */
-static void cn_measure_at(const fl_corners_t *c, int32_t x, int32_t y, int32_t *var_q8, int32_t *app)
+static void cn_measure_at(const fl_corners_t *c, int32_t x, int32_t y, int32_t *var_q8, int32_t *app,
+                          int32_t *convex)
 {
     const int32_t w = c->width, r = c->params.window_r;
-    int64_t sx = 0, sy = 0, a = 0;
+    int64_t sx = 0, sy = 0, a = 0, gx = 0, gy = 0, px = 0, py = 0;
     int32_t dx, dy;
     for (dy = -r; dy <= r; dy++)
         for (dx = -r; dx <= r; dx++) {
@@ -189,8 +192,21 @@ static void cn_measure_at(const fl_corners_t *c, int32_t x, int32_t y, int32_t *
             a += wt;
             sx += (int64_t)wt * c->c2[i];
             sy += (int64_t)wt * c->s2[i];
+            gx += (int64_t)wt * c->nx[i];
+            gy += (int64_t)wt * c->ny[i];
+            px += (int64_t)wt * dx;
+            py += (int64_t)wt * dy;
         }
     *app = (int32_t)a;
+    if (convex) {
+        /* Sojka's convex / concave: the gradients (dark to bright) point
+         * into the bright sector; the edge pixels' centroid lies along
+         * the bisector of the sector the edges leave Q in.  Same side:
+         * the bright region is convex at Q. */
+        const int64_t g = gx / 128, p = px, gq = gy / 128, pq = py;
+        const int64_t dot = g * p + gq * pq;
+        *convex = dot > 0 ? 1 : dot < 0 ? -1 : 0;
+    }
     if (a <= 0) {
         *var_q8 = 0;
         return;
@@ -214,7 +230,7 @@ bool fl_corners_measure(const fl_corners_t *c, int32_t x, int32_t y, int32_t *va
     r = c->params.window_r;
     if (x < r || y < r || x >= c->width - r || y >= c->height - r || c->mag[y * c->width + x] == 0)
         return false;
-    cn_measure_at(c, x, y, var_q8, app);
+    cn_measure_at(c, x, y, var_q8, app, NULL);
     return true;
 }
 
@@ -234,7 +250,7 @@ static void cn_responses(fl_corners_t *c)
                 continue;
             }
             c->n_cand++;
-            cn_measure_at(c, x, y, &v, &a);
+            cn_measure_at(c, x, y, &v, &a, NULL);
             if (v >= c->params.min_var && a >= c->params.min_app)
                 c->resp[y * w + x] = (uint32_t)(((int64_t)v * a) >> 8) + 1u;
         }
@@ -292,14 +308,15 @@ fl_status_t fl_corners_run(fl_corners_t *c, const fl_image_t *img, const fl_colo
     for (y = 0; y < c->height; y++)
         for (x = 0; x < c->width; x++) {
             fl_corner_t k;
-            int32_t v, a;
+            int32_t v, a, cv;
             if (c->resp[y * c->width + x] == 0 || !cn_is_max(c, x, y))
                 continue;
             c->n_maxima++;
             memset(&k, 0, sizeof k);
             k.x = (int16_t)x;
             k.y = (int16_t)y;
-            cn_measure_at(c, x, y, &v, &a);
+            cn_measure_at(c, x, y, &v, &a, &cv);
+            k.convex = (int8_t)cv;
             k.var = (uint8_t)(v > 255 ? 255 : v);
             k.response = c->resp[y * c->width + x];
             if (camera && c->params.max_range_mm > 0) {

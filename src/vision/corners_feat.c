@@ -51,7 +51,9 @@ bool fl_corners_int_color_label(const fl_corners_t *c, const fl_image_t *img, co
                     const fl_camera_t *camera, fl_corner_t *k)
 {
     const fl_corners_params_t *p = &c->params;
-    const int32_t r = p->label_r;
+    /* radius: label_r, or with a camera label_mm at the corner's range
+     * when that is more (at most 4: 9 x 9) */
+    const int32_t r = cn_px_at(camera, k->x, k->y, p->label_mm, p->label_r, p->label_r, 4);
     int32_t dx, dy, nw = 0, ng = 0, nn = 0, area = 0;
     for (dy = -r; dy <= r; dy++)
         for (dx = -r; dx <= r; dx++) {
@@ -66,6 +68,7 @@ bool fl_corners_int_color_label(const fl_corners_t *c, const fl_image_t *img, co
         }
     k->n_white = (uint8_t)nw;
     k->n_green = (uint8_t)ng;
+    k->n_area = (uint8_t)area;
     if (nw < p->min_white || ng < p->min_green)
         return false;
     if (p->net_r > 0) {
@@ -106,10 +109,24 @@ static int32_t cn_pair_type(int32_t la, int32_t lb)
 static int32_t cn_pair_type_of(const fl_corners_params_t *p, const fl_corner_t *a, const fl_corner_t *b)
 {
     int32_t lo, hi;
-    if (p->rel_pct == 0)
+    if (p->label_mode == 2) {   /* by convexity: convex + concave = C */
+        if (a->convex == 0 || b->convex == 0 || (a->convex > 0 && b->convex > 0))
+            return 0;
+        if (a->convex != b->convex)
+            return FL_CFEAT_C;
+        return p->net_r > 0 && (a->n_net >= p->min_net || b->n_net >= p->min_net) ? FL_CFEAT_T_NET
+                                                                                 : FL_CFEAT_T_FIELD;
+    }
+    if (p->rel_pct == 0 || p->label_mode == 0)
         return cn_pair_type(a->label, b->label);
-    lo = a->n_white < b->n_white ? a->n_white : b->n_white;
-    hi = a->n_white < b->n_white ? b->n_white : a->n_white;
+    /* white fractions, a's and b's, over the common denominator */
+    lo = a->n_white * b->n_area;
+    hi = b->n_white * a->n_area;
+    if (lo > hi) {
+        const int32_t t = lo;
+        lo = hi;
+        hi = t;
+    }
     if (lo * 100 < p->rel_pct * hi)
         return FL_CFEAT_C;
     return p->net_r > 0 && (a->n_net >= p->min_net || b->n_net >= p->min_net) ? FL_CFEAT_T_NET
@@ -254,9 +271,11 @@ static void cn_add_pair(fl_corners_t *c, const fl_camera_t *camera, int32_t ia, 
     if (!f)
         return;
     f->type = (uint8_t)cn_pair_type_of(&c->params, a, b);
-    if (c->params.rel_pct > 0) {   /* the labels the pair says */
+    if (c->params.label_mode > 0 && (c->params.rel_pct > 0 || c->params.label_mode == 2)) {
+        /* the labels the pair says */
         if (f->type == FL_CFEAT_C) {
-            fl_corner_t *lo = a->n_white < b->n_white ? a : b;
+            fl_corner_t *lo = c->params.label_mode == 2 ? (a->convex > 0 ? a : b)
+                              : a->n_white * b->n_area < b->n_white * a->n_area ? a : b;
             a->label = FL_CORNER_CLOSED;
             b->label = FL_CORNER_CLOSED;
             lo->label = FL_CORNER_OPEN;
