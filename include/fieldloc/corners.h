@@ -178,7 +178,7 @@ typedef struct {
     int32_t min_grad;         /* edge pixel: |g| >= this, 1..255; 12 */
     int32_t window_r;         /* measure window radius, 1..4; 3 (7 x 7) */
     int32_t min_var;          /* doubled-angle circular variance, Q8,
-                                 1..256; 40 */
+                                 1..256; 24 */
     int32_t min_app;          /* apparentness sum w (|g| * 256 units),
                                  0..2^24; 4096 */
     int32_t nms_r;            /* suppression radius, 1..8; 1 */
@@ -219,10 +219,10 @@ typedef struct {
     int32_t rel_pct;          /* 0: a pair's type from its labels; 1..100:
                                  from the two corners' white counts
                                  relative to each other (see file top);
-                                 70 */
-    int32_t t_first;          /* 1: closed + closed pairs (T) are made
-                                 before open + closed (C), nearest first
-                                 within each; 0: nearest first over all */
+                                 60 */
+    int32_t t_first;          /* 1: T pairs are made before C pairs, each
+                                 in the pairing order; 0 (default): one
+                                 order over all */
     int32_t min_confidence;   /* features below are not reported, 0..255;
                                  0 */
     int32_t max_range_mm;     /* with a camera: corners without a ground
