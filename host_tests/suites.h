@@ -38,6 +38,7 @@ T_SUITE(camera_vision);
 T_SUITE(beacon);
 T_SUITE(hlvision);
 T_SUITE(skeleton);
+T_SUITE(corners);
 T_SUITE(goal_white);
 T_SUITE(localize);
 T_SUITE(picture);

@@ -477,6 +477,49 @@
 #error "FL_HLV_MAX_OBJECTS must be in 2..64"
 #endif
 
+/* ---- seed 004's corner stage (corners.h) ---------------------------------
+ * FL_CORNERS_MAX_WIDTH/HEIGHT  largest frame, pixels.  Default 208 x 160
+ *                    (the AIBO ERS-7's frame).  Range 16..FL_IMAGE_MAX_DIM
+ *                    each.  Memory: 12 bytes per pixel (smoothed luma,
+ *                    luma, gradient size, normal and doubled angle, the
+ *                    response): 400 KB at the default.
+ * FL_CORNERS_MAX_CAND  candidates (edge pixels) evaluated per frame.
+ *                    Default 8192 (a quarter of the AIBO frame; a field
+ *                    view has 1000..3000), range 64..1048576; more are
+ *                    counted and not evaluated (bounded work on noise).
+ * FL_CORNERS_MAX_CORNERS  labelled corners kept per frame.  Default 64,
+ *                    range 4..1024.
+ * FL_CORNERS_MAX_FEATURES  features (C, T-field, T-net, nets) per frame.
+ *                    Default 16, range 2..255. */
+#ifndef FL_CORNERS_MAX_WIDTH
+#define FL_CORNERS_MAX_WIDTH 208
+#endif
+#ifndef FL_CORNERS_MAX_HEIGHT
+#define FL_CORNERS_MAX_HEIGHT 160
+#endif
+#if FL_CORNERS_MAX_WIDTH < 16 || FL_CORNERS_MAX_WIDTH > FL_IMAGE_MAX_DIM || \
+    FL_CORNERS_MAX_HEIGHT < 16 || FL_CORNERS_MAX_HEIGHT > FL_IMAGE_MAX_DIM
+#error "FL_CORNERS_MAX_WIDTH and FL_CORNERS_MAX_HEIGHT must be in 16..FL_IMAGE_MAX_DIM"
+#endif
+#ifndef FL_CORNERS_MAX_CAND
+#define FL_CORNERS_MAX_CAND 8192
+#endif
+#if FL_CORNERS_MAX_CAND < 64 || FL_CORNERS_MAX_CAND > 1048576
+#error "FL_CORNERS_MAX_CAND must be in 64..1048576"
+#endif
+#ifndef FL_CORNERS_MAX_CORNERS
+#define FL_CORNERS_MAX_CORNERS 64
+#endif
+#if FL_CORNERS_MAX_CORNERS < 4 || FL_CORNERS_MAX_CORNERS > 1024
+#error "FL_CORNERS_MAX_CORNERS must be in 4..1024"
+#endif
+#ifndef FL_CORNERS_MAX_FEATURES
+#define FL_CORNERS_MAX_FEATURES 16
+#endif
+#if FL_CORNERS_MAX_FEATURES < 2 || FL_CORNERS_MAX_FEATURES > 255
+#error "FL_CORNERS_MAX_FEATURES must be in 2..255"
+#endif
+
 /* ---- the configuration fingerprint ---------------------------------------
  * FNV-1a over 32-bit words: the layout version, then every option above
  * (each one guarded by #ifndef in this file; the host test config.
@@ -488,6 +531,7 @@
 #define FL_CFG_MIX_(h, v) \
     (((((h) ^ ((unsigned long)(v) & 0xFFFFFFFFUL)) * 16777619UL)) & 0xFFFFFFFFUL)
 #define FL_CONFIG_FINGERPRINT ((uint32_t)( \
+    FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
     FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_(FL_CFG_MIX_( \
@@ -503,6 +547,7 @@
     FL_HOMOG_MAX_POINTS), FL_COACH_MAX_WIDTH), FL_COACH_MAX_HEIGHT), FL_COACH_MAX_RUNS), FL_COACH_MAX_REGIONS), FL_COACH_MAX_FEET), \
     FL_COACH_MAX_BAND_PX), FL_REPORT_MAX), FL_REPORT_MAX_PLAYERS), FL_ODOCAL_MAX_FIXES), FL_OBS_MAX_POINTS), FL_SKEL_MAX_WIDTH), \
     FL_SKEL_MAX_HEIGHT), FL_SKEL_MAX_CONTOUR), FL_SKEL_MAX_NODES), FL_SKEL_MAX_CROSSINGS), FL_SKEL_MAX_POINTS), FL_HLV_MAX_RUNS), \
-    FL_HLV_MAX_OBJECTS), FL_RELMAP_NX), FL_RELMAP_NY), FL_RELMAP_MAX_CAND), FL_RELMAP_MAX_OBS), FL_RELMAP_MAX_WHITE)))
+    FL_HLV_MAX_OBJECTS), FL_RELMAP_NX), FL_RELMAP_NY), FL_RELMAP_MAX_CAND), FL_RELMAP_MAX_OBS), FL_RELMAP_MAX_WHITE), \
+    FL_CORNERS_MAX_WIDTH), FL_CORNERS_MAX_HEIGHT), FL_CORNERS_MAX_CAND), FL_CORNERS_MAX_CORNERS), FL_CORNERS_MAX_FEATURES)))
 
 #endif /* FIELDLOC_CONFIG_H */

@@ -25,6 +25,7 @@
 #include "fieldloc/goal.h"
 #include "fieldloc/beacon.h"
 #include "fieldloc/skeleton.h"
+#include "fieldloc/corners.h"
 #include "fieldloc/vision.h"
 #include "fieldloc/hlvision.h"
 #include "fieldloc/coach.h"

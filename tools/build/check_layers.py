@@ -42,6 +42,7 @@ HEADER_LAYER = {
     "beacon.h": "vision", "vision.h": "vision", "color_auto.h": "vision",
     "skeleton.h": "vision",      # thinning and crossings of a binary mask
     "hlvision.h": "vision",      # seed 002's path: boxes, poles, mask, skeleton
+    "corners.h": "vision",       # seed 004's corners: C, T-field, T-net, nets
     "fuzzy.h": "loc", "localizer.h": "loc", "mcl.h": "loc",
     "ukf.h": "loc", "upf.h": "loc", "relmap.h": "loc",
     "report.h": "loc",           # observer reports: assignment, re-seed policy
