@@ -22,20 +22,27 @@ static fl_color_class_t cn_class(const fl_image_t *img, const fl_color_table_t *
 }
 
 /* Pixels that mm millimetres span at the ground range of pixel (x, y):
- * focal * mm / range, limited to lo..hi; dflt without a camera or a
- * ground point. */
-static int32_t cn_px_at(const fl_camera_t *camera, int32_t x, int32_t y, int32_t mm, int32_t dflt,
-                        int32_t lo, int32_t hi)
+ * focal * mm / range; 0 without a camera or a ground point.  (Six
+ * arguments at most: a seventh goes on the stack by push on x86-64, which
+ * `make stack` cannot bound statically.) */
+static int32_t cn_px_raw(const fl_camera_t *camera, int32_t x, int32_t y, int32_t mm)
 {
     fl_point_t g;
-    int32_t range, px;
+    int32_t range;
     if (!camera || mm <= 0 || !fl_camera_pixel_to_ground(camera, x * 16, y * 16, &g))
-        return dflt;
+        return 0;
     range = (int32_t)fl_hypot(g.x_mm, g.y_mm);
     if (range < 1)
         range = 1;
-    px = (int32_t)(((int64_t)camera->model.focal_q4 * mm / range + 8) >> 4);
-    return px < lo ? lo : px > hi ? hi : px;
+    return (int32_t)(((int64_t)camera->model.focal_q4 * mm / range + 8) >> 4);
+}
+
+/* cn_px_raw limited to lo..hi; dflt when it is 0 (no camera or ground). */
+static int32_t cn_px_lim(int32_t raw, int32_t dflt, int32_t lo, int32_t hi)
+{
+    if (raw == 0)
+        return dflt;
+    return raw < lo ? lo : raw > hi ? hi : raw;
 }
 
 /* Seed 004's label from the window's white count (of area pixels) and
@@ -53,7 +60,7 @@ bool fl_corners_int_color_label(const fl_corners_t *c, const fl_image_t *img, co
     const fl_corners_params_t *p = &c->params;
     /* radius: label_r, or with a camera label_mm at the corner's range
      * when that is more (at most 4: 9 x 9) */
-    const int32_t r = cn_px_at(camera, k->x, k->y, p->label_mm, p->label_r, p->label_r, 4);
+    const int32_t r = cn_px_lim(cn_px_raw(camera, k->x, k->y, p->label_mm), p->label_r, p->label_r, 4);
     int32_t dx, dy, nw = 0, ng = 0, nn = 0, area = 0;
     for (dy = -r; dy <= r; dy++)
         for (dx = -r; dx <= r; dx++) {
@@ -74,7 +81,7 @@ bool fl_corners_int_color_label(const fl_corners_t *c, const fl_image_t *img, co
     if (p->net_r > 0) {
         /* samples of the rows above the corner, within net_r px (with a
          * camera: net_mm at the corner's range), about 20 x 10 of them */
-        const int32_t nr = cn_px_at(camera, k->x, k->y, p->net_mm, p->net_r, 4, 64);
+        const int32_t nr = cn_px_lim(cn_px_raw(camera, k->x, k->y, p->net_mm), p->net_r, 4, 64);
         const int32_t step = nr >= 20 ? nr / 10 : 2;
         for (dy = -nr; dy < 0; dy += step)
             for (dx = -nr; dx <= nr; dx += step) {
@@ -299,9 +306,9 @@ void fl_corners_int_pair(fl_corners_t *c, const fl_image_t *img, const fl_color_
 {
     int32_t ia = 0, ib = 0, d2 = 0, guard = 0, i, pass;
     for (i = 0; i < c->n_corners; i++)
-        c->corner[i].pair_lim = (uint8_t)cn_px_at(camera, c->corner[i].x, c->corner[i].y,
-                                                  c->params.pair_mm, c->params.pair_px,
-                                                  c->params.pair_px, 64);
+        c->corner[i].pair_lim = (uint8_t)cn_px_lim(
+            cn_px_raw(camera, c->corner[i].x, c->corner[i].y, c->params.pair_mm),
+            c->params.pair_px, c->params.pair_px, 64);
     for (pass = c->params.t_first ? 0 : 1; pass < 2; pass++)
         while (guard++ < 2 * FL_CORNERS_MAX_CORNERS &&
                cn_closest_pair(c, img, colors, pass == 0, &ia, &ib, &d2))
