@@ -239,6 +239,13 @@ int cmd_sizes(int argc, char **argv)
      * (or beside) an instance; a player adds a tracker and a message */
     printf("%-18s %8lu B  the coach's image path at %dx%d (stored empty-field frame, masks, tables)\n",
            "fl_coach_t", (unsigned long)sizeof(fl_coach_t), FL_COACH_MAX_WIDTH, FL_COACH_MAX_HEIGHT);
+    /* the other vision paths: seed 002's (instead of fl_vision_t on its
+     * field) and seed 004's corner stage (beside it on the AIBO field) */
+    printf("%-18s %8lu B  seed 002's vision path (hlvision.h: posts, poles, skeleton crossings)\n",
+           "fl_hlv_t", (unsigned long)sizeof(fl_hlv_t));
+    printf("%-18s %8lu B  seed 004's corner stage at %dx%d (corners.h: smoothed luma, gradients, "
+           "responses)\n", "fl_corners_t", (unsigned long)sizeof(fl_corners_t),
+           FL_CORNERS_MAX_WIDTH, FL_CORNERS_MAX_HEIGHT);
     printf("%-18s %8lu B  a player's memory of the coach's reports (report.h)\n",
            "fl_report_tracker_t", (unsigned long)sizeof(fl_report_tracker_t));
     printf("%-18s %8lu B  one decoded report message (%d bytes on the wire)\n", "fl_report_msg_t",
