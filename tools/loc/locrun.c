@@ -705,6 +705,10 @@ static int lr_kind_group(fl_landmark_kind_t k)
         return 2;
     if (k == FL_LM_BEACON)
         return 3;
+    if (k == FL_LM_NET)
+        return 4;
+    if (fl_landmark_kind_is_feature(k))
+        return 5; /* seed 004's C, T-field, T-net */
     return 0; /* crossings and marks */
 }
 
@@ -714,6 +718,9 @@ static void lr_vdiag_frame(lr_vdiag_t *d, const sim_scenario_t *sc, const fl_cam
 {
     const fl_field_t *f = sc->field;
     double h = st->true_heading_rad, ch = cos(h), sh = sin(h);
+    /* the map points: the landmarks, and with a corner vision path
+     * (frames --vision corners|both) seed 004's features after them */
+    const int n_map = sc->vision == SIM_VISION_LTX ? f->n_landmarks : fl_field_n_all(f);
     int found[256] = {0};
     int i, j;
     for (i = 0; i < obs->n; i++) {
@@ -728,8 +735,8 @@ static void lr_vdiag_frame(lr_vdiag_t *d, const sim_scenario_t *sc, const fl_cam
             continue;
         dk = &d[o->kind];
         dk->n_obs++;
-        for (j = 0; j < f->n_landmarks && j < 256; j++) {
-            const fl_landmark_t *lm = &f->landmarks[j];
+        for (j = 0; j < n_map && j < 256; j++) {
+            const fl_landmark_t *lm = fl_field_all_at(f, (uint16_t)j);
             double dx = lm->x_mm - st->true_x_mm, dy = lm->y_mm - st->true_y_mm;
             double rx = dx * ch + dy * sh, ry = -dx * sh + dy * ch, e;
             if (lr_kind_group(lm->kind) != lr_kind_group(o->kind))
@@ -745,7 +752,7 @@ static void lr_vdiag_frame(lr_vdiag_t *d, const sim_scenario_t *sc, const fl_cam
             continue;
         }
         {
-            const fl_landmark_t *lm = &f->landmarks[bj];
+            const fl_landmark_t *lm = fl_field_all_at(f, (uint16_t)bj);
             double dx = lm->x_mm - st->true_x_mm, dy = lm->y_mm - st->true_y_mm;
             double rx = dx * ch + dy * sh, ry = -dx * sh + dy * ch;
             double tr = hypot(rx, ry), tb = atan2(ry, rx) * (180.0 / LR_PI), db;
@@ -764,8 +771,8 @@ static void lr_vdiag_frame(lr_vdiag_t *d, const sim_scenario_t *sc, const fl_cam
             found[bj] = 1;
         }
     }
-    for (j = 0; j < f->n_landmarks && j < 256; j++) {
-        const fl_landmark_t *lm = &f->landmarks[j];
+    for (j = 0; j < n_map && j < 256; j++) {
+        const fl_landmark_t *lm = fl_field_all_at(f, (uint16_t)j);
         double dx = lm->x_mm - st->true_x_mm, dy = lm->y_mm - st->true_y_mm;
         double rx = dx * ch + dy * sh, ry = -dx * sh + dy * ch;
         fl_point_t gp;
