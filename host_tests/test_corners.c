@@ -14,6 +14,7 @@
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
+#include "eval/detect.h"
 #include "world/render.h"
 #include "world/truth.h"
 
@@ -656,6 +657,27 @@ static void test_obs(void)
     CHECK_EQ(fl_corners_obs(&blank, &obs), 0);
 }
 
+/* eval-detect's corner score (tools/eval/eval_corners.c) on the aibo2004
+ * fixtures alone (no random frames): every aibo2004 fixture scored, the
+ * counts consistent, the goal-box C of aibo2004_t_box among the found. */
+static void test_eval(void)
+{
+    det_ctx_t dc;
+    evc_stats_t cs;
+    CHECK(ct_init());
+    memset(&cs, 0, sizeof cs);
+    CHECK_EQ(det_ctx_init(&dc), 0);
+    CHECK_EQ(evd_corners(&dc, "fixtures", 0, &S->cn, &cs), 8);
+    det_ctx_free(&dc);
+    t_info("aibo2004 fixtures: %d frames, found %d of %d, %d of %d detections right", cs.frames,
+           cs.found, cs.truth, cs.correct, cs.det);
+    CHECK_EQ(cs.fixtures, 8);
+    CHECK(cs.truth >= 1 && cs.found >= 1);
+    CHECK_LE(cs.found, cs.truth);
+    CHECK_LE(cs.correct, cs.det);
+    CHECK_LE(cs.err_sum, 300.0 * cs.found);
+}
+
 /* Random AIBO poses 0.4..2.6 m from one of seed 004's feature points,
  * facing it (+-20 deg), the head pitched to bring it into view; every
  * third frame YUYV, planar or RGB. */
@@ -733,6 +755,7 @@ void suite_corners(void)
     t_run("corners.labels", test_labels);
     t_run("corners.fixtures", test_fixtures);
     t_run("corners.obs", test_obs);
+    t_run("corners.eval", test_eval);
     t_run("corners.rendered", test_rendered);
     free(S);
     S = NULL;

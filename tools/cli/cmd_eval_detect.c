@@ -157,7 +157,7 @@ int cmd_eval_detect(int argc, char **argv)
         fl_corners_t *cn = malloc(sizeof *cn);
         evc_stats_t cs;
         memset(&cs, 0, sizeof cs);
-        if (cn == NULL || evd_corners(&ctx, fix, cn, &cs) < 0)
+        if (cn == NULL || evd_corners(&ctx, fix, EVD_CORNERS_RANDOM, cn, &cs) < 0)
             printf("aibo2004 corner features: not scored (out of memory or no field)\n");
         else
             evd_corners_print(&cs);

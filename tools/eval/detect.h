@@ -132,7 +132,7 @@ int evd_modern(det_ctx_t *ctx, const char *dir, const char *csv, int verbose, ev
                evd_border_t *b);
 void evd_border_print(const evd_border_t *b);
 /* Seed 004's corner features on aibo2004 (tools/eval/eval_corners.c):
- * the aibo2004 fixtures of dir's index.txt and random rendered AIBO frames
+ * the aibo2004 fixtures of dir's index.txt and n_random rendered AIBO frames
  * scored against the map's C / T-field / T-net points within 3 m.  cn:
  * the caller's corner state (large).  Returns frames scored, -1 without
  * the field or camera. */
@@ -141,7 +141,8 @@ typedef struct {
     int truth, found, det, correct;
     double err_sum;
 } evc_stats_t;
-int evd_corners(det_ctx_t *ctx, const char *dir, fl_corners_t *cn, evc_stats_t *s);
+#define EVD_CORNERS_RANDOM 36
+int evd_corners(det_ctx_t *ctx, const char *dir, int n_random, fl_corners_t *cn, evc_stats_t *s);
 /* The summary line and aibo_corners_precision / aibo_corners_recall. */
 void evd_corners_print(const evc_stats_t *s);
 /* Folder for a picture of every scored frame (NULL: none). */

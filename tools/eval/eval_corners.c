@@ -4,12 +4,12 @@
  *
  * Frames: the rendered aibo2004 fixtures of index.txt (each re-rendered
  * from its .scene, so the truth is the scene's own geometry) and
- * EVC_RANDOM random AIBO frames 0.4..2.6 m from one of the map's feature
- * points, facing it (+-20 deg), the head pitched to bring it into view
+ * n_random (eval-detect: EVD_CORNERS_RANDOM, 36) random AIBO frames
+ * 0.4..2.6 m from one of the map's feature points, facing it (+-20 deg), the head pitched to bring it into view
  * (seed 4004, every third frame YUYV, RGB or planar: the set
  * host_tests/test_corners.c corners.rendered scores with its own list).
- * Per frame: det_run's fl_vision_frame (its beacon stage finds the posts the nets
- * come from) and fl_corners_run with the scene's camera.
+ * Per frame: det_run's fl_vision_frame (its beacon stage finds the posts
+ * the nets come from) and fl_corners_run with the scene's camera.
  * Truth: field->features of kinds C, T-field and T-net (aibo2004's 16:
  * the goal-box and field corners, the halfway line's T's at the border
  * and its crossings with the centre circle, the box lines on the goal
@@ -28,7 +28,6 @@
 #include <string.h>
 
 #define EVC_RANGE_MM 3000.0
-#define EVC_RANDOM 36
 
 static int evc_kind(int cfeat)
 {
@@ -126,7 +125,7 @@ static uint32_t evc_rand(uint64_t *x)
     return (uint32_t)((*x * 2685821657736338717ull) >> 32);
 }
 
-int evd_corners(det_ctx_t *ctx, const char *dir, fl_corners_t *cn, evc_stats_t *s)
+int evd_corners(det_ctx_t *ctx, const char *dir, int n_random, fl_corners_t *cn, evc_stats_t *s)
 {
     char path[1024], line[1024];
     const fl_field_t *field = fl_field_find("aibo2004");
@@ -154,7 +153,7 @@ int evd_corners(det_ctx_t *ctx, const char *dir, fl_corners_t *cn, evc_stats_t *
         }
         fclose(idx);
     }
-    while (n < EVC_RANDOM && tries++ < 20 * EVC_RANDOM) {
+    while (n < n_random && tries++ < 20 * n_random) {
         static render_scene_t sc;
         const fl_landmark_t *t = &field->features[evc_rand(&rng) % (uint32_t)field->n_features];
         const double dist = 400 + evc_rand(&rng) % 2200;
