@@ -140,10 +140,15 @@ typedef struct {
     int frames, fixtures;
     int truth, found, det, correct;
     double err_sum;
+    /* per type, [0] C, [1] T-field, [2] T-net; range error of the found
+     * (|detected - true range|, mm) */
+    int truth_t[3], found_t[3], det_t[3], correct_t[3];
+    double rng_sum_t[3], rng_max_t[3];
 } evc_stats_t;
 #define EVD_CORNERS_RANDOM 36
 int evd_corners(det_ctx_t *ctx, const char *dir, int n_random, fl_corners_t *cn, evc_stats_t *s);
-/* The summary line and aibo_corners_precision / aibo_corners_recall. */
+/* The summary line, one line per type and aibo_corners_precision /
+ * aibo_corners_recall. */
 void evd_corners_print(const evc_stats_t *s);
 /* Folder for a picture of every scored frame (NULL: none). */
 void evd_set_pictures(const char *dir);

@@ -61,6 +61,7 @@ static void evc_score(const fl_corners_t *cn, const render_scene_t *sc, const fl
         if (range > EVC_RANGE_MM)
             continue;
         s->truth++;
+        s->truth_t[(int)t->kind - (int)FL_LM_CORNER_C]++;
         for (i = 0; i < cn->n_features; i++) {
             const fl_cfeat_t *d = &cn->feature[i];
             double e;
@@ -73,9 +74,15 @@ static void evc_score(const fl_corners_t *cn, const render_scene_t *sc, const fl
             }
         }
         if (best >= 0 && bd <= evc_tol(range)) {
+            const int ty = (int)t->kind - (int)FL_LM_CORNER_C;
+            const double re = fabs(cn->feature[best].range_mm - range);
             used[best] = 1;
             s->found++;
             s->err_sum += bd;
+            s->found_t[ty]++;
+            s->rng_sum_t[ty] += re;
+            if (re > s->rng_max_t[ty])
+                s->rng_max_t[ty] = re;
         }
     }
     for (i = 0; i < cn->n_features; i++) {
@@ -84,6 +91,7 @@ static void evc_score(const fl_corners_t *cn, const render_scene_t *sc, const fl
         if (evc_kind(d->type) < 0 || !d->has_ground || d->range_mm > EVC_RANGE_MM)
             continue;
         s->det++;
+        s->det_t[evc_kind(d->type) - (int)FL_LM_CORNER_C]++;
         for (k = 0; k < f->n_features && !ok; k++) {
             double rx, ry;
             if ((int)f->features[k].kind != evc_kind(d->type))
@@ -92,6 +100,7 @@ static void evc_score(const fl_corners_t *cn, const render_scene_t *sc, const fl
             ok = hypot(d->ground.x_mm - rx, d->ground.y_mm - ry) <= evc_tol(hypot(rx, ry));
         }
         s->correct += ok;
+        s->correct_t[evc_kind(d->type) - (int)FL_LM_CORNER_C] += ok;
     }
 }
 
@@ -182,11 +191,20 @@ int evd_corners(det_ctx_t *ctx, const char *dir, int n_random, fl_corners_t *cn,
 
 void evd_corners_print(const evc_stats_t *s)
 {
+    static const char *const names[3] = {"C", "T-field", "T-net"};
+    int k;
     printf("aibo2004 corner features (seed 004: C, T-field, T-net; %d fixtures + %d random "
            "frames, truth within %.0f m): %d of %d found, %d of %d detections right, ground "
            "error mean %.0f mm\n",
            s->fixtures, s->frames - s->fixtures, EVC_RANGE_MM / 1000, s->found, s->truth,
            s->correct, s->det, s->found ? s->err_sum / s->found : 0.0);
+    for (k = 0; k < 3; k++)
+        printf("  %-7s precision %.2f (%d of %d)  recall %.2f (%d of %d)  range error mean %.0f "
+               "max %.0f mm\n",
+               names[k], s->det_t[k] ? (double)s->correct_t[k] / s->det_t[k] : 0.0, s->correct_t[k],
+               s->det_t[k], s->truth_t[k] ? (double)s->found_t[k] / s->truth_t[k] : 0.0,
+               s->found_t[k], s->truth_t[k], s->found_t[k] ? s->rng_sum_t[k] / s->found_t[k] : 0.0,
+               s->rng_max_t[k]);
     printf("aibo_corners_precision %.2f\n", s->det ? (double)s->correct / s->det : 0.0);
     printf("aibo_corners_recall %.2f\n", s->truth ? (double)s->found / s->truth : 0.0);
 }
