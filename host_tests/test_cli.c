@@ -585,9 +585,8 @@ static void t_stream(void)
     expect_error_at(__LINE__, args, msg);
 }
 
-/* simulate --vision (seed 004's corner features, feature mode): refused on
- * a field without them, in frames mode (no corner image stage yet) and
- * for an unknown value; a corners walk exported as a stream (kinds c f n
+/* simulate --vision (seed 004's corner features): refused on a field
+ * without them (feature and frames mode) and for an unknown value; a corners walk exported as a stream (kinds c f n
  * N) replays to the same step lines. */
 static void t_vision(void)
 {
@@ -601,9 +600,9 @@ static void t_vision(void)
     expect_error("simulate --field spl2013 --features --vision corners",
                  "simulate: --vision corners: field spl2013 has no corner features (seed 004's, "
                  "fl_field_t.features; aibo2004 has them)");
-    expect_error("simulate --field aibo2004 --frames --vision both",
-                 "simulate: --vision both with --frames: not yet (no corner image stage; feature "
-                 "mode only)");
+    expect_error("simulate --field spl2013 --frames --vision both",
+                 "simulate: --vision both: field spl2013 has no corner features (seed 004's, "
+                 "fl_field_t.features; aibo2004 has them)");
     expect_error("simulate --field aibo2004 --vision lines", "simulate: --vision ltx|corners|both");
     snprintf(args, sizeof args, "simulate --field aibo2004 --seed 2 --steps 90 --vision corners "
                                 "--export-stream %s/corners.stream", t_dir);
@@ -641,6 +640,45 @@ static void t_vision(void)
         CHECK(strstr(st, "\nobs c ") != NULL && strstr(st, "\nobs f ") != NULL &&
               strstr(st, "\nobs n ") != NULL && strstr(st, "\nobs N ") != NULL);
         CHECK(strstr(st, "\nobs L ") == NULL && strstr(st, "\nobs G ") == NULL);
+    }
+    /* frames mode: the corner stage on 11 rendered frames; its
+     * observations only (no L/T/X), cached under a key naming the vision
+     * path and read back to the same step lines; an ltx run on that cache
+     * file does not read it (another key) */
+    {
+        static char o3[1 << 16], o4[1 << 16];
+        char path[1200], head[256];
+        const char *v;
+        int nobs = -1, nl = -1;
+        FILE *f;
+        snprintf(path, sizeof path, "%s/corners.obs", t_dir);
+        remove(path);
+        snprintf(args, sizeof args, "simulate --field aibo2004 --seed 2 --frames --steps 31 "
+                                    "--vision corners --obs-cache %s", path);
+        CHECK_EQ(cli_run(args, out, sizeof out, err, sizeof err), 0);
+        CHECK(strstr(out, "# vision corners: ") != NULL);
+        v = strstr(out, "# vision corner_c ");
+        CHECK(v != NULL && sscanf(v, "# vision corner_c %d", &nobs) == 1 && nobs > 0);
+        v = strstr(out, "# vision L ");
+        CHECK(v != NULL && sscanf(v, "# vision L %d", &nl) == 1 && nl == 0);
+        f = fopen(path, "rb");
+        CHECK(f != NULL && fgets(head, sizeof head, f) != NULL);
+        if (f != NULL)
+            fclose(f);
+        CHECK(strstr(head, " corners\n") != NULL);
+        CHECK_EQ(cli_run(args, o3, sizeof o3, err, sizeof err), 0);
+        a = strstr(out, "\nstep 0 ");
+        b = strstr(o3, "\nstep 0 ");
+        ea = a ? strstr(a, "\n# steps ") : NULL;
+        eb = b ? strstr(b, "\n# steps ") : NULL;
+        CHECK(ea != NULL && eb != NULL && ea - a == eb - b && strncmp(a, b, (size_t)(ea - a)) == 0);
+        snprintf(args, sizeof args, "simulate --field aibo2004 --seed 2 --frames --steps 31 "
+                                    "--obs-cache %s", path);
+        CHECK_EQ(cli_run(args, o4, sizeof o4, err, sizeof err), 0);
+        v = strstr(o4, "# vision corner_c ");
+        CHECK(v == NULL || (sscanf(v, "# vision corner_c %d", &nobs) == 1 && nobs == 0));
+        v = strstr(o4, "# vision L ");
+        CHECK(v != NULL && sscanf(v, "# vision L %d", &nl) == 1 && nl > 0);
     }
 }
 

@@ -14,6 +14,7 @@
  */
 #include "test.h"
 #include "fieldloc/fieldloc.h"
+#include "eval/detect.h"
 #include "world/render.h"
 #include "world/truth.h"
 
@@ -571,6 +572,112 @@ static void test_fixtures(void)
     }
 }
 
+/* fl_corners_obs on the rendered aibo2004_t_box fixture: its goal-box
+ * corner (1450, 500) at about 0.5 m comes out as an FL_LM_CORNER_C
+ * observation near the true range and bearing, the yellow goal as an
+ * FL_LM_NET of colour yellow; appending keeps what the list held, a full
+ * list counts the rest in dropped; NULL and an uninitialized state give 0. */
+static void test_obs(void)
+{
+    const fl_field_t *field = fl_field_find("aibo2004");
+    char err[256];
+    render_scene_t sc;
+    render_frame_t fr;
+    fl_camera_t cam;
+    static fl_obs_list_t obs;
+    static fl_corners_t blank;
+    fl_obs_t first;
+    int i, n, n_c = 0, n_net = 0, c_ok = 0;
+    double rx, ry, best = 1e9, best_b = 0;
+    CHECK(ct_init());
+    CHECK(field != NULL);
+    if (!field)
+        return;
+    if (render_scene_load("fixtures/frames/aibo2004_t_box.scene", &sc, err, sizeof err) != 0) {
+        t_info("skipped: %s (run from the repository root)", err);
+        return;
+    }
+    if (render_frame(&sc, &fr) != 0 || render_scene_camera(&sc, &cam) != FL_OK) {
+        CHECK(0);
+        return;
+    }
+    CHECK_EQ(ct_frame(&fr, &cam, field), FL_OK);
+    render_frame_free(&fr);
+    render_field_to_robot(&sc, 1450, 500, &rx, &ry);
+    fl_obs_list_clear(&obs);
+    memset(&first, 0, sizeof first);
+    first.kind = FL_LM_POST;
+    first.range_mm = 1000;
+    CHECK(fl_obs_list_push(&obs, &first));
+    n = (int)fl_corners_obs(&S->cn, &obs);
+    CHECK(n >= 2);
+    CHECK_EQ(obs.n, n + 1);
+    CHECK_EQ(obs.obs[0].kind, FL_LM_POST);   /* appended, not cleared */
+    CHECK_EQ(obs.dropped, 0);
+    for (i = 1; i < obs.n; i++) {
+        const fl_obs_t *o = &obs.obs[i];
+        CHECK(fl_landmark_kind_is_feature(o->kind));
+        CHECK(o->range_mm > 0 && o->range_mm <= 4500);
+        CHECK(o->confidence > 0);
+        CHECK(!o->has_orientation);
+        if (o->kind == FL_LM_NET) {
+            n_net++;
+            CHECK_EQ(o->color, FL_COLOR_YELLOW);
+        } else {
+            CHECK_EQ(o->color, FL_COLOR_NONE);
+        }
+        if (o->kind == FL_LM_CORNER_C) {
+            const double a = fl_angle_to_mdeg(o->bearing) * M_PI / 180000.0;
+            const double d = hypot(o->range_mm * cos(a) - rx, o->range_mm * sin(a) - ry);
+            n_c++;
+            if (d < best) {
+                best = d;
+                best_b = fabs(fl_angle_to_mdeg(o->bearing) / 1000.0 - atan2(ry, rx) * 180 / M_PI);
+                c_ok = abs((int)o->range_mm - (int)lround(hypot(rx, ry)));
+            }
+        }
+    }
+    t_info("t_box: %d obs, %d C, %d net; the box corner at %.0f mm: C %.0f mm off, range error %d "
+           "mm, bearing error %.1f deg", n, n_c, n_net, hypot(rx, ry), best, c_ok, best_b);
+    CHECK(n_c >= 1);
+    CHECK_EQ(n_net, 1);
+    /* measured: 3 mm off (range error 0 mm, bearing 0.4 deg) at 0.49 m;
+     * bounds a line width (25 mm) and 2 degrees */
+    CHECK_LE(best, 25);
+    CHECK_LE(c_ok, 25);
+    CHECK_LE(best_b, 2);
+    /* a full list: the rest counted */
+    obs.n = FL_OBS_MAX - 1;
+    obs.dropped = 0;
+    CHECK_EQ(fl_corners_obs(&S->cn, &obs), 1);
+    CHECK_EQ(obs.n, FL_OBS_MAX);
+    CHECK_EQ(obs.dropped, n - 1);
+    CHECK_EQ(fl_corners_obs(NULL, &obs), 0);
+    CHECK_EQ(fl_corners_obs(&S->cn, NULL), 0);
+    CHECK_EQ(fl_corners_obs(&blank, &obs), 0);
+}
+
+/* eval-detect's corner score (tools/eval/eval_corners.c) on the aibo2004
+ * fixtures alone (no random frames): every aibo2004 fixture scored, the
+ * counts consistent, the goal-box C of aibo2004_t_box among the found. */
+static void test_eval(void)
+{
+    det_ctx_t dc;
+    evc_stats_t cs;
+    CHECK(ct_init());
+    memset(&cs, 0, sizeof cs);
+    CHECK_EQ(det_ctx_init(&dc), 0);
+    CHECK_EQ(evd_corners(&dc, "fixtures", 0, &S->cn, &cs), 8);
+    det_ctx_free(&dc);
+    t_info("aibo2004 fixtures: %d frames, found %d of %d, %d of %d detections right", cs.frames,
+           cs.found, cs.truth, cs.correct, cs.det);
+    CHECK_EQ(cs.fixtures, 8);
+    CHECK(cs.truth >= 1 && cs.found >= 1);
+    CHECK_LE(cs.found, cs.truth);
+    CHECK_LE(cs.correct, cs.det);
+    CHECK_LE(cs.err_sum, 300.0 * cs.found);
+}
+
 /* Random AIBO poses 0.4..2.6 m from one of seed 004's feature points,
  * facing it (+-20 deg), the head pitched to bring it into view; every
  * third frame YUYV, planar or RGB. */
@@ -647,6 +754,8 @@ void suite_corners(void)
     t_run("corners.detector", test_detector);
     t_run("corners.labels", test_labels);
     t_run("corners.fixtures", test_fixtures);
+    t_run("corners.obs", test_obs);
+    t_run("corners.eval", test_eval);
     t_run("corners.rendered", test_rendered);
     free(S);
     S = NULL;

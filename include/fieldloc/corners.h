@@ -164,6 +164,7 @@
 #include "fieldloc/config.h"
 #include "fieldloc/fixed.h"
 #include "fieldloc/image.h"
+#include "fieldloc/obs.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -333,6 +334,19 @@ fl_status_t fl_corners_run(fl_corners_t *c, const fl_image_t *img, const fl_colo
  * (Q8) and A; false (outputs 0) outside the image, at the border, for a
  * pixel below min_grad, or without a run. */
 bool fl_corners_measure(const fl_corners_t *c, int32_t x, int32_t y, int32_t *var_q8, int32_t *app);
+
+/* The last run's features as observations for a localizer (obs.h),
+ * appended to out (not cleared: the L/T/X path's list may come first):
+ * C -> FL_LM_CORNER_C, T-field -> FL_LM_CORNER_TFIELD, T-net ->
+ * FL_LM_CORNER_TNET, the nets -> FL_LM_NET with color FL_COLOR_YELLOW /
+ * FL_COLOR_SKYBLUE.  Range and bearing of the feature's ground point,
+ * u_q4 / v_q4 its image position, confidence the feature's; no
+ * orientation (the stage measures none), side unknown.  A feature without
+ * a ground point, farther than FL_OBS_MAX_RANGE_MM or of confidence 0 is
+ * not reported; one that does not fit is counted in out->dropped.
+ * Returns the number appended; 0 for NULL, an uninitialized state or no
+ * run. */
+int32_t fl_corners_obs(const fl_corners_t *c, fl_obs_list_t *out);
 
 #ifdef __cplusplus
 }

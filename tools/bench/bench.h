@@ -32,7 +32,7 @@ int bench_loc_list(void) __attribute__((weak));
 int bench_loc_repeat(const char *name, const char *const *param, int n_param, long repeat,
                      int k_obs, int vision) __attribute__((weak));
 
-#define FL_BENCHES(X) X(fixed) X(scan) X(vision) X(skeleton) X(hlvision) X(adversarial) X(fuzzy) X(loc) X(coach)
+#define FL_BENCHES(X) X(fixed) X(scan) X(vision) X(skeleton) X(hlvision) X(corners) X(adversarial) X(fuzzy) X(loc) X(coach)
 #define FL_DECL_BENCH(name) void bench_##name(bench_ctx_t *ctx) __attribute__((weak));
 FL_BENCHES(FL_DECL_BENCH)
 

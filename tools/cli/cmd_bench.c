@@ -47,7 +47,7 @@ int cmd_bench(int argc, char **argv)
                     "       fieldloc bench --loc-list\n"
                     "       fieldloc bench --loc-frames NAME [--repeat N] [--obs K] [--vision]\n"
                     "                      [--param NAME=VALUE]...\n"
-                    "  sections: fixed scan vision skeleton hlvision adversarial fuzzy loc coach\n"
+                    "  sections: fixed scan vision skeleton hlvision corners adversarial fuzzy loc coach\n"
                     "  --loc-frames: N frames (predict, update with K observations, estimate) of\n"
                     "  localizer NAME after 10 s of the spl2013 walk, for callgrind\n"
                     "  (tools/bench/callgrind_loc.sh); --vision: the vision preset, a view\n");

@@ -152,6 +152,17 @@ int cmd_eval_detect(int argc, char **argv)
         snprintf(title, sizeof title, "rendered fixtures (truth within %.0f mm)", max_range);
         evd_print(title, &s, 1);
     }
+    if (!skip_fix) {
+        /* seed 004's corner stage on the aibo2004 frames */
+        fl_corners_t *cn = malloc(sizeof *cn);
+        evc_stats_t cs;
+        memset(&cs, 0, sizeof cs);
+        if (cn == NULL || evd_corners(&ctx, fix, EVD_CORNERS_RANDOM, cn, &cs) < 0)
+            printf("aibo2004 corner features: not scored (out of memory or no field)\n");
+        else
+            evd_corners_print(&cs);
+        free(cn);
+    }
     if (!real)
         real = rd_dir();
     evd_stats_clear(&s);

@@ -63,9 +63,11 @@
  * the field's landmarks (L/T/X crossings, marks, posts, circle, beacons);
  * corners seed 004's corner features and nets (fl_field_t.features: C,
  * T-field, T-net, net; an error on a field without them); both the two
- * sets (sim.h sim_scenario_t.vision).  In frames mode the option will
- * choose the vision path once the corner image stage exists: until then
- * corners and both are an error there ("not yet").  Per step: predict(odometry); on
+ * sets (sim.h sim_scenario_t.vision).  In frames mode it chooses the
+ * vision path run on each rendered frame (locrun.h lr_set_vision): ltx
+ * fl_vision_frame; corners seed 004's corner stage alone (fl_corners_run,
+ * fl_corners_obs; the nets from fl_vision_frame's goal posts); both the
+ * two lists together.  Per step: predict(odometry); on
  * SIM_EV_PENALIZED reset to the two touchline placement spots;
  * update(observations); estimate.
  *
@@ -99,7 +101,8 @@
  * the vision observations of the walk in FILE, or reads them from it when
  * it holds those of the same walk, field, seed and --every: the localizer
  * does not change what vision sees, so a study renders once (delete the
- * file when the vision code changes: its header records the walk only).
+ * file when the vision code changes: its header records the walk and the
+ * --vision path only).
  *
  * --print-obs adds after each step line one "#  obs ..." line per
  * observation given to the localizer (kind, range, bearing, orientation,
@@ -200,7 +203,8 @@ static void usage(void)
             "                         [--vision ltx|corners|both]\n"
             "  --vision: what feature mode observes: ltx (default) the L/T/X crossings, marks,\n"
             "            posts and beacons; corners seed 004's corner features and nets\n"
-            "            (aibo2004); both the two sets.  Frames mode: ltx only (not yet)\n"
+            "            (aibo2004); both the two sets.  Frames mode: the vision path run\n"
+            "            on each frame (corners: seed 004's corner stage)\n"
             "  --frames: render each frame at the true pose and run the vision path;\n"
             "            vision on every Nth step (--every, default 3 = 10 Hz at 30 Hz)\n"
             "  --seed 0..2147483647, --steps 0..100000000, --every 1..1000, --post-sides 0|1,\n"
@@ -453,14 +457,6 @@ int cmd_simulate(int argc, char **argv)
     if (seed >= 0)
         sc.seed = (uint64_t)seed;
     if (vision != SIM_VISION_LTX) {
-        if (frames) {
-            /* the corner image stage (issue 21 item 1) does not exist yet */
-            fprintf(stderr, "simulate: --vision %s with --frames: not yet (no corner image "
-                            "stage; feature mode only)\n",
-                    vision == SIM_VISION_BOTH ? "both" : "corners");
-            rc = 2;
-            goto done;
-        }
         if (sc.field->features == NULL || sc.field->n_features == 0) {
             fprintf(stderr, "simulate: --vision %s: field %s has no corner features "
                             "(seed 004's, fl_field_t.features; aibo2004 has them)\n",

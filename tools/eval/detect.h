@@ -131,6 +131,25 @@ void evd_border_clear(evd_border_t *b);
 int evd_modern(det_ctx_t *ctx, const char *dir, const char *csv, int verbose, evd_stats_t *s,
                evd_border_t *b);
 void evd_border_print(const evd_border_t *b);
+/* Seed 004's corner features on aibo2004 (tools/eval/eval_corners.c):
+ * the aibo2004 fixtures of dir's index.txt and n_random rendered AIBO frames
+ * scored against the map's C / T-field / T-net points within 3 m.  cn:
+ * the caller's corner state (large).  Returns frames scored, -1 without
+ * the field or camera. */
+typedef struct {
+    int frames, fixtures;
+    int truth, found, det, correct;
+    double err_sum;
+    /* per type, [0] C, [1] T-field, [2] T-net; range error of the found
+     * (|detected - true range|, mm) */
+    int truth_t[3], found_t[3], det_t[3], correct_t[3];
+    double rng_sum_t[3], rng_max_t[3];
+} evc_stats_t;
+#define EVD_CORNERS_RANDOM 36
+int evd_corners(det_ctx_t *ctx, const char *dir, int n_random, fl_corners_t *cn, evc_stats_t *s);
+/* The summary line, one line per type and aibo_corners_precision /
+ * aibo_corners_recall. */
+void evd_corners_print(const evc_stats_t *s);
 /* Folder for a picture of every scored frame (NULL: none). */
 void evd_set_pictures(const char *dir);
 

@@ -84,8 +84,25 @@ void lr_free(lr_t *r)
     r->params = NULL;
     free(r->hlv);
     r->hlv = NULL;
+    free(r->corners);
+    r->corners = NULL;
     if (r->det.colors != NULL || r->det.vis != NULL)
         det_ctx_free(&r->det);
+}
+
+int lr_set_vision(lr_t *r, int vision)
+{
+    fl_corners_params_t p;
+    if (r == NULL || (vision != SIM_VISION_LTX && vision != SIM_VISION_CORNERS &&
+                      vision != SIM_VISION_BOTH))
+        return -1;
+    r->vision = vision;
+    if (vision == SIM_VISION_LTX)
+        return 0;
+    if (r->corners == NULL && (r->corners = malloc(sizeof *r->corners)) == NULL)
+        return -1;
+    fl_corners_params_default(&p);
+    return fl_corners_init(r->corners, &p) == FL_OK ? 0 : -1;
 }
 
 /* The largest |dx| or |dy| the localizer takes in one predict call:
@@ -200,6 +217,13 @@ int lr_frame(lr_t *r, const fl_image_t *img, const fl_camera_pose_t *pose)
         r->colors_ready = 1;
     }
     fl_vision_frame(r->det.vis, r->det.colors, img, &r->cam, r->field, &r->obs);
+    if (r->vision != SIM_VISION_LTX && r->corners != NULL) {
+        /* seed 004's corner path: nets from this frame's posts */
+        if (r->vision == SIM_VISION_CORNERS)
+            fl_obs_list_clear(&r->obs);
+        if (fl_corners_run(r->corners, img, r->det.colors, &r->cam, &r->det.vis->beacons) == FL_OK)
+            (void)fl_corners_obs(r->corners, &r->obs);
+    }
     if (r->colors != NULL)
         (void)colors_opt_track(r->det.colors, &r->det.vis->scan);
     r->frames++;
@@ -681,6 +705,10 @@ static int lr_kind_group(fl_landmark_kind_t k)
         return 2;
     if (k == FL_LM_BEACON)
         return 3;
+    if (k == FL_LM_NET)
+        return 4;
+    if (fl_landmark_kind_is_feature(k))
+        return 5; /* seed 004's C, T-field, T-net */
     return 0; /* crossings and marks */
 }
 
@@ -690,6 +718,9 @@ static void lr_vdiag_frame(lr_vdiag_t *d, const sim_scenario_t *sc, const fl_cam
 {
     const fl_field_t *f = sc->field;
     double h = st->true_heading_rad, ch = cos(h), sh = sin(h);
+    /* the map points: the landmarks, and with a corner vision path
+     * (frames --vision corners|both) seed 004's features after them */
+    const int n_map = sc->vision == SIM_VISION_LTX ? f->n_landmarks : fl_field_n_all(f);
     int found[256] = {0};
     int i, j;
     for (i = 0; i < obs->n; i++) {
@@ -704,8 +735,8 @@ static void lr_vdiag_frame(lr_vdiag_t *d, const sim_scenario_t *sc, const fl_cam
             continue;
         dk = &d[o->kind];
         dk->n_obs++;
-        for (j = 0; j < f->n_landmarks && j < 256; j++) {
-            const fl_landmark_t *lm = &f->landmarks[j];
+        for (j = 0; j < n_map && j < 256; j++) {
+            const fl_landmark_t *lm = fl_field_all_at(f, (uint16_t)j);
             double dx = lm->x_mm - st->true_x_mm, dy = lm->y_mm - st->true_y_mm;
             double rx = dx * ch + dy * sh, ry = -dx * sh + dy * ch, e;
             if (lr_kind_group(lm->kind) != lr_kind_group(o->kind))
@@ -721,7 +752,7 @@ static void lr_vdiag_frame(lr_vdiag_t *d, const sim_scenario_t *sc, const fl_cam
             continue;
         }
         {
-            const fl_landmark_t *lm = &f->landmarks[bj];
+            const fl_landmark_t *lm = fl_field_all_at(f, (uint16_t)bj);
             double dx = lm->x_mm - st->true_x_mm, dy = lm->y_mm - st->true_y_mm;
             double rx = dx * ch + dy * sh, ry = -dx * sh + dy * ch;
             double tr = hypot(rx, ry), tb = atan2(ry, rx) * (180.0 / LR_PI), db;
@@ -740,8 +771,8 @@ static void lr_vdiag_frame(lr_vdiag_t *d, const sim_scenario_t *sc, const fl_cam
             found[bj] = 1;
         }
     }
-    for (j = 0; j < f->n_landmarks && j < 256; j++) {
-        const fl_landmark_t *lm = &f->landmarks[j];
+    for (j = 0; j < n_map && j < 256; j++) {
+        const fl_landmark_t *lm = fl_field_all_at(f, (uint16_t)j);
         double dx = lm->x_mm - st->true_x_mm, dy = lm->y_mm - st->true_y_mm;
         double rx = dx * ch + dy * sh, ry = -dx * sh + dy * ch;
         fl_point_t gp;
@@ -1076,9 +1107,14 @@ static FILE *lr_cache_open(const sim_scenario_t *sc, const char *path, int every
     char want[128], have[128];
     FILE *cache;
     *reading = 0;
-    snprintf(want, sizeof want, "fieldloc-obs-cache 1 %s %s %llu %d %u %d\n", sc->name,
+    /* the vision path is part of the key (ltx: the header as before, so
+     * its caches stay valid; corners / both: a word more) */
+    snprintf(want, sizeof want, "fieldloc-obs-cache 1 %s %s %llu %d %u %d%s\n", sc->name,
              sc->field->name, (unsigned long long)sc->seed, every,
-             (unsigned)sizeof(fl_obs_list_t), (int)(sc->duration_s * 1000));
+             (unsigned)sizeof(fl_obs_list_t), (int)(sc->duration_s * 1000),
+             sc->vision == SIM_VISION_CORNERS ? " corners"
+             : sc->vision == SIM_VISION_BOTH  ? " both"
+                                              : "");
     cache = fopen(path, "rb");
     if (cache != NULL && fgets(have, sizeof have, cache) != NULL && !strcmp(have, want)) {
         *reading = 1;
@@ -1127,6 +1163,15 @@ int lr_walk_run(const sim_scenario_t *sc, const lr_walk_opts_t *o,
         return lr_fail(err, err_len, 0, "invalid scenario");
     }
     if (lr_init(&lr, o->loc, sc->field, sc->camera, o->params, err, err_len) != 0) {
+        free(sim);
+        free(st);
+        free(job);
+        return -1;
+    }
+    if (o->frames && lr_set_vision(&lr, sc->vision) != 0) {
+        if (err)
+            snprintf(err, (size_t)err_len, "out of memory (corner stage)");
+        lr_free(&lr);
         free(sim);
         free(st);
         free(job);

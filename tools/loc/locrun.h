@@ -77,6 +77,12 @@ typedef struct {
                                    and tracked after every one; NULL: the
                                    defaults, untouched */
     int colors_ready;           /* the first frame set them up */
+    int vision;                 /* which vision path lr_frame runs (sim.h
+                                   SIM_VISION_*; lr_set_vision): 0 = ltx,
+                                   fl_vision_frame alone */
+    fl_corners_t *corners;      /* seed 004's corner stage (malloc'd by
+                                   lr_set_vision for corners / both); NULL
+                                   with ltx */
 } lr_t;
 
 /* loc NULL: "fuzzy".  params (loc->params_size bytes) NULL: the
@@ -86,6 +92,15 @@ typedef struct {
 int lr_init(lr_t *r, const fl_localizer_t *loc, const fl_field_t *field,
             const fl_camera_model_t *model, const void *params, char *err, int err_len);
 void lr_free(lr_t *r);
+
+/* The vision path of lr_frame (seed 004's corner stage, issue 21):
+ * SIM_VISION_LTX (0, what lr_init sets) fl_vision_frame's observations;
+ * SIM_VISION_CORNERS fl_vision_frame still runs (its beacon stage finds
+ * the goal posts the nets come from) but the list holds only
+ * fl_corners_obs's C / T-field / T-net / net observations; SIM_VISION_BOTH
+ * fl_vision_frame's list with the corner observations appended.  The hlv
+ * path (hl3x2) ignores it.  0, or -1 (out of memory, bad value). */
+int lr_set_vision(lr_t *r, int vision);
 
 void lr_predict(lr_t *r, double dx_mm, double dy_mm, double dtheta_rad);
 
