@@ -463,6 +463,24 @@ static void test_bad_input(void)
     CHECK(fl_relmap_check(s));
     CHECK(fl_relmap_estimate(s, &e1));
     CHECK(abs(e1.x_mm - 3000) < 400 && abs(e1.y_mm - 1000) < 400);
+    /* a pose prior, then a penalty placement on the other half (libFuzzer:
+     * the placement's half and the pose disc left no cell at the next
+     * reset): the placement's half replaces the pose */
+    fl_relmap_set_prior_pose(s, 3000, 1000, 300);
+    fl_relmap_reset_penalty(s, -1500, 200);
+    CHECK(!s->prior_pose && s->prior_half == -1);
+    fl_relmap_reset_ignorance(s);
+    CHECK(fl_relmap_check(s));
+    /* and should two priors ever leave no cell, ignorance is the carpet */
+    s->prior_half = -1;
+    s->prior_pose = true;
+    s->prior_x_mm = 3000;
+    s->prior_y_mm = 1000;
+    s->prior_r_mm = 0;
+    fl_relmap_reset_ignorance(s);
+    CHECK(fl_relmap_check(s));
+    CHECK(fl_relmap_estimate(s, &e1));
+    CHECK(e1.state == FL_LOC_LOST || e1.state == FL_LOC_AMBIGUOUS);
     fl_relmap_clear_prior(s);
     CHECK(fl_relmap_check(s));
     /* bounded: at most max_cand relative maps a frame, however many

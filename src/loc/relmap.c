@@ -131,17 +131,26 @@ static bool in_prior(const fl_relmap_t *s, int32_t x, int32_t y)
     return true;
 }
 
-/* Uniform over the prior's region (every particle without a prior). */
+/* Uniform over the prior's region (every particle without a prior).  A
+ * region that holds no cell (the entry points keep one prior at a time, so
+ * none should) gives the whole carpet: the belief is never empty. */
 static void uniform(fl_relmap_t *s)
 {
     int ix, iy;
+    uint32_t inside = 0;
     for (iy = 0; iy < FL_RELMAP_NY; iy++)
         for (ix = 0; ix < FL_RELMAP_NX; ix++) {
             int32_t x, y;
+            bool in;
             fl_relmap_cell_pos(s, ix, iy, &x, &y);
-            s->bel[iy * FL_RELMAP_NX + ix] = in_prior(s, x, y) ? 65535u : 0u;
+            in = in_prior(s, x, y);
+            inside += in;
+            s->bel[iy * FL_RELMAP_NX + ix] = in ? 65535u : 0u;
             s->head[iy * FL_RELMAP_NX + ix] = 0;
         }
+    if (inside == 0)
+        for (ix = 0; ix < FL_RELMAP_N; ix++)
+            s->bel[ix] = 65535u;
     s->ignorance = true;
     s->heading_known = false;
     s->half_known = s->prior_half != 0 || s->prior_pose;
@@ -274,9 +283,10 @@ void fl_relmap_reset_penalty(fl_relmap_t *s, int32_t x_mm, int32_t pos_unc_mm)
     told(s);
     blob(s, x_mm, hw, (fl_angle_t)-FL_ANGLE_90, pos_unc_mm);
     blob(s, x_mm, -hw, (fl_angle_t)FL_ANGLE_90, pos_unc_mm);
-    if (x_mm != 0)
+    if (x_mm != 0) {
         s->prior_half = (int8_t)(x_mm < 0 ? -1 : 1);
-    else
+        s->prior_pose = false;   /* one prior at a time (set_prior_half) */
+    } else
         s->half_known = false;   /* the halfway spots are each other's mirror */
 }
 
