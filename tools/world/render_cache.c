@@ -146,6 +146,16 @@ static int cache_path(const render_scene_t *sc, char *path, size_t cap, char **k
     return 0;
 }
 
+int render_cache_file(const render_scene_t *sc, char *path, size_t cap)
+{
+    char *key = NULL;
+    size_t key_len = 0;
+    if (sc == NULL || path == NULL || cache_path(sc, path, cap, &key, &key_len) != 0)
+        return -1;
+    free(key);
+    return 0;
+}
+
 int render_cache_load(const render_scene_t *sc, render_frame_t *out)
 {
     char path[1024], *key = NULL, *stored = NULL;

@@ -16,4 +16,8 @@ int render_cache_load(const render_scene_t *sc, render_frame_t *out);
  * error leaves no file). */
 void render_cache_store(const render_scene_t *sc, const render_frame_t *fr);
 
+/* The scene's file in the cache (0), or -1 when the cache is off (for
+ * tests: no directory listing, which qemu-user cannot always do). */
+int render_cache_file(const render_scene_t *sc, char *path, size_t cap);
+
 #endif
