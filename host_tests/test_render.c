@@ -270,7 +270,7 @@ static int file_exists(const char *path)
  * used (the frame is rendered afresh). */
 static void test_cache(void)
 {
-    char dir[] = "/tmp/fl_render_cache_XXXXXX", path[1200], other[1200], cmd[1300];
+    char dir[] = "/tmp/fl_render_cache_XXXXXX", path[1200], other[1200], cmd[2500];
     char *saved = cache_off();
     render_scene_t sc, sc2;
     render_frame_t fresh, a, b, c;
@@ -336,6 +336,7 @@ static void test_cache(void)
     }
     /* scene 1's file under scene 2's name: scene 2 is rendered */
     CHECK_EQ(render_frame(&sc2, &c), 0);
+    render_frame_free(&c);
     CHECK(file_exists(other));
     CHECK(other[0] != '\0');
     snprintf(cmd, sizeof cmd, "cp '%s' '%s'", path, other);
