@@ -6,7 +6,9 @@
 # side (tools/build/loc_table.py), the reliability diagram of each
 # (fieldloc reliability over the frames walks' observations, kept with
 # --obs-cache), seed 002 on its own field (tools/build/results_seed002.sh:
-# eval-relmap and every localizer's walks on hl3x2) and detection scoring.  Run through
+# eval-relmap and every localizer's walks on hl3x2), seed 004's corner
+# features beside the L/T/X path on aibo2004 (tools/build/results_seed004.sh)
+# and detection scoring.  Run through
 # `make results` (which runs `make test` first, so BUILD/test.log is fresh);
 # the generated file is never edited by hand.
 # Usage: tools/build/results.sh BUILD OUT
@@ -47,6 +49,12 @@
 # in feature mode and $HL_FRAME_SEEDS (default 1-3) in frames mode (each
 # rendered once, about 80 s of CPU), RNG seeds $RNG_SEEDS.
 #
+# Seed 004's corner features (tools/build/results_seed004.sh, about 2
+# minutes): eval-detect's corner lines, `bench --only corners` and the
+# aibo2004 frames walk of seed 1 through each vision path (ltx, corners,
+# both) for every localizer; the ltx walk's cache is the one rendered above
+# when aibo2004 and seed 1 are among the walks.
+#
 # Other knobs, for trying the script on a subset:
 #   OBS_CACHE_DIR=DIR  copy DIR/FIELD.SEED.obs into the work folder before
 #                      the walks (simulate reads them instead of rendering;
@@ -60,6 +68,8 @@
 #   FIELDS="a b"       those fields only in the walks and the comparison
 #                      (default: spl2013 uva2013 aibo2004 spl2020)
 #   SKIP_SEED002=1     no section "Seed 002 on its own field" (the document
+#                      says so)
+#   SKIP_SEED004=1     no section "Seed 004's corner features" (the document
 #                      says so)
 set -u
 B=${1:-build}
@@ -79,6 +89,7 @@ SKIP_BENCH=${SKIP_BENCH:-0}
 DRY_RUN=${DRY_RUN:-0}
 LOCALIZERS=${LOCALIZERS:-}
 SKIP_SEED002=${SKIP_SEED002:-0}
+SKIP_SEED004=${SKIP_SEED004:-0}
 TMP=$OUT.tmp
 WORK=$B/results.work
 [ "${DRY_RUN:-0}" = 1 ] && WORK=$B/results.dry
@@ -242,6 +253,20 @@ else
         die "tools/build/results_seed002.sh failed (outputs in $WORK/seed002)"
 fi
 seed002_s=$(( $(date +%s) - seed002_start ))
+
+# seed 004's corner features beside the L/T/X path on aibo2004
+# (tools/build/results_seed004.sh; its own work folder, the ltx walk's cache
+# taken from this one's)
+seed004_start=$(date +%s)
+if [ "$SKIP_SEED004" = 1 ]; then
+    echo "results: SKIP_SEED004=1: no seed 004 section" >&2
+else
+    # shellcheck disable=SC2086
+    DRY_RUN=$DRY_RUN LOC_JOBS=$LOC_JOBS OBS_CACHE_DIR="$OBS_CACHE_DIR" LTX_OBS_DIR="$WORK" \
+        SKIP_BENCH=$SKIP_BENCH sh tools/build/results_seed004.sh "$CLI" "$WORK/seed004" "$LOCALIZERS" ||
+        die "tools/build/results_seed004.sh failed (outputs in $WORK/seed004)"
+fi
+seed004_s=$(( $(date +%s) - seed004_start ))
 
 # the physar black1 points, every localizer side by side, per source of the
 # torso angles: the records' AngleX / AngleY, the accelerometer, none
@@ -423,6 +448,14 @@ echo
 else
 cat "$WORK/seed002/seed002.md"
 fi
+if [ "$SKIP_SEED004" = 1 ]; then
+echo "## Seed 004's corner features"
+echo
+echo "**Skipped** (SKIP_SEED004=1)."
+echo
+else
+cat "$WORK/seed004/seed004.md"
+fi
 echo "## Real frames: the physar black1 points"
 echo
 echo "Command per block: \`$CLI localize --physar --imu angles|accel|off\`"
@@ -503,8 +536,9 @@ else
     echo "Time of this script: (\`make test\` ran before it, not timed: run through \`make results\`)"
 fi
 echo "$(( now - start )) s (make bench $bench_s s, rendering and the fuzzy walks $walk_s s, the localizer"
-echo "comparison $loc_s s ($LOC_JOBS runs at a time), reliability $rel_s s, seed 002 on its own field $seed002_s s, the coach"
-echo "experiments $coach_s s, detection scoring and the rest $(( now - start - bench_s - walk_s - loc_s - rel_s - seed002_s - coach_s )) s)."
+echo "comparison $loc_s s ($LOC_JOBS runs at a time), reliability $rel_s s, seed 002 on its own field $seed002_s s, seed 004's"
+echo "corner features $seed004_s s, the coach experiments $coach_s s, detection scoring and the rest"
+echo "$(( now - start - bench_s - walk_s - loc_s - rel_s - seed002_s - seed004_s - coach_s )) s)."
 } > "$TMP" || die "cannot write $TMP"
 mv "$TMP" "$OUT" || die "cannot move $TMP to $OUT"
 echo "results: wrote $OUT in $(( $(date +%s) - start )) s (make results: $(( $(date +%s) - make_start )) s)" >&2
