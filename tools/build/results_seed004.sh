@@ -231,7 +231,7 @@ for s in $S4_SEEDS; do
 done
 echo
 echo "The summary lines as printed, per run; for the fuzzy grid's (rendering) runs also what vision"
-echo "reported per kind against the map at the true pose and the time (\`# vision\` and \`# time\` lines):"
+echo "reported per kind against the map at the true pose (\`# vision\` lines; the cost per frame: below)."
 echo
 echo '```'
 for s in $S4_SEEDS; do
@@ -240,7 +240,7 @@ for s in $S4_SEEDS; do
             r=$WORK/runs/$l.$v.s$s
             echo "\$ $(cat "$r.cmd")"
             if [ "$l" = fuzzy ]; then
-                grep -E '^# vision|^# time' "$r.out"
+                grep -E '^# vision' "$r.out"
             fi
             grep -E '^# localizer:|^(pos_rmse_mm|heading_rmse_deg|converge_s|kidnap_recover_s|flips) ' "$r.out"
         done
