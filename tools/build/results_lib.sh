@@ -1,4 +1,5 @@
-# tools/build/results_lib.sh - sourced by results.sh and results_seed002.sh.
+# tools/build/results_lib.sh - sourced by results.sh, results_seed002.sh and
+# results_seed004.sh.
 # run LOG CMD...: runs CMD (stdout + stderr to LOG; nothing when DRY_RUN=1),
 # and when it fails prints the log's tail and calls the sourcing script's
 # die.  RESULTS_NAME prefixes the command echoed on stderr.

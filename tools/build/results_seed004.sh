@@ -34,7 +34,8 @@
 #                 walk its fuzzy run rendered) is copied when present, so the
 #                 ltx walk is not rendered twice
 #   SKIP_BENCH=1  no bench rows (the section says so)
-#   DRY_RUN=1     print the commands, run none, write nothing
+#   DRY_RUN=1     print the commands, run none, write no markdown (only the
+#                 runs' .cmd files under WORK)
 set -u
 CLI=${1:?usage: results_seed004.sh CLI WORK LOCALIZERS}
 WORK=${2:?usage: results_seed004.sh CLI WORK LOCALIZERS}
@@ -51,6 +52,7 @@ die() {
     echo "results_seed004: FAILED: $*" >&2
     exit 1
 }
+# shellcheck disable=SC2034  # read by results_lib.sh's run
 RESULTS_NAME=results_seed004
 . "$(dirname "$0")/results_lib.sh"   # run LOG CMD...
 
@@ -115,7 +117,7 @@ for s in $S4_SEEDS; do
 done
 for r in $first; do echo "results_seed004: $(cat "$r.cmd")" >&2; done
 if [ "$DRY_RUN" != 1 ]; then
-    # shellcheck disable=SC2086
+    # shellcheck disable=SC2086,SC2016  # $1: the inner sh's argument
     printf '%s\n' $first | xargs -P "$LOC_JOBS" -I{} sh -c 'sh "$1.cmd" > "$1.out" 2>&1' sh {}
     for r in $first; do
         grep -q '^flips ' "$r.out" || { tail -n 20 "$r.out" >&2; die "\`$(cat "$r.cmd")\` failed (output in $r.out)"; }
