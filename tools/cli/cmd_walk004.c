@@ -32,7 +32,8 @@ static int w4_usage(int rc)
             "  pose.  Default: rendered frames through the corner stage; --features:\n"
             "  exact observations of the map features in view.  --out DIR: per step the\n"
             "  belief (darker = more possible) and the camera frame with the detections,\n"
-            "  as PNG.  --verbose: every frame's observations.\n");
+            "  as PNG.  --verbose: every frame's observations and corner pairs (with --out,\n"
+            "  every frame's picture).\n");
     return rc;
 }
 

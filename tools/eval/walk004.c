@@ -81,7 +81,7 @@ static void w4_obs_field(const w4_ctx_t *c, const fl_obs_t *ob, double *fx, doub
 }
 
 /* Nearest map feature of the observation's kind (and net colour). */
-static int w4_map_match(const w4_ctx_t *c, const fl_obs_t *ob, double *err)
+static int w4_map_match_any(const w4_ctx_t *c, const fl_obs_t *ob, int any_kind, double *err)
 {
     double fx, fy, best = 1e18;
     int k, bi = -1;
@@ -89,7 +89,7 @@ static int w4_map_match(const w4_ctx_t *c, const fl_obs_t *ob, double *err)
     for (k = 0; k < c->field->n_features; k++) {
         const fl_landmark_t *t = &c->field->features[k];
         double d;
-        if (t->kind != ob->kind || (ob->kind == FL_LM_NET && t->color != ob->color))
+        if (!any_kind && (t->kind != ob->kind || (ob->kind == FL_LM_NET && t->color != ob->color)))
             continue;
         d = hypot(t->x_mm - fx, t->y_mm - fy);
         if (d < best) {
@@ -99,6 +99,20 @@ static int w4_map_match(const w4_ctx_t *c, const fl_obs_t *ob, double *err)
     }
     *err = bi >= 0 ? best : -1;
     return bi;
+}
+
+static int w4_map_match(const w4_ctx_t *c, const fl_obs_t *ob, double *err)
+{
+    return w4_map_match_any(c, ob, 0, err);
+}
+
+static const char *w4_lm_name(const fl_landmark_t *t)
+{
+    fl_obs_t o;
+    memset(&o, 0, sizeof o);
+    o.kind = t->kind;
+    o.color = t->color;
+    return w4_kind_name(&o);
 }
 
 /* ---- the frame's observations ------------------------------------------- */
@@ -446,7 +460,12 @@ static int w4_frame_picture(w4_ctx_t *c, const fl_obs_t *fused, const char *capt
                         cn->corner[f->b].x * S + S / 2.0, cn->corner[f->b].y * S + S / 2.0, col, 1);
             else
                 w4_box(&im, fu, fv, 6, col);
-            font_draw(&im, (int)fu + 6, (int)fv - 12, lab, col, 1);
+            {
+                int lu = (int)fu + 6, lv = (int)fv - 12;
+                if (lu + font_text_width(lab, 1) >= im.width)
+                    lu = (int)fu - 6 - font_text_width(lab, 1);
+                font_draw(&im, lu, lv < 0 ? 0 : lv, lab, col, 1);
+            }
         }
     } else {
         for (i = 0; i < c->obs.n; i++) {
@@ -504,10 +523,16 @@ static int w4_fuse(w4_ctx_t *c, w4_result_t *res, const fl_obs_t *ob, int frame,
     w4_print_step(c->out, s, res->n_steps);
     if (c->out && s->map_index >= 0) {
         const fl_landmark_t *t = &c->field->features[s->map_index];
-        fprintf(c->out, "#   it is the map's %s at (%d, %d), %.0f mm off; the belief's cells >= 1/2 lie "
-                "%.0f..%.0f mm from the yellow net (the truth %.0f mm)\n",
-                w4_kind_name(ob), (int)t->x_mm, (int)t->y_mm, s->map_err_mm, s->net_r_min_mm,
-                s->net_r_max_mm, s->net_r_true_mm);
+        double e_any;
+        int any = w4_map_match_any(c, ob, 1, &e_any);
+        fprintf(c->out, "#   seen from the truth: %.0f mm from the map's nearest %s (%d, %d)",
+                s->map_err_mm, w4_kind_name(ob), (int)t->x_mm, (int)t->y_mm);
+        if (any >= 0 && any != s->map_index)
+            fprintf(c->out, ", %.0f mm from its nearest feature, a %s (%d, %d)", e_any,
+                    w4_lm_name(&c->field->features[any]), (int)c->field->features[any].x_mm,
+                    (int)c->field->features[any].y_mm);
+        fprintf(c->out, "; the cells >= 1/2 lie %.0f..%.0f mm from the yellow net (the truth "
+                "%.0f mm)\n", s->net_r_min_mm, s->net_r_max_mm, s->net_r_true_mm);
     }
     if (c->o->out_dir != NULL) {
         snprintf(cap, sizeof cap,
@@ -526,7 +551,8 @@ static int w4_fuse(w4_ctx_t *c, w4_result_t *res, const fl_obs_t *ob, int frame,
                  "corners: open white, closed black, net-closed yellow; features: C magenta, "
                  "T orange, T-net cyan; red ring: fused",
                  frame, yaw_mdeg / 1000.0,
-                 c->o->features ? "ideal observations (boxes)" : "the corner stage's detections");
+                 c->o->features ? "ideal observations (boxes, colours as features below)"
+                                : "the corner stage's detections");
         snprintf(path, sizeof path, "%s/walk004_step%d_frame.png", c->o->out_dir, res->n_steps);
         if (w4_frame_picture(c, ob, cap, path) == 0)
             snprintf(s->picture[1], sizeof s->picture[1], "%s", path);
@@ -534,6 +560,30 @@ static int w4_fuse(w4_ctx_t *c, w4_result_t *res, const fl_obs_t *ob, int frame,
             fprintf(c->out, "#   pictures %s %s\n", s->picture[0], s->picture[1]);
     }
     return 1;
+}
+
+/* --verbose, frames mode: the corner stage's features with their two
+ * corners (label, white / window pixels, net samples): why a pair got its
+ * type. */
+static void w4_print_corners(FILE *out, const fl_corners_t *cn)
+{
+    static const char *const type[6] = {"?", "C", "T-field", "T-net", "net-yellow", "net-skyblue"};
+    static const char *const label[4] = {"?", "open", "closed", "net-closed"};
+    int i, k;
+    for (i = 0; i < cn->n_features; i++) {
+        const fl_cfeat_t *f = &cn->feature[i];
+        fprintf(out, "#   %s at (%.1f, %.1f) px, %d mm", type[f->type < 6 ? f->type : 0],
+                f->u_q4 / 16.0, f->v_q4 / 16.0, (int)f->range_mm);
+        for (k = 0; k < 2; k++) {
+            int j = k ? f->b : f->a;
+            if (j < 0 || j >= cn->n_corners)
+                continue;
+            fprintf(out, "; corner (%d, %d) %s white %d/%d net %d", cn->corner[j].x,
+                    cn->corner[j].y, label[cn->corner[j].label < 4 ? cn->corner[j].label : 0],
+                    cn->corner[j].n_white, cn->corner[j].n_area, cn->corner[j].n_net);
+        }
+        fprintf(out, "\n");
+    }
 }
 
 static int w4_setup(w4_ctx_t *c, const w4_opts_t *o, FILE *out)
@@ -650,6 +700,8 @@ int w4_run(const w4_opts_t *o, FILE *out, w4_result_t *res)
                         w4_deg(c.obs.obs[i].bearing), m, err);
             }
             fprintf(out, "\n");
+            if (!o->features)
+                w4_print_corners(out, c.cn);
         }
         if (o->verbose && o->out_dir != NULL) {
             char path[600], cap[128];

@@ -71,7 +71,10 @@
 typedef struct {
     int features;             /* 1: ideal observations of the map features */
     const char *out_dir;      /* pictures (PNG) here; NULL: none */
-    int verbose;              /* one '#' line per frame and detection */
+    int verbose;              /* '#' lines per frame: its observations and
+                                 (frames mode) the corner stage's pairs
+                                 with their corners' labels and counts;
+                                 with out_dir also walk004_frameNN.png */
     int32_t x_mm, y_mm;       /* true pose, field frame */
     int32_t heading_mdeg;
     int32_t pitch_mdeg;       /* head pitch during the scan (+ down) */
