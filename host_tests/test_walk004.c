@@ -160,6 +160,13 @@ static void test_frames(void)
                k, (int)s->obs.range_mm, fl_angle_to_mdeg(s->obs.bearing) / 1000.0, s->frame,
                real ? "a real C" : "no C of the map", s->map_err_mm, s->err_mm, s->p_true);
     }
+    t_info("walk004 frames: the map's C's in view %d times: reported as C %d, T-field %d, "
+           "T-net %d, missed %d",
+           R.truth_c_views, R.truth_c_as_c, R.truth_c_as_other[0], R.truth_c_as_other[1],
+           R.truth_c_missed);
+    CHECK(R.truth_c_views >= 1);
+    CHECK_EQ(R.truth_c_views, R.truth_c_as_c + R.truth_c_as_other[0] + R.truth_c_as_other[1] +
+                                  R.truth_c_missed);
     if (R.complete && real_cs == 2)
         check_fixed(&R.step[R.n_steps - 1]);
     else

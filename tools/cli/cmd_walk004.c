@@ -1,7 +1,7 @@
 /*
  * tools/cli/cmd_walk004.c - `fieldloc walk004 [--features] [--out DIR]
  * [--pose X Y DEG] [--scan LEFT RIGHT STEP] [--pitch DEG] [--seed N]
- * [--verbose]`: seed 004's walk-through (its section 5, figures 6-7) on
+ * [--whole-scan] [--verbose]`: seed 004's walk-through (its section 5, figures 6-7) on
  * aibo2004: the goal keeper from total ignorance fuses the yellow net and
  * two C corners as its head scans (tools/eval/walk004.h says how).  Ends
  * with the summary lines walk004_error_mm, walk004_heading_err_deg,
@@ -21,7 +21,7 @@ static int w4_usage(int rc)
     fprintf(rc ? stderr : stdout,
             "usage: fieldloc walk004 [--features] [--out DIR] [--pose X_MM Y_MM HEADING_DEG]\n"
             "                        [--scan LEFT_DEG RIGHT_DEG STEP_DEG] [--pitch DEG]\n"
-            "                        [--seed N] [--verbose]\n"
+            "                        [--seed N] [--whole-scan] [--verbose]\n"
             "  seed 004's walk-through on field aibo2004 (camera aibo-ers7): the goal keeper\n"
             "  in its own box (default pose -1800 -100 10), facing the yellow net, starts\n"
             "  from total ignorance and scans its head (straight ahead, then 60 to -60 deg\n"
@@ -33,7 +33,9 @@ static int w4_usage(int rc)
             "  exact observations of the map features in view.  --out DIR: per step the\n"
             "  belief (darker = more possible) and the camera frame with the detections,\n"
             "  as PNG.  --verbose: every frame's observations and corner pairs (with --out,\n"
-            "  every frame's picture).\n");
+            "  every frame's picture).  --whole-scan: every frame of the scan is looked at\n"
+            "  (fusion still stops after a net and two C's), for the counts of the map's\n"
+            "  C's the corner stage reported.\n");
     return rc;
 }
 
@@ -48,6 +50,8 @@ int cmd_walk004(int argc, char **argv)
             return w4_usage(0);
         if (!strcmp(argv[i], "--features")) {
             o.features = 1;
+        } else if (!strcmp(argv[i], "--whole-scan")) {
+            o.whole_scan = 1;
         } else if (!strcmp(argv[i], "--verbose")) {
             o.verbose = 1;
         } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {

@@ -129,10 +129,10 @@ static void w4_scene(w4_ctx_t *c, int frame, int32_t yaw_mdeg)
 }
 
 /* Ideal observations: the map features in the frame. */
-static void w4_ideal(w4_ctx_t *c)
+static void w4_ideal(w4_ctx_t *c, fl_obs_list_t *out)
 {
     int k;
-    fl_obs_list_clear(&c->obs);
+    fl_obs_list_clear(out);
     for (k = 0; k < c->field->n_features; k++) {
         const fl_landmark_t *t = &c->field->features[k];
         double u, v, rx, ry, r;
@@ -152,8 +152,43 @@ static void w4_ideal(w4_ctx_t *c)
         ob.confidence = 255;
         ob.u_q4 = (int32_t)lround(u * 16);
         ob.v_q4 = (int32_t)lround(v * 16);
-        if (c->obs.n < FL_OBS_MAX)
-            c->obs.obs[c->obs.n++] = ob;
+        if (out->n < FL_OBS_MAX)
+            out->obs[out->n++] = ob;
+    }
+}
+
+/* Frames mode: the map's C's in this frame (w4_ideal) against the corner
+ * stage's observations: each is reported as a C, as another kind, or not
+ * at all (the nearest observation within 150 mm + 10 % of its range,
+ * robot frame: eval-detect's tolerance). */
+static void w4_truth_score(w4_ctx_t *c, w4_result_t *res)
+{
+    static fl_obs_list_t truth;
+    int i, j;
+    w4_ideal(c, &truth);
+    for (i = 0; i < truth.n; i++) {
+        const fl_obs_t *t = &truth.obs[i];
+        double ta = w4_deg(t->bearing) * W4_PI / 180, tx = t->range_mm * cos(ta),
+               ty = t->range_mm * sin(ta), best = 150 + 0.1 * t->range_mm;
+        int bj = -1;
+        if (t->kind != FL_LM_CORNER_C)
+            continue;
+        res->truth_c_views++;
+        for (j = 0; j < c->obs.n; j++) {
+            const fl_obs_t *d = &c->obs.obs[j];
+            double da = w4_deg(d->bearing) * W4_PI / 180;
+            double e = hypot(d->range_mm * cos(da) - tx, d->range_mm * sin(da) - ty);
+            if (d->kind != FL_LM_NET && e <= best) {
+                best = e;
+                bj = j;
+            }
+        }
+        if (bj < 0)
+            res->truth_c_missed++;
+        else if (c->obs.obs[bj].kind == FL_LM_CORNER_C)
+            res->truth_c_as_c++;
+        else
+            res->truth_c_as_other[c->obs.obs[bj].kind == FL_LM_CORNER_TNET]++;
     }
 }
 
@@ -675,18 +710,20 @@ int w4_run(const w4_opts_t *o, FILE *out, w4_result_t *res)
                 snprintf(res->ignorance_picture, sizeof res->ignorance_picture, "%s", path);
         }
     }
-    for (frame = 0; frame < n_frames && !res->complete; frame++) {
+    for (frame = 0; frame < n_frames && (!res->complete || o->whole_scan); frame++) {
         yaw = frame == 0 ? 0 : o->yaw_left_mdeg - (frame - 1) * o->yaw_step_mdeg;
         w4_scene(&c, frame, yaw);
         if (c.have_frame)
             render_frame_free(&c.fr);
         c.have_frame = 0;
         if (o->features) {
-            w4_ideal(&c);
+            w4_ideal(&c, &c.obs);
         } else if (w4_vision(&c) != 0) {
             fprintf(stderr, "fieldloc walk004: frame %d: rendering or vision failed\n", frame);
             rc = -1;
             break;
+        } else {
+            w4_truth_score(&c, res);
         }
         res->frames++;
         w4_sort(&c.obs);
@@ -709,9 +746,10 @@ int w4_run(const w4_opts_t *o, FILE *out, w4_result_t *res)
             snprintf(cap, sizeof cap, "frame %d, head yaw %.0f deg", frame, yaw / 1000.0);
             (void)w4_frame_picture(&c, NULL, cap, path);
         }
-        for (i = 0; i < c.obs.n && !res->complete; i++) {
+        for (i = 0; i < c.obs.n; i++) {
             const fl_obs_t *ob = &c.obs.obs[i];
-            if (!w4_is_new(&c, ob, res) || res->n_steps >= W4_MAX_STEPS)
+            /* counted always; fused while the walk is not complete */
+            if (!w4_is_new(&c, ob, res) || res->complete || res->n_steps >= W4_MAX_STEPS)
                 continue;
             (void)w4_fuse(&c, res, ob, frame, yaw);
             res->complete = res->nets >= 1 && res->cs >= 2;
@@ -719,10 +757,15 @@ int w4_run(const w4_opts_t *o, FILE *out, w4_result_t *res)
     }
     if (out) {
         fprintf(out, "# %d frames looked at; fused %d net(s) and %d C(s)%s; %d C observations "
-                "in all, %d T-field/T-net observations not fused\n",
+                "in these frames, %d T-field/T-net observations (not fused)\n",
                 res->frames, res->nets, res->cs,
                 res->complete ? "" : " (the scan ended before a net and two C's)", res->seen_c,
                 res->seen_other);
+        if (!o->features)
+            fprintf(out, "# the map's C's in view %d times (C x frame, within %d mm): the corner "
+                    "stage reported %d as a C, %d as a T-field, %d as a T-net, missed %d\n",
+                    res->truth_c_views, W4_CORNER_RANGE_MM, res->truth_c_as_c,
+                    res->truth_c_as_other[0], res->truth_c_as_other[1], res->truth_c_missed);
         if (res->ignorance_picture[0])
             fprintf(out, "# pictures in %s: walk004_step0_belief.png (ignorance), "
                     "walk004_stepN_belief.png and walk004_stepN_frame.png per step\n", o->out_dir);

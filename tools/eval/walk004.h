@@ -82,6 +82,9 @@ typedef struct {
     int32_t yaw_right_mdeg;   /* ... to yaw_right */
     int32_t yaw_step_mdeg;    /* > 0 */
     uint32_t seed;            /* render noise */
+    int whole_scan;           /* 1: look at every frame of the scan (the
+                                 fusion still stops after a net and two
+                                 C's; later frames are only counted) */
 } w4_opts_t;
 
 typedef struct {
@@ -114,6 +117,10 @@ typedef struct {
     int seen_other;           /* T-field / T-net observations (not fused) */
     int seen_c;               /* C observations, every frame */
     int complete;             /* a net and two C's were fused */
+    /* frames mode: the map's C's in the frames looked at (C x frame),
+     * each reported by the corner stage as a C, as a T-field ([0]) or
+     * T-net ([1]), or missed */
+    int truth_c_views, truth_c_as_c, truth_c_as_other[2], truth_c_missed;
     double ignorance_area_m2; /* the grid's area (G0: all of it is top) */
     char ignorance_picture[640];
 } w4_result_t;
