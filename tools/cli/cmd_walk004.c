@@ -39,6 +39,25 @@ static int w4_usage(int rc)
     return rc;
 }
 
+/* The folder and its missing parents (mkdir -p).  0 when it exists. */
+static int w4_mkdirs(const char *dir)
+{
+    char p[1024];
+    size_t k, n = strlen(dir);
+    struct stat st;
+    if (n == 0 || n >= sizeof p)
+        return -1;
+    memcpy(p, dir, n + 1);
+    for (k = 1; k <= n; k++)
+        if (p[k] == '/' || p[k] == '\0') {
+            char c = p[k];
+            p[k] = '\0';
+            (void)mkdir(p, 0777);
+            p[k] = c;
+        }
+    return stat(dir, &st) == 0 && S_ISDIR(st.st_mode) ? 0 : -1;
+}
+
 int cmd_walk004(int argc, char **argv)
 {
     w4_opts_t o;
@@ -91,12 +110,9 @@ int cmd_walk004(int argc, char **argv)
             return arg_unknown("walk004", argv[i], "--out=1 --seed=1 --pose=3 --scan=3 --pitch=1");
         }
     }
-    if (o.out_dir != NULL && mkdir(o.out_dir, 0777) != 0) {
-        struct stat st;
-        if (stat(o.out_dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-            fprintf(stderr, "fieldloc walk004: cannot create %s\n", o.out_dir);
-            return 1;
-        }
+    if (o.out_dir != NULL && w4_mkdirs(o.out_dir) != 0) {
+        fprintf(stderr, "fieldloc walk004: cannot create %s\n", o.out_dir);
+        return 1;
     }
     if (w4_run(&o, stdout, &r) != 0)
         return 1;
