@@ -15,6 +15,7 @@ T_SUITE(sim);
 T_SUITE(seed002);
 T_SUITE(seed004);
 T_SUITE(eval_relmap);
+T_SUITE(walk004);
 T_SUITE(realdata);
 T_SUITE(color);
 T_SUITE(color_file);

@@ -337,6 +337,31 @@ static void t_numbers(void)
     CHECK(strncmp(err, "usage: fieldloc reliability", 27) == 0);
 }
 
+/* walk004: the summary lines, the options' errors. */
+static void t_walk004_cli(void)
+{
+    char out[16384], err[2048];
+    if (t_quick)
+        return;
+    if (cli_find() != 0) {
+        t_info("skipped: %s not built", t_cli);
+        return;
+    }
+    CHECK_EQ(cli_run("walk004 --features", out, sizeof out, err, sizeof err), 0);
+    CHECK(strstr(out, "\n1 net-yellow ") != NULL);
+    CHECK(strstr(out, "\n3 C ") != NULL);
+    CHECK(strstr(out, "\nwalk004_error_mm ") != NULL);
+    CHECK(strstr(out, "\nwalk004_heading_err_deg ") != NULL);
+    CHECK(strstr(out, "\nwalk004_observations 3\n") != NULL);
+    expect_error("walk004 --scan -60 60 10",
+                 "fieldloc walk004: --scan goes left to right: LEFT_DEG >= RIGHT_DEG");
+    expect_error("walk004 --pose 0 0", "fieldloc walk004: --pose needs 3 values");
+    expect_error("walk004 --bogus",
+                 "fieldloc walk004: unknown option --bogus (fieldloc walk004 --help)");
+    CHECK_EQ(cli_run("walk004 --help", out, sizeof out, NULL, 0), 0);
+    CHECK(strncmp(out, "usage: fieldloc walk004", 23) == 0);
+}
+
 /* Read a picture written by the CLI; 0 when read. */
 static int read_pic(const char *name, host_image_t *img)
 {
@@ -920,4 +945,5 @@ void suite_cli(void)
     t_run("cli.physar", t_physar_cli);
     t_run("cli.spl2020", t_spl2020);
     t_run("cli.coach", t_coach);
+    t_run("cli.walk004", t_walk004_cli);
 }

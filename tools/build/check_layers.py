@@ -83,7 +83,10 @@ LOC_OWN_TOOLS = {"bench/bench_fuzzy.c": "the fuzzy grid's benchmark section "
                  "eval/eval_relmap.c": "seed 002's evaluation: the relative map's "
                                        "eq. 4 pose and tie set per frame",
                  "cli/cmd_ukf_check.c": "the UKF step's numerics against the double "
-                                        "reference (ukf.h building blocks)"}
+                                        "reference (ukf.h building blocks)",
+                 "eval/walk004.c": "seed 004's walk-through: the fuzzy grid fed one "
+                                   "observation at a time (fl_fuzzy_update_one), its "
+                                   "cells drawn and measured, the true pose's possibility"}
 # ---------------------------------------------------------------------------
 
 fails = []

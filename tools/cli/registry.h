@@ -35,7 +35,8 @@
     X(coach, "IMAGE.ppm --points FILE [--background EMPTY.ppm] [--out PIC.png]: the coach's feet") \
     X(bench, "[--out FILE.tsv]: benchmarks")                                  \
     X(ukf_check, "[--n N] [--seed S]: the fixed-point UKF step against double") \
-    X(eval_relmap, "[--seed N] [--poses N] [--localizer L]: seed 002's table I and random poses on hl3x2")
+    X(eval_relmap, "[--seed N] [--poses N] [--localizer L]: seed 002's table I and random poses on hl3x2") \
+    X(walk004, "[--features] [--out DIR]: seed 004's goal keeper localizing from ignorance (net, two C's)")
 
 #define FL_DECL_CMD(name, help) int cmd_##name(int argc, char **argv) FL_WEAK;
 FL_COMMANDS(FL_DECL_CMD)
