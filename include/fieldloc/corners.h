@@ -94,6 +94,12 @@
  *           (4..64 px): the net stands behind the goal line, so above the
  *           corner in the image, and at the AIBO's ranges it is 20..40 px
  *           beside the T; seed 004's "small window" could not see it.
+ *           With a camera the net must also stand at the corner: the
+ *           lowest net pixel found (the foot of the goal's wall or post)
+ *           has its ground point within net_mm of the corner's; else the
+ *           samples count 0.  Without that test the far goal seen above
+ *           a T-field or an X of the centre circle made 23 of eval-detect's
+ *           117 detections T-nets.
  * For a line t px wide, the 5 x 5 window of the outer corner of an L
  * holds about 2 * 2t white pixels and that of the inner corner 2 * 2t +
  * t^2 (+ the corner's own square): 40 % separates them for t >= 2 px; at
@@ -201,7 +207,9 @@ typedef struct {
                                  at the corner's ground range instead
                                  (4..64 px), 0..2000, 0 = net_r always;
                                  450 (the box line is 200 mm from the post,
-                                 the goal 600 mm wide) */
+                                 the goal 600 mm wide); also the largest
+                                 ground distance of the net's foot from
+                                 the corner */
     int32_t min_net;          /* net samples for net-closed, 1..255; 4 */
     int32_t pair_px;          /* largest distance of a pair, 1..32; 10 */
     int32_t pair_mm;          /* with a camera: pair distance this at the

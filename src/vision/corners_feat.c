@@ -54,6 +54,32 @@ static int32_t cn_label_of(const fl_corners_params_t *p, int32_t nw, int32_t are
     return p->net_r > 0 && nn >= p->min_net ? FL_CORNER_NET_CLOSED : FL_CORNER_CLOSED;
 }
 
+/* With a camera: does the net seen above corner k stand at it?  (fx, fy)
+ * is the lowest net sample; the net's foot is found below it pixel by
+ * pixel (the samples are up to net_mm / 10 apart) and projected to the
+ * ground.  A T at the net is a box line meeting the goal line 200 mm
+ * beside a post, so the foot lies within net_mm of the corner's ground
+ * point; a net behind the corner (the far goal above the centre circle's
+ * crossings or the halfway line's T's, seen along the field) has its
+ * foot metres beyond it and made T-nets of T-fields (eval-detect: 23 of
+ * the 117 detections).  A foot without a ground point (at or above the
+ * horizon) is not at the corner. */
+static bool cn_net_near(const fl_corners_params_t *p, const fl_image_t *img, const fl_camera_t *camera,
+                        const fl_corner_t *k, int32_t fx, int32_t fy)
+{
+    fl_point_t gk, gf;
+    while (fy + 1 < k->y) {
+        const fl_color_t col = fl_beacon_pixel_color(&p->net, img, fx, fy + 1);
+        if (col != FL_COLOR_YELLOW && col != FL_COLOR_SKYBLUE)
+            break;
+        fy++;
+    }
+    if (!fl_camera_pixel_to_ground(camera, k->x * 16, k->y * 16, &gk) ||
+        !fl_camera_pixel_to_ground(camera, fx * 16, fy * 16 + 8, &gf))
+        return false;
+    return (int32_t)fl_hypot(gf.x_mm - gk.x_mm, gf.y_mm - gk.y_mm) <= p->net_mm;
+}
+
 bool fl_corners_int_color_label(const fl_corners_t *c, const fl_image_t *img, const fl_color_table_t *colors,
                     const fl_camera_t *camera, fl_corner_t *k)
 {
@@ -83,11 +109,18 @@ bool fl_corners_int_color_label(const fl_corners_t *c, const fl_image_t *img, co
          * camera: net_mm at the corner's range), about 20 x 10 of them */
         const int32_t nr = cn_px_lim(cn_px_raw(camera, k->x, k->y, p->net_mm), p->net_r, 4, 64);
         const int32_t step = nr >= 20 ? nr / 10 : 2;
+        int32_t fx = 0, fy = 0;   /* lowest net sample: near the net's foot */
         for (dy = -nr; dy < 0; dy += step)
             for (dx = -nr; dx <= nr; dx += step) {
                 const fl_color_t col = fl_beacon_pixel_color(&p->net, img, k->x + dx, k->y + dy);
-                nn += col == FL_COLOR_YELLOW || col == FL_COLOR_SKYBLUE;
+                if (col == FL_COLOR_YELLOW || col == FL_COLOR_SKYBLUE) {
+                    nn++;
+                    fx = k->x + dx;
+                    fy = k->y + dy;
+                }
             }
+        if (nn > 0 && camera && !cn_net_near(p, img, camera, k, fx, fy))
+            nn = 0;
         k->n_net = (uint8_t)(nn > 255 ? 255 : nn);
     }
     k->label = (uint8_t)cn_label_of(p, nw, area, nn);
