@@ -117,11 +117,13 @@
  * The default, label_mode 3 (with a camera), types a pair by its shape
  * on the ground: 24 probes on a circle of 60 mm around the pair's
  * midpoint, projected into the image; the white runs around it are the
- * lines leaving the joint: 2 arms (not in line) a C, 3 or more a T
- * (T-net when either corner saw the net at it), 2 arms in line (150..210
- * degrees apart: two corners of one straight line) or fewer than 2 no
- * feature (corners_feat.c cn_shape_arms: the numbers; eval-detect
- * against label_mode 1: precision 0.56 -> 0.75, recall 0.44 -> 0.39).
+ * lines leaving the joint: a T-net when either corner saw the net at it
+ * and at least 1 arm shows (the goal line along the net's foot is thin
+ * or leaves the image); else 2 arms (not in line) a C, 3 or more a
+ * T-field, 2 arms in line (150..210 degrees apart: two corners of one
+ * straight line) or fewer than 2 no feature (corners_feat.c
+ * cn_shape_arms: the numbers; eval-detect against label_mode 1:
+ * precision 0.56 -> 0.77, recall 0.44 -> 0.42).
  * Without a camera label_mode 3 is label_mode 1.  label_mode 0 (or
  * rel_pct 0) gives seed 004's rule on the labels above; label_mode 2
  * types pairs by Sojka's convex / concave corner instead
