@@ -116,14 +116,14 @@
  * and it typed about half the T-fields and the centre circle's X's as C.
  * The default, label_mode 3 (with a camera), types a pair by its shape
  * on the ground: 24 probes on a circle of 60 mm around the pair's
- * midpoint, projected into the image; the white runs around it are the
- * lines leaving the joint: a T-net when either corner saw the net at it
+ * midpoint (and, when that shows at most 2, of 100 mm), projected into
+ * the image; the white runs around it are the lines leaving the joint: a T-net when either corner saw the net at it
  * and at least 1 arm shows (the goal line along the net's foot is thin
  * or leaves the image); else 2 arms (not in line) a C, 3 or more a
  * T-field, 2 arms in line (150..210 degrees apart: two corners of one
  * straight line) or fewer than 2 no feature (corners_feat.c
  * cn_shape_arms: the numbers; eval-detect against label_mode 1:
- * precision 0.56 -> 0.77, recall 0.44 -> 0.42).
+ * precision 0.56 -> 0.80, recall 0.44 -> 0.43).
  * Without a camera label_mode 3 is label_mode 1.  label_mode 0 (or
  * rel_pct 0) gives seed 004's rule on the labels above; label_mode 2
  * types pairs by Sojka's convex / concave corner instead
@@ -172,7 +172,8 @@
  * each) and one column of net pixels and two ground projections for
  * the net's foot; pairing at most corners / 2 rounds of O(corners^2)
  * pairs, each within its pair distance with one 3 x 3 colour probe and
- * (label_mode 3) 26 projections and 24 colour probes.  No heap, no floating point.
+ * (label_mode 3) 2 + 48 projections and 48 colour probes.  No heap, no
+ * floating point.
  */
 #ifndef FIELDLOC_CORNERS_H
 #define FIELDLOC_CORNERS_H
