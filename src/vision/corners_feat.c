@@ -1,7 +1,7 @@
 /*
  * src/vision/corners_feat.c - seed 004's colour filter, corner labels,
  * pairing into C / T-field / T-net and the nets (corners.h).
- * Memory: the caller's fl_corners_t; stack < 400 B (make stack).
+ * Memory: the caller's fl_corners_t; stack < 500 B with callees (make stack).
  */
 #include "corners_int.h"
 
