@@ -739,11 +739,12 @@ static void test_rendered(void)
     CHECK_EQ(n, frames);
     ct_print("rendered aibo2004", &s);
     CHECK(s.truth >= frames);
-    /* floors as measured (36 frames: recall 19/64 = 0.30, precision 20/54
-     * = 0.37; --quick, 12 frames: 8/22 = 0.36, 8/17 = 0.47), far under
-     * issue 21's targets (0.8, 0.9): see docs/DESIGN.md 14c */
-    CHECK(s.found * 100 >= 25 * s.truth);
-    CHECK(s.correct * 100 >= 33 * s.det);
+    /* floors under the measured values (36 frames: recall 25/64 = 0.39,
+     * precision 28/39 = 0.72; --quick, 12 frames: 7/22 = 0.32, 8/9 =
+     * 0.89; label_mode 3 and the net's foot, corners.h), still under issue
+     * 21's targets (0.8, 0.9): see docs/DESIGN.md 14c */
+    CHECK(s.found * 100 >= 30 * s.truth);
+    CHECK(s.correct * 100 >= 62 * s.det);
     CHECK_LE(s.err_max, 300);
 }
 

@@ -94,6 +94,12 @@
  *           (4..64 px): the net stands behind the goal line, so above the
  *           corner in the image, and at the AIBO's ranges it is 20..40 px
  *           beside the T; seed 004's "small window" could not see it.
+ *           With a camera the net must also stand at the corner: the
+ *           lowest net pixel found (the foot of the goal's wall or post)
+ *           has its ground point within net_mm of the corner's; else the
+ *           samples count 0.  Without that test the far goal seen above
+ *           a T-field or an X of the centre circle made 23 of eval-detect's
+ *           117 detections T-nets.
  * For a line t px wide, the 5 x 5 window of the outer corner of an L
  * holds about 2 * 2t white pixels and that of the inner corner 2 * 2t +
  * t^2 (+ the corner's own square): 40 % separates them for t >= 2 px; at
@@ -102,15 +108,28 @@
  * Those absolute labels fail on the AIBO's views: its camera sees the
  * 25 mm lines 1..10 px wide (thin across the view, wide along it), so a
  * fixed window calls both corners of a thin L open and both of a thick
- * one closed.  The default therefore types a pair relative to itself
- * (rel_pct 60): the convex corner of an L has about half the white of
- * its concave partner (2 t r - t^2 against 2 t r + t^2 for a line t px
- * wide in a window of radius r), the two concave corners of a T about the
- * same (label_mode 1).  label_mode 0 (or rel_pct 0) gives seed 004's
- * rule on the labels above; label_mode 2 types pairs by Sojka's convex /
- * concave corner instead (fl_corner_t.convex: the weighted gradient sum
- * and the edge pixels' centroid on the same side of Q: convex), which
- * measured worse on the rendered frames (docs/DESIGN.md 14c).
+ * one closed.  label_mode 1 types a pair relative to itself (rel_pct
+ * 60): the convex corner of an L has about half the white of its
+ * concave partner (2 t r - t^2 against 2 t r + t^2 for a line t px wide
+ * in a window of radius r), the two concave corners of a T about the
+ * same; but a thin and a thick line also meet at a T seen at a slant,
+ * and it typed about half the T-fields and the centre circle's X's as C.
+ * The default, label_mode 3 (with a camera), types a pair by its shape
+ * on the ground: 24 probes on a circle of 60 mm around the pair's
+ * midpoint (and, when that shows at most 2, of 100 mm), projected into
+ * the image; the white runs around it are the lines leaving the joint: a T-net when either corner saw the net at it
+ * and at least 1 arm shows (the goal line along the net's foot is thin
+ * or leaves the image); else 2 arms (not in line) a C, 3 or more a
+ * T-field, 2 arms in line (150..210 degrees apart: two corners of one
+ * straight line) or fewer than 2 no feature (corners_feat.c
+ * cn_shape_arms: the numbers; eval-detect against label_mode 1:
+ * precision 0.56 -> 0.80, recall 0.44 -> 0.43).
+ * Without a camera label_mode 3 is label_mode 1.  label_mode 0 (or
+ * rel_pct 0) gives seed 004's rule on the labels above; label_mode 2
+ * types pairs by Sojka's convex / concave corner instead
+ * (fl_corner_t.convex: the weighted gradient sum and the edge pixels'
+ * centroid on the same side of Q: convex), which measured worse on the
+ * rendered frames (docs/DESIGN.md 14c).
  *
  * Pairing: two corners closer than their pair distance (pair_px, or with
  * a camera pair_mm at the first corner's range when more, at most 64 px)
@@ -124,7 +143,9 @@
  *   rel_pct > 0: C when one corner has less than rel_pct % of the other's
  *               white pixels (it is relabelled open, the other closed),
  *               else T-net when either saw the net (both relabelled
- *               net-closed / closed by their net samples), else T-field.
+ *               net-closed / closed by their net samples), else T-field;
+ *   label_mode 3 with a camera: C, T-field or T-net by the arms (above),
+ *               relabelled as for rel_pct > 0.
  * Position: the midpoint of the two corners (Q4 px); with a camera, range
  * and bearing of that pixel's ground point (fl_camera_pixel_to_ground);
  * none (range 0) when it has no ground point.  Confidence Q0.8: the
@@ -148,8 +169,11 @@
  * (2 window_r + 1)^2 neighbours; suppression (2 nms_r + 1)^2 per evaluated
  * candidate; per kept corner (at most FL_CORNERS_MAX_CORNERS, more
  * counted) one label window and at most 33 x 17 net samples (HSV
- * each); pairing at most corners / 2 rounds of O(corners^2) pairs, each
- * with one 3 x 3 colour probe.  No heap, no floating point.
+ * each) and one column of net pixels and two ground projections for
+ * the net's foot; pairing at most corners / 2 rounds of O(corners^2)
+ * pairs, each within its pair distance with one 3 x 3 colour probe and
+ * (label_mode 3) 2 + 48 projections and 48 colour probes.  No heap, no
+ * floating point.
  */
 #ifndef FIELDLOC_CORNERS_H
 #define FIELDLOC_CORNERS_H
@@ -201,7 +225,9 @@ typedef struct {
                                  at the corner's ground range instead
                                  (4..64 px), 0..2000, 0 = net_r always;
                                  450 (the box line is 200 mm from the post,
-                                 the goal 600 mm wide) */
+                                 the goal 600 mm wide); also the largest
+                                 ground distance of the net's foot from
+                                 the corner */
     int32_t min_net;          /* net samples for net-closed, 1..255; 4 */
     int32_t pair_px;          /* largest distance of a pair, 1..32; 10 */
     int32_t pair_mm;          /* with a camera: pair distance this at the
@@ -216,7 +242,9 @@ typedef struct {
     int32_t label_mode;       /* how a pair is typed: 0 seed 004's labels;
                                  1 white counts relative to each other
                                  (rel_pct); 2 Sojka's convex / concave
-                                 (fl_corner_t.convex); default 1 */
+                                 (fl_corner_t.convex); 3 the lines
+                                 leaving the pair on the ground (with a
+                                 camera; else as 1); default 3 */
     int32_t rel_pct;          /* 0: a pair's type from its labels; 1..100:
                                  from the two corners' white counts
                                  relative to each other (see file top);

@@ -52,7 +52,7 @@ void fl_corners_params_default(fl_corners_params_t *p)
     p->t_first = 0;
     p->min_mid_white = 4;
     p->rel_pct = 60;
-    p->label_mode = 1;
+    p->label_mode = 3;
     fl_beacon_params_default(&p->net);
 }
 
@@ -71,7 +71,7 @@ static bool cn_params_ok(const fl_corners_params_t *p)
            p->closed_white_pct <= 100 && p->net_r >= 0 && p->net_r <= 64 && p->net_mm >= 0 &&
            p->net_mm <= 2000 && p->pair_mm >= 0 && p->pair_mm <= 500 && p->min_net >= 1 &&
            p->min_net <= 255 && p->pair_px >= 1 && p->pair_px <= 32 && p->min_confidence >= 0 &&
-           p->min_confidence <= 255 && p->max_range_mm >= 0 && p->t_first >= 0 && p->t_first <= 1 && p->min_mid_white >= 0 && p->rel_pct >= 0 && p->rel_pct <= 100 && p->label_mode >= 0 && p->label_mode <= 2 &&
+           p->min_confidence <= 255 && p->max_range_mm >= 0 && p->t_first >= 0 && p->t_first <= 1 && p->min_mid_white >= 0 && p->rel_pct >= 0 && p->rel_pct <= 100 && p->label_mode >= 0 && p->label_mode <= 3 &&
            p->min_mid_white <= 9 && p->max_range_mm <= 20000 && cn_box_ok(&p->net.skyblue) && cn_box_ok(&p->net.yellow) &&
            cn_box_ok(&p->net.pink);
 }
