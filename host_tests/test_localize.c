@@ -249,12 +249,16 @@ typedef struct {
     uint32_t corner_frames_used;        /* frames of corner features only
                                            with observations applied */
     uint32_t used;                      /* observations applied */
+    uint32_t invalid;                   /* steps after which fl_loc_check
+                                           failed */
 } t_corner_hook_t;
 
 static void t_corner_hook(void *user, const lr_walk_step_t *ws)
 {
     t_corner_hook_t *h = user;
     int i, corner_only = ws->lr->obs.n > 0;
+    if (!fl_loc_check(ws->lr->loc, ws->lr->state))
+        h->invalid++;
     for (i = 0; i < ws->lr->obs.n; i++) {
         fl_landmark_kind_t k = ws->lr->obs.obs[i].kind;
         if ((int)k >= 0 && k < FL_LM_KIND_COUNT)
@@ -274,13 +278,21 @@ static void t_frames_corners(void)
     /* per vision path (corners, both) and localizer (fuzzy, mcl, upf,
      * relmap): the bound on the position RMSE after convergence and the
      * final position error (mm), twice the larger of the two measured
-     * (corners: 70 / 52, 71 / 19, 53 / 13, 73 / 109; both: 78 / 11,
-     * 49 / 66, 43 / 43, 132 / 113), and on the heading RMSE (deg, twice
-     * the measured, at least 5: corners 5.0, 1.1, 3.0, 1.7; both 4.8, 2.8,
-     * 2.9, 5.0) */
+     * (corners: 165 / 56, 87 / 19, -, 66 / 54; both: 61 / 21, 51 / 65,
+     * 34 / 42, 138 / 25), and on the heading RMSE (deg, twice the
+     * measured, at least 5: corners 6.3, 3.7, -, 2.6; both 4.3, 2.5, 2.3,
+     * 5.4).
+     * upf on the corner features alone is not held to a bound: it does not
+     * converge on them (this walk: no convergence in 10 s, final error
+     * 2077 mm; the whole walk: 1154 mm RMSE; even with the simulator's
+     * exact features, `simulate --field aibo2004 --localizer upf --vision
+     * corners`: 683 mm), its per-particle Kalman update taking the
+     * nearest map point of the observed kind while the unoriented corner
+     * features leave many equally near.  It still runs, applies them and
+     * keeps a valid state (checked below). */
     static const char *const locs[4] = {"fuzzy", "mcl", "upf", "relmap"};
-    static const double bound[2][4] = {{140, 150, 110, 220}, {160, 140, 100, 270}};
-    static const double bound_deg[2][4] = {{10, 5, 6, 5}, {10, 6, 6, 10}};
+    static const double bound[2][4] = {{330, 180, -1, 140}, {130, 140, 90, 280}};
+    static const double bound_deg[2][4] = {{13, 8, -1, 6}, {9, 6, 6, 11}};
     static const int visions[2] = {SIM_VISION_CORNERS, SIM_VISION_BOTH};
     static sim_scenario_t sc;
     char dir[] = "/tmp/fl_corners_XXXXXX", cache[64], err[256];
@@ -348,6 +360,14 @@ static void t_frames_corners(void)
                 CHECK(h.corner_frames_used >= 10);
             }
             CHECK(h.used > 0);
+            CHECK_EQ(h.invalid, 0);
+            if (bound[v][l] < 0) {
+                t_info("frames %s %s: no bound (see above): converged %.2f s, rmse %.0f mm, "
+                       "final %.0f mm %.1f deg", visions[v] == SIM_VISION_BOTH ? "both" : "corners",
+                       locs[l], res.converge_s, res.pos_rmse_mm, res.final_pos_err_mm,
+                       res.final_head_err_deg);
+                continue;
+            }
             CHECK(isfinite(res.converge_s));
             CHECK(isfinite(res.pos_rmse_mm) && res.pos_rmse_mm <= bound[v][l]);
             CHECK_LE(res.final_pos_err_mm, bound[v][l]);

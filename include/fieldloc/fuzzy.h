@@ -177,10 +177,13 @@ typedef struct {
                                     0: head_bias alone (the default; 1 with
                                     head_bias 0 for the vision path,
                                     fl_fuzzy_params_vision) */
-    uint8_t confuse_q8;          /* L and T confusion (0 = none, the
+    uint8_t confuse_q8;          /* kind confusion (0 = none, the
                                     default): an L observation is also a T
-                                    and a T an L, with this possibility
-                                    (fuzzy_update.c build_regions) */
+                                    and a T an L, and each of seed 004's
+                                    corner features (C, T-field, T-net) is
+                                    also either of the other two, with
+                                    this possibility (fuzzy_update.c
+                                    build_regions) */
     uint8_t confuse_conf;        /* ... rising linearly to 1 at this
                                     confidence and below (0 = constant):
                                     vision's low-confidence crossings are
