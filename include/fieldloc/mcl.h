@@ -101,6 +101,14 @@ typedef struct {
                                     landmark's distance); 0: not used */
     uint16_t outlier_q16;        /* weight of the uniform term of each
                                     observation's likelihood (the floor) */
+    uint8_t corner_any;          /* 1 (mcl's default): a C, T-field or
+                                    T-net observation (seed 004's corner
+                                    features) is associated with the
+                                    nearest corner feature of any of the
+                                    three kinds: the image stage's typing
+                                    errors cost nothing, the positions
+                                    still count; 0 (upf's default): the
+                                    observed kind only */
     int32_t max_range_mm;        /* observations farther are ignored */
     int32_t cross_max_mm;        /* L/T/X crossings farther are ignored
                                     (0: no limit) */

@@ -235,7 +235,7 @@ static const fl_loc_param_t mc_param[] = {
     { "n_particles", OFF(n_particles), 2, false, 1, FL_MCL_MAX_PARTICLES },
     U16(odo_trans_pct), U16(odo_rot_pct), U16(odo_rot_mdeg_per_m), S32(odo_max_mm),
     U16(jitter_mm), U16(jitter_mdeg), S32(margin_mm), U16(range_pct), U16(range_base_mm),
-    U16(bearing_mdeg), U16(orient_mdeg), U16(assoc_q8), U16(outlier_q16), S32(max_range_mm),
+    U16(bearing_mdeg), U16(orient_mdeg), U16(assoc_q8), U16(outlier_q16), U8(corner_any), S32(max_range_mm),
     S32(cross_max_mm), U16(alpha_slow_q16), U16(alpha_fast_q16), U16(inject_max_q16), U16(inject_min_q16),
     U16(kidnap_q16), S32(cluster_mm), U8(switch_q8),
 };

@@ -134,6 +134,7 @@ void fl_mcl_params_default(fl_mcl_params_t *p)
     p->orient_mdeg = 0;
     p->assoc_q8 = 0;
     p->outlier_q16 = 1311;
+    p->corner_any = 1;
     p->max_range_mm = FL_OBS_MAX_RANGE_MM;
     p->cross_max_mm = 0;
     p->alpha_slow_q16 = 22;
@@ -190,7 +191,7 @@ fl_status_t fl_mcl_params_check(const fl_mcl_params_t *p)
         p->jitter_mdeg > 30000 || p->margin_mm < 0 || p->margin_mm > 2000 ||
         p->range_pct > 100 || p->range_base_mm < 1 || p->range_base_mm > 5000 ||
         p->bearing_mdeg < 10 || p->bearing_mdeg > 45000 ||
-        p->assoc_q8 > 4096 || p->outlier_q16 < 1 || p->max_range_mm < 1 ||
+        p->assoc_q8 > 4096 || p->outlier_q16 < 1 || p->corner_any > 1 || p->max_range_mm < 1 ||
         p->max_range_mm > FL_OBS_MAX_RANGE_MM || p->cross_max_mm < 0 ||
         p->alpha_slow_q16 > p->alpha_fast_q16 ||
         p->inject_min_q16 > p->inject_max_q16 || p->cluster_mm < 100 || p->cluster_mm > 5000)

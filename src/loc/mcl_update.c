@@ -187,13 +187,24 @@ bool fl_mcl_internal_prepare(const fl_mcl_core_t *pc, const fl_mcl_params_t *p,
         return false;
     k = (int)o->kind;
     c->n_cand = 0;
-    for (a = pc->kind_start[k]; a < pc->kind_start[k + 1]; a++) {
-        const fl_landmark_t *lm = fl_field_all_at(pc->field, pc->lm_index[a]);
-        if (!lm_matches(lm, o))
-            continue;
-        c->cx[c->n_cand] = (int16_t)mcl_clamp(lm->x_mm, -20000, 20000);
-        c->cy[c->n_cand] = (int16_t)mcl_clamp(lm->y_mm, -20000, 20000);
-        c->cand[c->n_cand++] = pc->lm_index[a];
+    {
+        /* params.corner_any: for seed 004's corner kinds every corner
+         * feature is a candidate (the image stage types a pair by the lines
+         * it sees leave it, and a faint stem or an unseen net changes the
+         * type; aibo2004 frames, corners alone, seed 1: 436 mm position
+         * RMSE with the observed kind only, 56 mm with any corner) */
+        const bool corner = p->corner_any && (o->kind == FL_LM_CORNER_C ||
+                                              o->kind == FL_LM_CORNER_TFIELD ||
+                                              o->kind == FL_LM_CORNER_TNET);
+        const int k0 = corner ? (int)FL_LM_CORNER_C : k, k1 = corner ? (int)FL_LM_CORNER_TNET : k;
+        for (a = pc->kind_start[k0]; a < pc->kind_start[k1 + 1]; a++) {
+            const fl_landmark_t *lm = fl_field_all_at(pc->field, pc->lm_index[a]);
+            if (!corner && !lm_matches(lm, o))
+                continue;
+            c->cx[c->n_cand] = (int16_t)mcl_clamp(lm->x_mm, -20000, 20000);
+            c->cy[c->n_cand] = (int16_t)mcl_clamp(lm->y_mm, -20000, 20000);
+            c->cand[c->n_cand++] = pc->lm_index[a];
+        }
     }
     if (c->n_cand == 0)
         return false;

@@ -49,6 +49,11 @@ void fl_upf_params_default(fl_upf_params_t *p)
     p->mcl.n_particles = FL_UPF_MAX_PARTICLES < 12 ? FL_UPF_MAX_PARTICLES : 12;
     p->mcl.odo_trans_pct = 5;
     p->mcl.kidnap_q16 = 26214;
+    /* the observed corner kind only: with every corner a candidate, each
+     * particle's Kalman update takes the nearest of 16 unoriented points
+     * and the filter does not settle (aibo2004 frames, corners alone: 1154
+     * mm RMSE with the kind, 1713 mm with any corner) */
+    p->mcl.corner_any = 0;
     p->ess_pct = 70;
     p->inject_resample_q16 = 9830;
     p->seed_tries = 1;
@@ -85,6 +90,7 @@ void fl_upf_params_vision(fl_upf_params_t *p, bool lowres)
     n = p->mcl.n_particles;
     fl_mcl_params_vision(&p->mcl, false);
     p->mcl.n_particles = n;
+    p->mcl.corner_any = 0;   /* as in fl_upf_params_default */
     p->mcl.range_pct = 3;
     p->mcl.range_base_mm = 20;
     p->mcl.orient_mdeg = 5000;
